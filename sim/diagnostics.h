@@ -1,0 +1,46 @@
+#pragma once
+// Per-frame measurements of a simulation, and the time spent in each phase of a step.
+
+#include <array>
+#include <chrono>
+#include <string_view>
+
+namespace weft::sim {
+
+struct Diagnostics {
+  double time_s = 0.0;
+  double kinetic_energy_J = 0.0;
+  double elastic_energy_J = 0.0;
+  double gravity_energy_J = 0.0;    // −Σ m g·x, relative to the origin
+  double max_strain = 0.0;          // largest |length/rest − 1| over warp and weft edges
+  double max_speed_m_s = 0.0;
+  double total_energy_J() const { return kinetic_energy_J + elastic_energy_J + gravity_energy_J; }
+};
+
+enum class Phase { forces, integrate, check, count };
+
+inline constexpr std::array<std::string_view, static_cast<int>(Phase::count)> phase_names{
+    "forces", "integrate", "check"};
+
+// Accumulated wall time per phase, seconds.
+class PhaseTimers {
+ public:
+  template <class F>
+  void time(Phase phase, F&& work) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    m_seconds[static_cast<int>(phase)] +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  double seconds(Phase phase) const { return m_seconds[static_cast<int>(phase)]; }
+  double total_seconds() const {
+    double t = 0.0;
+    for (double s : m_seconds) t += s;
+    return t;
+  }
+
+ private:
+  std::array<double, static_cast<int>(Phase::count)> m_seconds{};
+};
+
+}  // namespace weft::sim

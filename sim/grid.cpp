@@ -1,0 +1,57 @@
+#include "sim/grid.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace weft::sim {
+
+std::vector<std::array<Index, 3>> ClothMesh::triangles() const {
+  std::vector<std::array<Index, 3>> tris;
+  tris.reserve(2 * quads.size());
+  for (const auto& q : quads) {
+    tris.push_back({q[0], q[1], q[2]});
+    tris.push_back({q[0], q[2], q[3]});
+  }
+  return tris;
+}
+
+ClothMesh make_grid(const GridSpec& spec) {
+  if (spec.nu < 2 || spec.nv < 2)
+    throw std::invalid_argument("grid resolution must be at least 2×2 vertices, got " +
+                                std::to_string(spec.nu) + "×" + std::to_string(spec.nv));
+  if (!(spec.size_u_m > 0.0) || !(spec.size_v_m > 0.0) || !std::isfinite(spec.size_u_m) ||
+      !std::isfinite(spec.size_v_m))
+    throw std::invalid_argument("grid size must be positive and finite");
+
+  ClothMesh mesh;
+  mesh.nu = spec.nu;
+  mesh.nv = spec.nv;
+  const Index n = spec.nu * spec.nv;
+  const double du = spec.size_u_m / (spec.nu - 1);
+  const double dv = spec.size_v_m / (spec.nv - 1);
+  mesh.rest_positions.resize(n, 3);
+  mesh.material_coords.resize(n);
+  mesh.vertex_area_m2 = Eigen::VectorXd::Zero(n);
+  for (Index j = 0; j < spec.nv; ++j) {
+    for (Index i = 0; i < spec.nu; ++i) {
+      const Index k = mesh.index(i, j);
+      const Vec2 uv(i * du, j * dv);
+      mesh.material_coords[k] = uv;
+      mesh.rest_positions.row(k) = (spec.origin + uv.x() * spec.warp_axis + uv.y() * spec.weft_axis).transpose();
+    }
+  }
+  // Each quad gives a quarter of its area to each corner: the lumped (area-weighted) mass rule.
+  const double quarter = 0.25 * du * dv;
+  for (Index j = 0; j + 1 < spec.nv; ++j) {
+    for (Index i = 0; i + 1 < spec.nu; ++i) {
+      const std::array<Index, 4> q{mesh.index(i, j), mesh.index(i + 1, j), mesh.index(i + 1, j + 1),
+                                   mesh.index(i, j + 1)};
+      mesh.quads.push_back(q);
+      for (Index v : q) mesh.vertex_area_m2[v] += quarter;
+    }
+  }
+  return mesh;
+}
+
+}  // namespace weft::sim

@@ -1,0 +1,124 @@
+#include "sim/mass_spring.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "sim/energies/bend_angle.h"
+#include "sim/energies/spring.h"
+
+namespace weft::sim {
+namespace {
+
+Vec3 row(const Matrix3X& x, Index i) { return x.row(i).transpose(); }
+
+// Width of cloth a line at index `k` of `count` parallel lines stands for: half a cell on the
+// boundary lines, a whole cell inside.
+double tributary_width(Index k, Index count, double spacing) {
+  return (k == 0 || k == count - 1) ? 0.5 * spacing : spacing;
+}
+
+double rest_length(const ClothMesh& mesh, Index a, Index b) {
+  return (mesh.material_coords[b] - mesh.material_coords[a]).norm();
+}
+
+}  // namespace
+
+MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m) {
+  const Index nu = mesh.nu, nv = mesh.nv;
+  const double hu = rest_length(mesh, mesh.index(0, 0), mesh.index(1, 0));
+  const double hv = rest_length(mesh, mesh.index(0, 0), mesh.index(0, 1));
+  const double G = m.shear_N_m;
+  // Part of the stretch rigidity carried by the shear diagonals, taken off the edges.
+  const double yu = m.stretch_warp_N_m - G * (hu * hu) / (hv * hv);
+  const double yv = m.stretch_weft_N_m - G * (hv * hv) / (hu * hu);
+  if (yu <= 0.0 || yv <= 0.0)
+    throw std::invalid_argument(
+        "shear rigidity " + std::to_string(G) + " N/m is too large for the stretch rigidities at "
+        "this cell aspect ratio (the shear springs alone would exceed the stretch stiffness)");
+
+  for (Index j = 0; j < nv; ++j)
+    for (Index i = 0; i + 1 < nu; ++i)
+      m_springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
+                           yu * tributary_width(j, nv, hv) / hu, SpringKind::warp});
+  for (Index j = 0; j + 1 < nv; ++j)
+    for (Index i = 0; i < nu; ++i)
+      m_springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
+                           yv * tributary_width(i, nu, hu) / hv, SpringKind::weft});
+  m_structural_count = m_springs.size();
+
+  const double d = std::hypot(hu, hv);
+  const double k_shear = G * d * d / (2.0 * hu * hv);
+  for (const auto& q : mesh.quads) {
+    m_springs.push_back({q[0], q[2], d, k_shear, SpringKind::shear});
+    m_springs.push_back({q[1], q[3], d, k_shear, SpringKind::shear});
+  }
+
+  for (Index j = 0; j < nv; ++j)
+    for (Index i = 1; i + 1 < nu; ++i)
+      m_bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
+                         m.bend_warp_N_m * tributary_width(j, nv, hv) / hu, hu});
+  for (Index j = 1; j + 1 < nv; ++j)
+    for (Index i = 0; i < nu; ++i)
+      m_bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
+                         m.bend_weft_N_m * tributary_width(i, nu, hu) / hv, hv});
+  // Rest angles from the rest shape (zero for a flat grid, kept general).
+  for (auto& b : m_bends) {
+    const Vec3 x0 = row(mesh.rest_positions, b.v0), x1 = row(mesh.rest_positions, b.v1);
+    b.rest_angle = turning_angle(x1 - x0, row(mesh.rest_positions, b.v2) - x1);
+  }
+}
+
+void MassSpringModel::add_forces(const Matrix3X& x, Matrix3X& f) const {
+  for (const Spring& s : m_springs) {
+    const Vec3 g = spring_gradient_b(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+    f.row(s.a) += g.transpose();
+    f.row(s.b) -= g.transpose();
+  }
+  for (const AngularSpring& b : m_bends) {
+    const auto g = bend_angle_gradient(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
+    f.row(b.v0) -= g[0].transpose();
+    f.row(b.v1) -= g[1].transpose();
+    f.row(b.v2) -= g[2].transpose();
+  }
+}
+
+double MassSpringModel::energy(const Matrix3X& x) const {
+  double e = 0.0;
+  for (const Spring& s : m_springs) e += spring_energy(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+  for (const AngularSpring& b : m_bends)
+    e += bend_angle_energy(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
+  return e;
+}
+
+double MassSpringModel::max_structural_strain(const Matrix3X& x) const {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < m_structural_count; ++k) {
+    const Spring& s = m_springs[k];
+    worst = std::max(worst, std::abs((x.row(s.b) - x.row(s.a)).norm() / s.rest_m - 1.0));
+  }
+  return worst;
+}
+
+Eigen::VectorXd MassSpringModel::stiffness_row_bound() const {
+  Index n = 0;
+  for (const Spring& s : m_springs) n = std::max({n, s.a + 1, s.b + 1});
+  for (const AngularSpring& b : m_bends) n = std::max({n, b.v0 + 1, b.v1 + 1, b.v2 + 1});
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(n);
+  // A spring's 6×6 Hessian at rest is k [I −I; −I I] ⊗ d̂d̂ᵀ: each row of blocks sums to 2k.
+  for (const Spring& s : m_springs) {
+    bound[s.a] += 2.0 * s.k_N_m;
+    bound[s.b] += 2.0 * s.k_N_m;
+  }
+  // Near flat, θ ≈ (δ0 − 2δ1 + δ2)/l across the line: Hessian (k/l²)·[1 −2 1]ᵀ[1 −2 1], whose
+  // block rows sum to 4k/l² at the ends and 8k/l² in the middle.
+  for (const AngularSpring& b : m_bends) {
+    const double c = b.k_Nm / (b.rest_l_m * b.rest_l_m);
+    bound[b.v0] += 4.0 * c;
+    bound[b.v1] += 8.0 * c;
+    bound[b.v2] += 4.0 * c;
+  }
+  return bound;
+}
+
+}  // namespace weft::sim

@@ -1,0 +1,81 @@
+#include "sim/pins.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace weft::sim {
+namespace {
+
+std::string range_text(Index count) { return "(0.." + std::to_string(count - 1) + ")"; }
+
+std::vector<Index> select(const PinVertex& p, const ClothMesh& mesh) {
+  if (p.index < 0 || p.index >= mesh.vertex_count())
+    throw std::invalid_argument("vertex " + std::to_string(p.index) + " is outside the mesh " +
+                                range_text(mesh.vertex_count()));
+  return {p.index};
+}
+
+std::vector<Index> select(const PinGrid& p, const ClothMesh& mesh) {
+  if (p.i < 0 || p.i >= mesh.nu || p.j < 0 || p.j >= mesh.nv)
+    throw std::invalid_argument("grid vertex [" + std::to_string(p.i) + ", " + std::to_string(p.j) +
+                                "] is outside the mesh ([0.." + std::to_string(mesh.nu - 1) +
+                                ", 0.." + std::to_string(mesh.nv - 1) + "])");
+  return {mesh.index(p.i, p.j)};
+}
+
+std::vector<Index> select(const PinCorner& p, const ClothMesh& mesh) {
+  const auto& names = corner_names();
+  const auto it = std::find(names.begin(), names.end(), p.name);
+  if (it == names.end()) {
+    std::string choices;
+    for (const auto& n : names) choices += (choices.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown corner '" + p.name + "' (choices: " + choices + ")");
+  }
+  const auto c = it - names.begin();  // bit 0: u at its maximum, bit 1: v at its maximum
+  return {mesh.index((c & 1) ? mesh.nu - 1 : 0, (c & 2) ? mesh.nv - 1 : 0)};
+}
+
+std::vector<Index> select(const PinRegion& p, const ClothMesh& mesh) {
+  if (!(p.u0 <= p.u1) || !(p.v0 <= p.v1))
+    throw std::invalid_argument("region bounds must be ordered (u0 ≤ u1, v0 ≤ v1)");
+  std::vector<Index> out;
+  // Compare in grid units with a small tolerance so that a bound on a grid line includes it.
+  const double eps = 1e-9;
+  for (Index j = 0; j < mesh.nv; ++j) {
+    const double v = static_cast<double>(j) / (mesh.nv - 1);
+    if (v < p.v0 - eps || v > p.v1 + eps) continue;
+    for (Index i = 0; i < mesh.nu; ++i) {
+      const double u = static_cast<double>(i) / (mesh.nu - 1);
+      if (u >= p.u0 - eps && u <= p.u1 + eps) out.push_back(mesh.index(i, j));
+    }
+  }
+  if (out.empty())
+    throw std::invalid_argument("region u [" + std::to_string(p.u0) + ", " + std::to_string(p.u1) +
+                                "], v [" + std::to_string(p.v0) + ", " + std::to_string(p.v1) +
+                                "] contains no vertex");
+  return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& corner_names() {
+  static const std::vector<std::string> names{"u0v0", "u1v0", "u0v1", "u1v1"};
+  return names;
+}
+
+std::vector<Index> resolve_pins(const std::vector<PinSpec>& pins, const ClothMesh& mesh) {
+  std::vector<Index> out;
+  for (std::size_t k = 0; k < pins.size(); ++k) {
+    try {
+      const auto selected = std::visit([&](const auto& p) { return select(p, mesh); }, pins[k]);
+      out.insert(out.end(), selected.begin(), selected.end());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("pin " + std::to_string(k) + ": " + e.what());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace weft::sim

@@ -1,0 +1,26 @@
+#pragma once
+// Pin selections: which cloth vertices are held fixed.
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "sim/grid.h"
+
+namespace weft::sim {
+
+struct PinVertex { Index index; };          // flat vertex index
+struct PinGrid { Index i, j; };             // grid coordinates, i along warp, j along weft
+struct PinCorner { std::string name; };     // "u0v0", "u1v0", "u0v1", "u1v1"
+struct PinRegion { double u0, u1, v0, v1; };  // fractions of the cloth size, 0..1, inclusive
+using PinSpec = std::variant<PinVertex, PinGrid, PinCorner, PinRegion>;
+
+// The corner names, for error messages.
+const std::vector<std::string>& corner_names();
+
+// Sorted, unique vertex indices. Throws std::invalid_argument with a message naming the pin
+// (e.g. "pin 2: vertex 5000 is outside the mesh (0..1023)") when a pin selects nothing or lies
+// outside the mesh.
+std::vector<Index> resolve_pins(const std::vector<PinSpec>& pins, const ClothMesh& mesh);
+
+}  // namespace weft::sim

@@ -1,0 +1,109 @@
+#include "sim/simulator.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace weft::sim {
+namespace {
+
+std::string divergence_message(long step, double time_s, const std::string& quantity) {
+  std::ostringstream out;
+  out << "simulation diverged at step " << step << " (t = " << time_s << " s): " << quantity;
+  return out.str();
+}
+
+}  // namespace
+
+DivergenceError::DivergenceError(long step, double time_s, std::string quantity)
+    : std::runtime_error(divergence_message(step, time_s, quantity)),
+      m_step(step),
+      m_time_s(time_s),
+      m_quantity(std::move(quantity)) {}
+
+Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index> pinned,
+                     const SimSettings& settings)
+    : m_mesh(std::move(mesh)), m_model(m_mesh, material), m_settings(settings),
+      m_pinned(std::move(pinned)) {
+  const Index n = m_mesh.vertex_count();
+  m_mass_kg = material.density_kg_m2 * m_mesh.vertex_area_m2;
+  m_inv_mass = m_mass_kg.cwiseInverse();
+  for (Index p : m_pinned) m_inv_mass[p] = 0.0;
+  m_state.x = m_mesh.rest_positions;
+  m_state.v = Matrix3X::Zero(n, 3);
+  m_forces = Matrix3X::Zero(n, 3);
+
+  // Symplectic Euler is stable for h < 2/ω_max; ω_max² ≤ max_i bound_i / m_i (Gershgorin).
+  const Eigen::VectorXd bound = m_model.stiffness_row_bound();
+  double omega2 = 0.0;
+  for (Index i = 0; i < n; ++i)
+    if (m_inv_mass[i] > 0.0) omega2 = std::max(omega2, bound[i] * m_inv_mass[i]);
+  m_critical_step_s = omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : 1.0;
+  m_time_step_s = settings.time_step_s.value_or(settings.time_step_safety * m_critical_step_s);
+}
+
+void Simulator::advance(double dt_s) {
+  if (dt_s <= 0.0) return;
+  const long substeps = static_cast<long>(std::ceil(dt_s / m_time_step_s - 1e-9));
+  const double h = dt_s / static_cast<double>(substeps);
+  const double t_end = m_state.time_s + dt_s;
+  for (long s = 0; s < substeps; ++s) step(h);
+  m_state.time_s = t_end;  // no drift from summing substeps
+}
+
+void Simulator::step(double h_s) {
+  m_timers.time(Phase::forces, [&] { compute_forces(); });
+  m_timers.time(Phase::integrate, [&] { integrate(h_s); });
+  ++m_steps;
+  m_timers.time(Phase::check, [&] { check_finite(); });
+}
+
+// Internal, gravity and mass-proportional air damping (seed 002 eq. 27: f = −α M v).
+void Simulator::compute_forces() {
+  m_forces.setZero();
+  m_model.add_forces(m_state.x, m_forces);
+  const Eigen::RowVector3d g = m_settings.gravity_m_s2.transpose();
+  for (Index i = 0; i < m_forces.rows(); ++i)
+    m_forces.row(i) += m_mass_kg[i] * (g - m_settings.air_damping_1_s * m_state.v.row(i));
+}
+
+// Symplectic Euler: v ← v + h M⁻¹ f(x, v); x ← x + h v. Pinned vertices keep v = 0.
+void Simulator::integrate(double h_s) {
+  for (Index i = 0; i < m_state.x.rows(); ++i) {
+    m_state.v.row(i) += (h_s * m_inv_mass[i]) * m_forces.row(i);
+    m_state.x.row(i) += h_s * m_state.v.row(i);
+  }
+  m_state.time_s += h_s;
+}
+
+void Simulator::check_finite() const {
+  const double limit2 = m_settings.max_speed_m_s * m_settings.max_speed_m_s;
+  for (Index i = 0; i < m_state.x.rows(); ++i) {
+    const double v2 = m_state.v.row(i).squaredNorm();
+    if (!std::isfinite(v2) || !m_state.x.row(i).allFinite()) {
+      throw DivergenceError(m_steps, m_state.time_s,
+                            "non-finite position or velocity at vertex " + std::to_string(i));
+    }
+    if (v2 > limit2) {
+      std::ostringstream q;
+      q << "speed of vertex " << i << " is " << std::sqrt(v2) << " m/s (limit "
+        << m_settings.max_speed_m_s << " m/s; try a smaller time_step)";
+      throw DivergenceError(m_steps, m_state.time_s, q.str());
+    }
+  }
+}
+
+Diagnostics Simulator::diagnostics() const {
+  Diagnostics d;
+  d.time_s = m_state.time_s;
+  for (Index i = 0; i < m_state.x.rows(); ++i) {
+    const double v2 = m_state.v.row(i).squaredNorm();
+    d.kinetic_energy_J += 0.5 * m_mass_kg[i] * v2;
+    d.max_speed_m_s = std::max(d.max_speed_m_s, std::sqrt(v2));
+    d.gravity_energy_J -= m_mass_kg[i] * m_state.x.row(i).dot(m_settings.gravity_m_s2.transpose());
+  }
+  d.elastic_energy_J = m_model.energy(m_state.x);
+  d.max_strain = m_model.max_structural_strain(m_state.x);
+  return d;
+}
+
+}  // namespace weft::sim

@@ -1,0 +1,18 @@
+#pragma once
+// Shared Eigen aliases: one storage layout for per-vertex data.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+namespace weft::sim {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+// #V×3 per-vertex vectors (positions in m, velocities in m/s, forces in N), row-major so that a
+// vertex's x, y, z are contiguous and the whole block maps to a 3#V vector.
+using Matrix3X = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Index = std::int32_t;
+
+}  // namespace weft::sim
