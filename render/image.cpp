@@ -1,0 +1,152 @@
+// Image storage and PNG input/output. stb's implementation is compiled into Debian's libstb
+// (linked through PkgConfig::STB); only its declarations are included here, so no
+// STB_*_IMPLEMENTATION is defined anywhere in weft.
+
+#include "render/image.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+// libstb's include directory comes from an imported target, so it is a system include and its
+// headers' warnings do not reach weft's warning flags.
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+namespace weft::render {
+
+namespace {
+
+std::string quoted(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
+}
+
+void check_inside(const Image& image, int x, int y) {
+  if (x < 0 || y < 0 || x >= image.width() || y >= image.height()) {
+    throw std::out_of_range("Image: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                            ") outside a " + std::to_string(image.width()) + "x" +
+                            std::to_string(image.height()) + " image");
+  }
+}
+
+// Owns a FILE*; closing is explicit (close()) where its result matters.
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+// stbi_write_png_to_func callback: appends the encoded bytes to a std::string.
+void append_bytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                             static_cast<std::size_t>(size));
+}
+
+// Writes bytes to path; throws naming the path and the system's reason.
+void write_file(const std::filesystem::path& path, const std::string& bytes) {
+  errno = 0;
+  FilePtr file(std::fopen(path.c_str(), "wb"));
+  if (!file) {
+    throw std::runtime_error("write_png: cannot open " + quoted(path) +
+                             " for writing: " + std::strerror(errno));
+  }
+  const std::size_t written = std::fwrite(bytes.data(), 1, bytes.size(), file.get());
+  const int saved_errno = errno;
+  if (written != bytes.size()) {
+    throw std::runtime_error("write_png: cannot write " + quoted(path) + ": " +
+                             std::strerror(saved_errno));
+  }
+  if (std::fclose(file.release()) != 0) {
+    throw std::runtime_error("write_png: cannot close " + quoted(path) + ": " +
+                             std::strerror(errno));
+  }
+}
+
+}  // namespace
+
+Image::Image(int width, int height, Rgb8 fill) : m_width(width), m_height(height) {
+  if (width < 0 || height < 0) {
+    throw std::invalid_argument("Image: negative size " + std::to_string(width) + "x" +
+                                std::to_string(height));
+  }
+  m_rgb.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  for (std::size_t i = 0; i < m_rgb.size(); i += 3) {
+    m_rgb[i] = fill.r;
+    m_rgb[i + 1] = fill.g;
+    m_rgb[i + 2] = fill.b;
+  }
+}
+
+Rgb8 Image::at(int x, int y) const {
+  check_inside(*this, x, y);
+  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) +
+                         static_cast<std::size_t>(x)) *
+                        3;
+  return {m_rgb[i], m_rgb[i + 1], m_rgb[i + 2]};
+}
+
+void Image::set(int x, int y, Rgb8 c) {
+  check_inside(*this, x, y);
+  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) +
+                         static_cast<std::size_t>(x)) *
+                        3;
+  m_rgb[i] = c.r;
+  m_rgb[i + 1] = c.g;
+  m_rgb[i + 2] = c.b;
+}
+
+void write_png(const Image& image, const std::filesystem::path& path) {
+  if (image.width() <= 0 || image.height() <= 0) {
+    throw std::runtime_error("write_png: cannot write an empty " + std::to_string(image.width()) +
+                             "x" + std::to_string(image.height()) + " image to " + quoted(path));
+  }
+  // Encode in memory first, so an encoder failure leaves no file at all.
+  std::string encoded;
+  const int ok = stbi_write_png_to_func(append_bytes, &encoded, image.width(), image.height(), 3,
+                                        image.data(), image.width() * 3);
+  if (ok == 0 || encoded.empty()) {
+    throw std::runtime_error("write_png: PNG encoding failed for " + quoted(path));
+  }
+
+  // Write beside the target and rename, so an interrupted run never leaves a half PNG.
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  try {
+    write_file(tmp, encoded);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error("write_png: cannot rename " + quoted(tmp) + " to " + quoted(path) +
+                             ": " + ec.message());
+  }
+}
+
+Image read_image(const std::filesystem::path& path) {
+  int width = 0, height = 0, channels_in_file = 0;
+  // 3 requested channels: stb converts grey/grey-alpha/RGBA to RGB; rows come top row first.
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load(path.c_str(), &width, &height, &channels_in_file, 3), stbi_image_free);
+  if (!pixels) {
+    const char* reason = stbi_failure_reason();
+    std::string why = reason ? reason : "unknown reason";
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) why = "no such file (" + why + ")";
+    throw std::runtime_error("read_image: cannot read " + quoted(path) + ": " + why);
+  }
+  Image image(width, height);
+  std::memcpy(image.data(), pixels.get(),
+              static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  return image;
+}
+
+}  // namespace weft::render

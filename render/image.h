@@ -1,0 +1,38 @@
+#pragma once
+// 8-bit RGB images and PNG input/output (stb, through Debian's libstb).
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace weft::render {
+
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+  friend bool operator==(const Rgb8& a, const Rgb8& b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+};
+
+// width×height pixels, rows stored top row first, 3 bytes per pixel.
+class Image {
+ public:
+  Image() = default;
+  Image(int width, int height, Rgb8 fill = {});
+
+  int width() const { return m_width; }
+  int height() const { return m_height; }
+  Rgb8 at(int x, int y) const;  // (0, 0) is the top-left pixel
+  void set(int x, int y, Rgb8 c);
+  std::uint8_t* data() { return m_rgb.data(); }
+  const std::uint8_t* data() const { return m_rgb.data(); }
+
+ private:
+  int m_width = 0, m_height = 0;
+  std::vector<std::uint8_t> m_rgb;
+};
+
+// Writes a PNG; throws std::runtime_error naming the path when it cannot.
+void write_png(const Image& image, const std::filesystem::path& path);
+// Reads a PNG/JPG as RGB; throws std::runtime_error naming the path and stb's reason.
+Image read_image(const std::filesystem::path& path);
+
+}  // namespace weft::render

@@ -1,0 +1,548 @@
+// OpenGL 3.3 core rasterizer. Per render():
+//   1. validate the settings and the mesh (computing vertex normals on a copy if missing),
+//   2. upload positions, normals and triangles (the mesh changes every frame),
+//   3. shadow pass (ground on, lit): cloth depth from the key light, orthographic,
+//   4. main pass into a multisampled FBO: clear to the background, ground, cloth,
+//   5. resolve (glBlitFramebuffer) into a single-sample FBO, glFinish, glReadPixels,
+//      and flip rows so that Image row 0 is the top.
+// GL entry points come from the GlContext (gl_functions.h); nothing links GL directly.
+
+#include "render/raster.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/gl_functions.h"
+#include "render/raster_shaders.h"
+
+namespace weft::render {
+
+namespace {
+
+using detail::check_gl_error;
+using detail::GlFunctions;
+
+constexpr int shadow_map_size = 2048;  // texels per side of the square shadow map
+
+static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "positions are uploaded as-is");
+static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t),
+              "triangles are uploaded as-is");
+
+std::string size_text(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// Bad input in the settings: an exception naming the field and what was expected.
+void validate(const RenderSettings& s, int max_size) {
+  const auto fail = [](const std::string& what) {
+    throw std::invalid_argument("RenderSettings: " + what);
+  };
+  if (s.width <= 0 || s.height <= 0 || s.width > max_size || s.height > max_size) {
+    fail("width×height must be within 1.." + std::to_string(max_size) + ", got " +
+         size_text(s.width, s.height));
+  }
+  if (s.msaa_samples < 0) fail("msaa_samples must be >= 0, got " + std::to_string(s.msaa_samples));
+  if (!s.light_direction.allFinite() || !(s.light_direction.norm() > 0.0)) {
+    fail("light_direction must be a finite non-zero vector");
+  }
+  if (!(s.light_intensity >= 0.0) || !std::isfinite(s.light_intensity)) {
+    fail("light_intensity must be finite and >= 0");
+  }
+  if (!(s.ambient >= 0.0) || !std::isfinite(s.ambient)) fail("ambient must be finite and >= 0");
+  if (s.ground && (!(s.ground_half_size_m > 0.0) || !std::isfinite(s.ground_half_size_m) ||
+                   !std::isfinite(s.ground_z_m))) {
+    fail("ground needs a finite ground_z_m and ground_half_size_m > 0");
+  }
+}
+
+// Bad input in the mesh: indices in range, positions finite, at most INT_MAX/3 triangles.
+void validate(const RenderMesh& mesh) {
+  const std::size_t vertex_count = mesh.positions.size();
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    if (!mesh.positions[v].allFinite()) {
+      throw std::invalid_argument("RenderMesh: vertex " + std::to_string(v) +
+                                  " has a non-finite position");
+    }
+  }
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::uint32_t v : mesh.triangles[f]) {
+      if (v >= vertex_count) {
+        throw std::invalid_argument("RenderMesh: triangle " + std::to_string(f) + " uses vertex " +
+                                    std::to_string(v) + " but the mesh has " +
+                                    std::to_string(vertex_count) + " vertices");
+      }
+    }
+  }
+  if (mesh.triangles.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max() / 3)) {
+    throw std::invalid_argument("RenderMesh: too many triangles for one draw call");
+  }
+}
+
+GLuint compile_shader(const GlFunctions& gl, GLenum type, const char* source,
+                      const std::string& name) {
+  const GLuint shader = gl.CreateShader(type);
+  if (shader == 0) throw std::runtime_error(name + ": glCreateShader failed");
+  gl.ShaderSource(shader, 1, &source, nullptr);
+  gl.CompileShader(shader);
+  GLint ok = GL_FALSE;
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    gl.GetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    gl.DeleteShader(shader);
+    throw std::runtime_error(name + " failed to compile:\n" + log.c_str());
+  }
+  return shader;
+}
+
+// Compiles and links a vertex + fragment program; throws with the compiler/linker log.
+GLuint link_program(const GlFunctions& gl, const char* vertex_source, const char* fragment_source,
+                    const std::string& name) {
+  const GLuint vertex =
+      compile_shader(gl, GL_VERTEX_SHADER, vertex_source, name + " vertex shader");
+  GLuint fragment = 0;
+  try {
+    fragment = compile_shader(gl, GL_FRAGMENT_SHADER, fragment_source, name + " fragment shader");
+  } catch (...) {
+    gl.DeleteShader(vertex);
+    throw;
+  }
+  const GLuint program = gl.CreateProgram();
+  gl.AttachShader(program, vertex);
+  gl.AttachShader(program, fragment);
+  gl.LinkProgram(program);
+  gl.DeleteShader(vertex);  // flagged; freed with the program
+  gl.DeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    gl.GetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    gl.GetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    gl.DeleteProgram(program);
+    throw std::runtime_error(name + " program failed to link:\n" + log.c_str());
+  }
+  check_gl_error(gl, name + " program");
+  return program;
+}
+
+void check_framebuffer(const GlFunctions& gl, GLenum target, const std::string& name) {
+  const GLenum status = gl.CheckFramebufferStatus(target);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    throw std::runtime_error(name + " framebuffer is incomplete (status 0x" + [status] {
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "%04X", status);
+      return std::string(hex);
+    }() + ")");
+  }
+}
+
+// World → light clip space for the shadow pass: an orthographic box looking along
+// −light_direction that encloses the sphere around the mesh's bounding box.
+Eigen::Matrix4f light_view_projection(const RenderMesh& mesh, const Eigen::Vector3d& light_unit) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector3d hi = -lo;
+  for (const Eigen::Vector3f& p : mesh.positions) {
+    lo = lo.cwiseMin(p.cast<double>());
+    hi = hi.cwiseMax(p.cast<double>());
+  }
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  const double radius = std::max(0.5 * (hi - lo).norm(), 1e-3);  // metres
+
+  Camera light;
+  light.eye = centre + 2.0 * radius * light_unit;
+  light.target = centre;
+  light.up = std::abs(light_unit.z()) < 0.99 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
+  // Depth range [0.5 r, 4 r] from the eye: the mesh lies in [r, 3 r]; receivers beyond the far
+  // plane are clamped in the shader and count as behind every caster.
+  const double near_m = 0.5 * radius, far_m = 4.0 * radius;
+  Eigen::Matrix4d ortho = Eigen::Matrix4d::Identity();
+  ortho(0, 0) = 1.0 / radius;
+  ortho(1, 1) = 1.0 / radius;
+  ortho(2, 2) = -2.0 / (far_m - near_m);
+  ortho(2, 3) = -(far_m + near_m) / (far_m - near_m);
+  return ortho.cast<float>() * light.view_matrix();
+}
+
+}  // namespace
+
+struct RasterRenderer::Impl {
+  explicit Impl(std::unique_ptr<GlContext> context);
+  ~Impl();
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
+  Image render(const RenderMesh& mesh, const RenderSettings& settings);
+  std::string description() const { return m_context->description(); }
+
+ private:
+  void release_gl();
+  void ensure_targets(int width, int height, int samples);
+  void ensure_shadow_map();
+  void upload(const RenderMesh& mesh);
+  void draw_shadow_map(GLsizei index_count, const Eigen::Matrix4f& light_matrix);
+  void draw_ground(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
+                   const Eigen::Matrix4f* shadow_matrix);
+  void draw_cloth(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
+                  GLsizei index_count);
+  Image read_back(int width, int height);
+
+  GLint uniform(GLuint program, const char* name) const {
+    return m_gl.GetUniformLocation(program, name);
+  }
+  void set(GLuint program, const char* name, const Eigen::Vector3f& v) const {
+    m_gl.Uniform3f(uniform(program, name), v.x(), v.y(), v.z());
+  }
+  void set(GLuint program, const char* name, const Eigen::Vector3d& v) const {
+    set(program, name, Eigen::Vector3f(v.cast<float>()));
+  }
+  void set(GLuint program, const char* name, const Eigen::Matrix4f& m) const {
+    m_gl.UniformMatrix4fv(uniform(program, name), 1, GL_FALSE, m.data());  // column-major
+  }
+  void set(GLuint program, const char* name, float x) const {
+    m_gl.Uniform1f(uniform(program, name), x);
+  }
+  void set(GLuint program, const char* name, int x) const {
+    m_gl.Uniform1i(uniform(program, name), x);
+  }
+
+  std::unique_ptr<GlContext> m_context;  // declared first: destroyed after the GL objects
+  GlFunctions m_gl;
+  GLint m_max_samples = 0, m_max_size = 0;
+  GLuint m_cloth_program = 0, m_ground_program = 0, m_shadow_program = 0;
+  GLuint m_cloth_vao = 0, m_empty_vao = 0;  // m_empty_vao: the ground needs no attributes
+  GLuint m_position_buffer = 0, m_normal_buffer = 0, m_index_buffer = 0;
+  GLuint m_shadow_fbo = 0, m_shadow_depth = 0;  // created on first use
+  // Size-dependent render targets, recreated when width, height or samples change.
+  int m_target_width = 0, m_target_height = 0, m_target_samples = -1;
+  GLuint m_msaa_fbo = 0, m_msaa_color = 0, m_msaa_depth = 0;
+  GLuint m_resolve_fbo = 0, m_resolve_color = 0;
+};
+
+RasterRenderer::Impl::Impl(std::unique_ptr<GlContext> context) : m_context(std::move(context)) {
+  if (!m_context) throw std::invalid_argument("RasterRenderer: no GL context given");
+  m_context->make_current();
+  m_gl = detail::load_gl_functions(*m_context);
+  try {
+    m_gl.GetIntegerv(GL_MAX_SAMPLES, &m_max_samples);
+    m_gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &m_max_size);
+    m_cloth_program =
+        link_program(m_gl, detail::cloth_vertex_shader, detail::cloth_fragment_shader, "cloth");
+    m_ground_program =
+        link_program(m_gl, detail::ground_vertex_shader, detail::ground_fragment_shader, "ground");
+    m_shadow_program =
+        link_program(m_gl, detail::shadow_vertex_shader, detail::shadow_fragment_shader, "shadow");
+
+    m_gl.GenVertexArrays(1, &m_cloth_vao);
+    m_gl.GenVertexArrays(1, &m_empty_vao);
+    m_gl.GenBuffers(1, &m_position_buffer);
+    m_gl.GenBuffers(1, &m_normal_buffer);
+    m_gl.GenBuffers(1, &m_index_buffer);
+    // Attribute 0: position, attribute 1: normal; 3 floats each, tightly packed.
+    m_gl.BindVertexArray(m_cloth_vao);
+    m_gl.BindBuffer(GL_ARRAY_BUFFER, m_position_buffer);
+    m_gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    m_gl.EnableVertexAttribArray(0);
+    m_gl.BindBuffer(GL_ARRAY_BUFFER, m_normal_buffer);
+    m_gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    m_gl.EnableVertexAttribArray(1);
+    m_gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_index_buffer);  // recorded in the VAO
+    m_gl.BindVertexArray(0);
+    check_gl_error(m_gl, "RasterRenderer setup");
+  } catch (...) {
+    release_gl();
+    throw;
+  }
+}
+
+RasterRenderer::Impl::~Impl() {
+  try {
+    m_context->make_current();
+    release_gl();
+  } catch (...) {
+    // The context is going away with everything it holds; nothing more to do.
+  }
+}
+
+void RasterRenderer::Impl::release_gl() {
+  // glDelete* ignore the name 0, so this is safe on a partially built renderer.
+  const GLuint framebuffers[] = {m_msaa_fbo, m_resolve_fbo, m_shadow_fbo};
+  const GLuint renderbuffers[] = {m_msaa_color, m_msaa_depth, m_resolve_color};
+  const GLuint buffers[] = {m_position_buffer, m_normal_buffer, m_index_buffer};
+  const GLuint vertex_arrays[] = {m_cloth_vao, m_empty_vao};
+  if (m_gl.DeleteFramebuffers) m_gl.DeleteFramebuffers(3, framebuffers);
+  if (m_gl.DeleteRenderbuffers) m_gl.DeleteRenderbuffers(3, renderbuffers);
+  if (m_gl.DeleteTextures) m_gl.DeleteTextures(1, &m_shadow_depth);
+  if (m_gl.DeleteBuffers) m_gl.DeleteBuffers(3, buffers);
+  if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(2, vertex_arrays);
+  for (GLuint program : {m_cloth_program, m_ground_program, m_shadow_program}) {
+    if (m_gl.DeleteProgram && program != 0) m_gl.DeleteProgram(program);
+  }
+  m_msaa_fbo = m_resolve_fbo = m_shadow_fbo = 0;
+  m_msaa_color = m_msaa_depth = m_resolve_color = m_shadow_depth = 0;
+  m_position_buffer = m_normal_buffer = m_index_buffer = 0;
+  m_cloth_vao = m_empty_vao = 0;
+  m_cloth_program = m_ground_program = m_shadow_program = 0;
+  m_target_width = m_target_height = 0;
+  m_target_samples = -1;
+}
+
+void RasterRenderer::Impl::ensure_targets(int width, int height, int samples) {
+  if (width == m_target_width && height == m_target_height && samples == m_target_samples) return;
+  const GLuint framebuffers[] = {m_msaa_fbo, m_resolve_fbo};
+  const GLuint renderbuffers[] = {m_msaa_color, m_msaa_depth, m_resolve_color};
+  m_gl.DeleteFramebuffers(2, framebuffers);
+  m_gl.DeleteRenderbuffers(3, renderbuffers);
+  m_msaa_fbo = m_resolve_fbo = m_msaa_color = m_msaa_depth = m_resolve_color = 0;
+  m_target_samples = -1;  // stays invalid until everything below succeeded
+
+  // Multisampled colour (RGBA8) + depth (24 bit) to draw into; samples 0 = no multisampling.
+  m_gl.GenRenderbuffers(1, &m_msaa_color);
+  m_gl.BindRenderbuffer(GL_RENDERBUFFER, m_msaa_color);
+  m_gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+  m_gl.GenRenderbuffers(1, &m_msaa_depth);
+  m_gl.BindRenderbuffer(GL_RENDERBUFFER, m_msaa_depth);
+  m_gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width,
+                                      height);
+  m_gl.GenFramebuffers(1, &m_msaa_fbo);
+  m_gl.BindFramebuffer(GL_FRAMEBUFFER, m_msaa_fbo);
+  m_gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_msaa_color);
+  m_gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_msaa_depth);
+  check_framebuffer(m_gl, GL_FRAMEBUFFER, "multisampled (" + std::to_string(samples) + " samples)");
+
+  // Single-sample colour the multisampled one is resolved into and read from.
+  m_gl.GenRenderbuffers(1, &m_resolve_color);
+  m_gl.BindRenderbuffer(GL_RENDERBUFFER, m_resolve_color);
+  m_gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_RGBA8, width, height);
+  m_gl.GenFramebuffers(1, &m_resolve_fbo);
+  m_gl.BindFramebuffer(GL_FRAMEBUFFER, m_resolve_fbo);
+  m_gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                               m_resolve_color);
+  check_framebuffer(m_gl, GL_FRAMEBUFFER, "resolve");
+  m_gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
+  check_gl_error(m_gl, "creating " + size_text(width, height) + " render targets");
+
+  m_target_width = width;
+  m_target_height = height;
+  m_target_samples = samples;
+}
+
+void RasterRenderer::Impl::ensure_shadow_map() {
+  if (m_shadow_fbo != 0) return;
+  m_gl.GenTextures(1, &m_shadow_depth);
+  m_gl.BindTexture(GL_TEXTURE_2D, m_shadow_depth);
+  m_gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadow_map_size, shadow_map_size, 0,
+                  GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+  // Linear filtering of depth comparisons gives 2x2 PCF per tap.
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  m_gl.BindTexture(GL_TEXTURE_2D, 0);
+  m_gl.GenFramebuffers(1, &m_shadow_fbo);
+  m_gl.BindFramebuffer(GL_FRAMEBUFFER, m_shadow_fbo);
+  m_gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_shadow_depth, 0);
+  m_gl.DrawBuffer(GL_NONE);
+  m_gl.ReadBuffer(GL_NONE);
+  check_framebuffer(m_gl, GL_FRAMEBUFFER, "shadow map");
+  check_gl_error(m_gl, "creating the shadow map");
+}
+
+void RasterRenderer::Impl::upload(const RenderMesh& mesh) {
+  const auto bytes = [](std::size_t count, std::size_t size) {
+    return static_cast<GLsizeiptr>(count * size);
+  };
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, m_position_buffer);
+  m_gl.BufferData(GL_ARRAY_BUFFER, bytes(mesh.positions.size(), sizeof(Eigen::Vector3f)),
+                  mesh.positions.data(), GL_STREAM_DRAW);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, m_normal_buffer);
+  m_gl.BufferData(GL_ARRAY_BUFFER, bytes(mesh.normals.size(), sizeof(Eigen::Vector3f)),
+                  mesh.normals.data(), GL_STREAM_DRAW);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
+  m_gl.BindVertexArray(m_cloth_vao);  // the element buffer binding belongs to the VAO
+  m_gl.BufferData(GL_ELEMENT_ARRAY_BUFFER,
+                  bytes(mesh.triangles.size(), sizeof(std::array<std::uint32_t, 3>)),
+                  mesh.triangles.data(), GL_STREAM_DRAW);
+  m_gl.BindVertexArray(0);
+  check_gl_error(m_gl, "uploading the mesh");
+}
+
+void RasterRenderer::Impl::draw_shadow_map(GLsizei index_count,
+                                           const Eigen::Matrix4f& light_matrix) {
+  ensure_shadow_map();
+  m_gl.BindFramebuffer(GL_FRAMEBUFFER, m_shadow_fbo);
+  m_gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
+  m_gl.DepthMask(GL_TRUE);
+  m_gl.ClearDepth(1.0);
+  m_gl.Clear(GL_DEPTH_BUFFER_BIT);
+  m_gl.Enable(GL_DEPTH_TEST);
+  m_gl.DepthFunc(GL_LESS);
+  m_gl.Enable(GL_POLYGON_OFFSET_FILL);  // keeps the cloth's own depth off its shadow test
+  m_gl.PolygonOffset(2.0f, 4.0f);
+  m_gl.UseProgram(m_shadow_program);
+  set(m_shadow_program, "u_light_view_projection", light_matrix);
+  m_gl.BindVertexArray(m_cloth_vao);
+  m_gl.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+  m_gl.BindVertexArray(0);
+  m_gl.Disable(GL_POLYGON_OFFSET_FILL);
+  check_gl_error(m_gl, "shadow pass");
+}
+
+void RasterRenderer::Impl::draw_ground(const RenderSettings& s,
+                                       const Eigen::Matrix4f& view_projection,
+                                       const Eigen::Matrix4f* shadow_matrix) {
+  const GLuint p = m_ground_program;
+  m_gl.UseProgram(p);
+  set(p, "u_view_projection", view_projection);
+  // Centred under the camera target, so it stays put while a turntable orbits the eye.
+  set(p, "u_ground_center",
+      Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m));
+  set(p, "u_half_size", static_cast<float>(s.ground_half_size_m));
+  set(p, "u_ground_color", s.ground_color);
+  set(p, "u_background", s.background);
+  set(p, "u_light_dir", Eigen::Vector3d(s.light_direction.normalized()));
+  set(p, "u_light_intensity", static_cast<float>(s.light_intensity));
+  set(p, "u_ambient", static_cast<float>(s.ambient));
+  set(p, "u_shading", s.shading == Shading::normals ? 1 : 0);
+  set(p, "u_use_shadow", shadow_matrix ? 1 : 0);
+  set(p, "u_shadow_texel", 1.0f / static_cast<float>(shadow_map_size));
+  set(p, "u_shadow_map", 0);  // texture unit 0
+  if (shadow_matrix) {
+    // Shadow clip [−1, 1]³ → texture coordinates and depth [0, 1]³.
+    Eigen::Matrix4f to_texture = Eigen::Matrix4f::Identity();
+    to_texture.topLeftCorner<3, 3>() *= 0.5f;
+    to_texture.topRightCorner<3, 1>().setConstant(0.5f);
+    set(p, "u_shadow_matrix", Eigen::Matrix4f(to_texture * *shadow_matrix));
+    m_gl.ActiveTexture(GL_TEXTURE0);
+    m_gl.BindTexture(GL_TEXTURE_2D, m_shadow_depth);
+  }
+  // Pushed back in depth so cloth lying on the ground wins.
+  m_gl.Enable(GL_POLYGON_OFFSET_FILL);
+  m_gl.PolygonOffset(1.0f, 4.0f);
+  m_gl.BindVertexArray(m_empty_vao);
+  m_gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  m_gl.BindVertexArray(0);
+  m_gl.Disable(GL_POLYGON_OFFSET_FILL);
+  m_gl.BindTexture(GL_TEXTURE_2D, 0);
+  check_gl_error(m_gl, "ground pass");
+}
+
+void RasterRenderer::Impl::draw_cloth(const RenderSettings& s,
+                                      const Eigen::Matrix4f& view_projection, GLsizei index_count) {
+  const GLuint p = m_cloth_program;
+  m_gl.UseProgram(p);
+  set(p, "u_view_projection", view_projection);
+  set(p, "u_eye", s.camera.eye);
+  set(p, "u_light_dir", Eigen::Vector3d(s.light_direction.normalized()));
+  set(p, "u_light_intensity", static_cast<float>(s.light_intensity));
+  set(p, "u_ambient", static_cast<float>(s.ambient));
+  set(p, "u_front_color", s.front_color);
+  set(p, "u_back_color", s.back_color);
+  set(p, "u_shading", s.shading == Shading::normals ? 1 : 0);
+  m_gl.BindVertexArray(m_cloth_vao);
+  m_gl.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+  m_gl.BindVertexArray(0);
+  check_gl_error(m_gl, "cloth pass");
+}
+
+Image RasterRenderer::Impl::read_back(int width, int height) {
+  m_gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_msaa_fbo);
+  m_gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m_resolve_fbo);
+  m_gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  m_gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_resolve_fbo);
+  m_gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  m_gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  m_gl.Finish();
+  const std::size_t row_bytes = static_cast<std::size_t>(width) * 4;
+  std::vector<std::uint8_t> rgba(row_bytes * static_cast<std::size_t>(height));
+  m_gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  m_gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl_error(m_gl, "reading back the image");
+
+  // GL rows run bottom to top; Image rows top to bottom.
+  Image image(width, height);
+  std::uint8_t* out = image.data();
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* in = rgba.data() + static_cast<std::size_t>(height - 1 - y) * row_bytes;
+    for (int x = 0; x < width; ++x, in += 4, out += 3) {
+      out[0] = in[0];
+      out[1] = in[1];
+      out[2] = in[2];
+    }
+  }
+  return image;
+}
+
+Image RasterRenderer::Impl::render(const RenderMesh& input, const RenderSettings& s) {
+  m_context->make_current();
+  validate(s, m_max_size);
+  validate(input);
+  // Vertex normals are required; compute them on a copy when missing or stale in size.
+  RenderMesh with_normals;
+  const RenderMesh* mesh = &input;
+  if (input.normals.size() != input.positions.size()) {
+    with_normals.positions = input.positions;
+    with_normals.triangles = input.triangles;
+    compute_vertex_normals(with_normals);
+    mesh = &with_normals;
+  }
+  const auto index_count = static_cast<GLsizei>(3 * mesh->triangles.size());
+
+  const int samples = s.msaa_samples <= 1 ? 0 : std::min(s.msaa_samples, int{m_max_samples});
+  ensure_targets(s.width, s.height, samples);
+  if (index_count > 0) upload(*mesh);
+
+  const Eigen::Vector3d light_unit = s.light_direction.normalized();
+  const bool shadow = s.ground && s.shading == Shading::lit && index_count > 0 &&
+                      light_unit.z() > 1e-6 && s.light_intensity > 0.0;
+  Eigen::Matrix4f light_matrix = Eigen::Matrix4f::Identity();
+  if (shadow) {
+    light_matrix = light_view_projection(*mesh, light_unit);
+    draw_shadow_map(index_count, light_matrix);
+  }
+
+  const double aspect = static_cast<double>(s.width) / static_cast<double>(s.height);
+  const Eigen::Matrix4f view_projection =
+      s.camera.projection_matrix(aspect) * s.camera.view_matrix();
+
+  m_gl.BindFramebuffer(GL_FRAMEBUFFER, m_msaa_fbo);
+  m_gl.Viewport(0, 0, s.width, s.height);
+  m_gl.Enable(GL_MULTISAMPLE);
+  m_gl.DepthMask(GL_TRUE);
+  m_gl.ClearColor(s.background.x(), s.background.y(), s.background.z(), 1.0f);
+  m_gl.ClearDepth(1.0);
+  m_gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  m_gl.Enable(GL_DEPTH_TEST);
+  m_gl.DepthFunc(GL_LESS);
+  m_gl.Disable(GL_CULL_FACE);  // two-sided cloth
+  check_gl_error(m_gl, "starting the main pass");
+  if (s.ground) draw_ground(s, view_projection, shadow ? &light_matrix : nullptr);
+  if (index_count > 0) draw_cloth(s, view_projection, index_count);
+  return read_back(s.width, s.height);
+}
+
+RasterRenderer::RasterRenderer(std::unique_ptr<GlContext> context)
+    : m_impl(std::make_unique<Impl>(std::move(context))) {}
+
+RasterRenderer::~RasterRenderer() = default;
+
+Image RasterRenderer::render(const RenderMesh& mesh, const RenderSettings& settings) {
+  return m_impl->render(mesh, settings);
+}
+
+std::string RasterRenderer::description() const {
+  return m_impl->description();
+}
+
+}  // namespace weft::render

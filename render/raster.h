@@ -1,0 +1,49 @@
+#pragma once
+// OpenGL 3.3 core rasterizer: draws a RenderMesh off-screen into an Image.
+
+#include <memory>
+#include <string>
+
+#include "render/camera.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+#include "render/render_mesh.h"
+
+namespace weft::render {
+
+enum class Shading { lit, normals };  // normals: |n| as colour (seed 003's debug view)
+
+struct RenderSettings {
+  int width = 640, height = 480;
+  Camera camera;
+  Eigen::Vector3d light_direction{0.4, -0.6, 1.0};  // towards the key light, need not be unit
+  double light_intensity = 0.85;                     // key light, diffuse
+  double ambient = 0.25;
+  Eigen::Vector3f front_color{0.80f, 0.25f, 0.20f};  // linear 0..1
+  Eigen::Vector3f back_color{0.25f, 0.45f, 0.80f};   // back faces get their own colour
+  Eigen::Vector3f background{0.92f, 0.93f, 0.95f};
+  bool ground = true;
+  double ground_z_m = 0.0;
+  double ground_half_size_m = 5.0;
+  Eigen::Vector3f ground_color{0.60f, 0.60f, 0.58f};
+  Shading shading = Shading::lit;
+  int msaa_samples = 4;
+};
+
+class RasterRenderer {
+ public:
+  // Takes ownership of a context; allocates GL resources lazily for each image size.
+  explicit RasterRenderer(std::unique_ptr<GlContext> context);
+  ~RasterRenderer();
+  RasterRenderer(const RasterRenderer&) = delete;
+  RasterRenderer& operator=(const RasterRenderer&) = delete;
+
+  Image render(const RenderMesh& mesh, const RenderSettings& settings);
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace weft::render

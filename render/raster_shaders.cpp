@@ -1,0 +1,143 @@
+// GLSL sources for raster.cpp; see raster_shaders.h for what each program draws.
+
+#include "render/raster_shaders.h"
+
+namespace weft::render::detail {
+
+const char* const cloth_vertex_shader = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 a_position;  // world, metres
+layout(location = 1) in vec3 a_normal;    // world, unit (front side)
+uniform mat4 u_view_projection;           // world -> clip
+out vec3 v_world;
+out vec3 v_normal;
+void main() {
+  v_world = a_position;
+  v_normal = a_normal;
+  gl_Position = u_view_projection * vec4(a_position, 1.0);
+}
+)glsl";
+
+const char* const cloth_fragment_shader = R"glsl(
+#version 330 core
+in vec3 v_world;
+in vec3 v_normal;
+uniform vec3 u_eye;               // world, metres
+uniform vec3 u_light_dir;         // world, unit, towards the key light
+uniform float u_light_intensity;  // diffuse key light
+uniform float u_ambient;
+uniform vec3 u_front_color;
+uniform vec3 u_back_color;
+uniform int u_shading;            // 0 lit, 1 normals
+out vec4 o_color;
+
+void main() {
+  // Geometric normal turned towards the eye: the fallback when the interpolated vertex normal
+  // vanishes (vertex normals of opposite sign across a sharp fold).
+  vec3 geometric = cross(dFdx(v_world), dFdy(v_world));
+  geometric = length(geometric) > 0.0 ? normalize(geometric) : vec3(0.0, 0.0, 1.0);
+  if (dot(geometric, u_eye - v_world) < 0.0) geometric = -geometric;
+
+  float len = length(v_normal);
+  vec3 n = len > 1e-6 ? v_normal / len : geometric;
+  if (!gl_FrontFacing && len > 1e-6) n = -n;  // back face: its normal points the other way
+  vec3 base = gl_FrontFacing ? u_front_color : u_back_color;
+
+  if (u_shading == 1) {
+    o_color = vec4(0.5 * n + 0.5, 1.0);
+    return;
+  }
+  float light = u_ambient + u_light_intensity * max(dot(n, u_light_dir), 0.0);
+  o_color = vec4(base * pow(max(light, 0.0), 1.0 / 2.2), 1.0);
+}
+)glsl";
+
+const char* const ground_vertex_shader = R"glsl(
+#version 330 core
+uniform mat4 u_view_projection;  // world -> clip
+uniform vec3 u_ground_center;    // world, metres; z is the ground height
+uniform float u_half_size;       // metres
+out vec3 v_world;
+void main() {
+  // Triangle strip (-,-), (+,-), (-,+), (+,+): counter-clockwise seen from above (+z).
+  vec2 corner = vec2(float(gl_VertexID & 1), float((gl_VertexID >> 1) & 1)) * 2.0 - 1.0;
+  v_world = u_ground_center + vec3(corner * u_half_size, 0.0);
+  gl_Position = u_view_projection * vec4(v_world, 1.0);
+}
+)glsl";
+
+const char* const ground_fragment_shader = R"glsl(
+#version 330 core
+in vec3 v_world;
+uniform vec3 u_ground_center;     // world, metres
+uniform float u_half_size;        // metres
+uniform vec3 u_ground_color;
+uniform vec3 u_background;
+uniform vec3 u_light_dir;         // world, unit, towards the key light
+uniform float u_light_intensity;
+uniform float u_ambient;
+uniform int u_shading;            // 0 lit, 1 normals
+uniform int u_use_shadow;         // 0: no shadow map bound
+uniform mat4 u_shadow_matrix;     // world -> shadow map texture coordinates and depth, [0,1]^3
+uniform sampler2DShadow u_shadow_map;
+uniform float u_shadow_texel;     // 1 / shadow map size
+out vec4 o_color;
+
+// Coverage (0..1) of grid lines every `spacing` metres, about two pixels wide and antialiased;
+// faded out where the lines would be closer than a few pixels apart (no moire far away).
+float grid(vec2 p, float spacing) {
+  vec2 coord = p / spacing;
+  vec2 cells_per_pixel = max(fwidth(coord), vec2(1e-6));
+  vec2 pixels_to_line = abs(fract(coord + 0.5) - 0.5) / cells_per_pixel;
+  float line = 1.0 - clamp(min(pixels_to_line.x, pixels_to_line.y) - 0.5, 0.0, 1.0);
+  float fade = 1.0 - smoothstep(0.12, 0.3, max(cells_per_pixel.x, cells_per_pixel.y));
+  return line * fade;
+}
+
+// Fraction of the key light reaching this point (1 lit, 0 in the cloth's shadow), 5x5 PCF.
+float light_visibility() {
+  if (u_use_shadow == 0) return 1.0;
+  vec3 s = (u_shadow_matrix * vec4(v_world, 1.0)).xyz;
+  if (any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0)))) return 1.0;
+  // Beyond the far plane is behind every caster; before the near plane in front of all.
+  float reference = clamp(s.z, 0.0, 1.0) - 0.002;
+  float sum = 0.0;
+  for (int i = -2; i <= 2; ++i) {
+    for (int j = -2; j <= 2; ++j) {
+      vec2 offset = vec2(float(i), float(j)) * (1.5 * u_shadow_texel);
+      sum += textureLod(u_shadow_map, vec3(s.xy + offset, reference), 0.0);
+    }
+  }
+  return sum / 25.0;
+}
+
+void main() {
+  vec3 n = gl_FrontFacing ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 0.0, -1.0);
+  float lines = max(0.07 * grid(v_world.xy, 0.1), 0.16 * grid(v_world.xy, 1.0));
+  if (u_shading == 1) {
+    o_color = vec4(0.5 * n + 0.5, 1.0);
+    return;
+  }
+  float diffuse = max(dot(n, u_light_dir), 0.0);
+  if (diffuse > 0.0) diffuse *= light_visibility();
+  float light = u_ambient + u_light_intensity * diffuse;
+  vec3 lit = u_ground_color * (1.0 - lines) * pow(max(light, 0.0), 1.0 / 2.2);
+  // Fade into the background over the outer 40% of the square's inscribed circle.
+  float r = length(v_world.xy - u_ground_center.xy) / u_half_size;
+  o_color = vec4(mix(lit, u_background, smoothstep(0.6, 1.0, r)), 1.0);
+}
+)glsl";
+
+const char* const shadow_vertex_shader = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 a_position;  // world, metres
+uniform mat4 u_light_view_projection;     // world -> light clip (orthographic)
+void main() { gl_Position = u_light_view_projection * vec4(a_position, 1.0); }
+)glsl";
+
+const char* const shadow_fragment_shader = R"glsl(
+#version 330 core
+void main() {}
+)glsl";
+
+}  // namespace weft::render::detail

@@ -1,0 +1,44 @@
+// Area-weighted vertex normals for a RenderMesh.
+
+#include "render/render_mesh.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace weft::render {
+
+void compute_vertex_normals(RenderMesh& mesh) {
+  const std::size_t vertex_count = mesh.positions.size();
+  // Accumulate in double: the sum of many small cross products stays accurate.
+  std::vector<Eigen::Vector3d> sums(vertex_count, Eigen::Vector3d::Zero());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    for (std::uint32_t v : t) {
+      if (v >= vertex_count) {
+        throw std::invalid_argument("compute_vertex_normals: triangle " + std::to_string(f) +
+                                    " uses vertex " + std::to_string(v) + " but the mesh has " +
+                                    std::to_string(vertex_count) + " vertices");
+      }
+    }
+    const Eigen::Vector3d a = mesh.positions[t[0]].cast<double>();
+    const Eigen::Vector3d b = mesh.positions[t[1]].cast<double>();
+    const Eigen::Vector3d c = mesh.positions[t[2]].cast<double>();
+    // |(b−a)×(c−a)| = 2 × area and points to the side from which a, b, c turn counter-clockwise:
+    // adding it unnormalised weights each face by its area; zero-area faces add nothing.
+    const Eigen::Vector3d weighted = (b - a).cross(c - a);
+    for (std::uint32_t v : t) sums[v] += weighted;
+  }
+
+  mesh.normals.resize(vertex_count);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const double length = sums[v].norm();
+    // Isolated vertices (and those whose faces cancel exactly) get +z.
+    mesh.normals[v] = (length > 0.0 && std::isfinite(length))
+                          ? Eigen::Vector3f((sums[v] / length).cast<float>())
+                          : Eigen::Vector3f::UnitZ();
+  }
+}
+
+}  // namespace weft::render

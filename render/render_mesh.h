@@ -1,0 +1,23 @@
+#pragma once
+// What the renderers draw: a triangle mesh in world coordinates (metres, z up).
+// render/ knows nothing of simulation; app/ fills this from a cloth frame.
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace weft::render {
+
+struct RenderMesh {
+  std::vector<Eigen::Vector3f> positions;  // #V, metres
+  std::vector<Eigen::Vector3f> normals;    // #V unit vertex normals (compute_vertex_normals)
+  std::vector<Eigen::Vector2f> uvs;        // #V material coordinates (warp, weft), may be empty
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // #F, counter-clockwise seen from the front
+};
+
+// Area-weighted vertex normals from the triangles (zero-area triangles contribute nothing;
+// an isolated vertex gets +z).
+void compute_vertex_normals(RenderMesh& mesh);
+
+}  // namespace weft::render

@@ -1,0 +1,358 @@
+// OSMesa rasterizer, checked analytically: known quads seen from known cameras, expected colours
+// from the shading formula colour × (ambient + intensity × max(0, n·l))^(1/2.2).
+// Skipped (with the reason) when no OSMesa context can be created. On failure the rendered
+// images are written to <build>/test_output/render/ for a person to look at.
+
+#include "render/raster.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace weft::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int colour_tolerance = 3;  // 8-bit units, for interpolation and rounding
+
+// Axis-aligned rectangle in the plane z = z_m, counter-clockwise seen from +z (front = +z).
+RenderMesh rectangle(double x0, double x1, double y0, double y1, double z_m) {
+  RenderMesh mesh;
+  mesh.positions = {
+      Eigen::Vector3d(x0, y0, z_m).cast<float>(), Eigen::Vector3d(x1, y0, z_m).cast<float>(),
+      Eigen::Vector3d(x1, y1, z_m).cast<float>(), Eigen::Vector3d(x0, y1, z_m).cast<float>()};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  compute_vertex_normals(mesh);
+  return mesh;
+}
+
+// The 1 m × 1 m square at z = 0.5 m centred on the z axis.
+RenderMesh unit_square() {
+  return rectangle(-0.5, 0.5, -0.5, 0.5, 0.5);
+}
+
+// Camera on the +z axis looking straight down at the square, +y up on screen, +x right.
+RenderSettings view_from_above(int width, int height) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.ground = false;
+  s.camera.eye = {0, 0, 3};
+  s.camera.target = {0, 0, 0.5};
+  s.camera.up = {0, 1, 0};
+  s.camera.fov_y_deg = 40;
+  return s;
+}
+
+struct Pixel {
+  int x = 0, y = 0;  // image coordinates, (0, 0) top-left
+};
+
+// Pixel containing the projection of a world point.
+Pixel project(const RenderSettings& s, const Eigen::Vector3d& world) {
+  const double aspect = static_cast<double>(s.width) / s.height;
+  const Eigen::Vector4f clip = s.camera.projection_matrix(aspect) * s.camera.view_matrix() *
+                               Eigen::Vector4f(world.cast<float>().homogeneous());
+  const double x_ndc = clip.x() / clip.w(), y_ndc = clip.y() / clip.w();
+  return {static_cast<int>(std::floor((0.5 * x_ndc + 0.5) * s.width)),
+          static_cast<int>(std::floor((0.5 - 0.5 * y_ndc) * s.height))};
+}
+
+std::uint8_t to_byte(double c) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0));
+}
+
+Rgb8 to_rgb8(const Eigen::Vector3f& c) {
+  return {to_byte(c.x()), to_byte(c.y()), to_byte(c.z())};
+}
+
+// The shading formula for a surface of the given colour and facing normal (unit, world).
+Rgb8 expected_lit(const Eigen::Vector3f& colour, const RenderSettings& s,
+                  const Eigen::Vector3d& normal) {
+  const double light =
+      s.ambient + s.light_intensity * std::max(0.0, normal.dot(s.light_direction.normalized()));
+  return to_rgb8(colour * static_cast<float>(std::pow(light, 1.0 / 2.2)));
+}
+
+Rgb8 expected_normal_colour(const Eigen::Vector3d& normal) {
+  return to_rgb8((0.5 * normal + Eigen::Vector3d::Constant(0.5)).cast<float>());
+}
+
+int max_channel_difference(Rgb8 a, Rgb8 b) {
+  return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+}
+
+::testing::AssertionResult colour_near(Rgb8 actual, Rgb8 expected, int tolerance) {
+  const int d = max_channel_difference(actual, expected);
+  if (d <= tolerance) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "colour (" << int{actual.r} << ", " << int{actual.g} << ", " << int{actual.b}
+         << ") differs from expected (" << int{expected.r} << ", " << int{expected.g} << ", "
+         << int{expected.b} << ") by " << d << " > " << tolerance;
+}
+
+::testing::AssertionResult colour_at(const Image& image, Pixel p, Rgb8 expected, int tolerance) {
+  if (p.x < 0 || p.y < 0 || p.x >= image.width() || p.y >= image.height()) {
+    return ::testing::AssertionFailure() << "pixel (" << p.x << ", " << p.y << ") off-image";
+  }
+  auto result = colour_near(image.at(p.x, p.y), expected, tolerance);
+  if (!result) result << " at pixel (" << p.x << ", " << p.y << ")";
+  return result;
+}
+
+bool same_bytes(const Image& a, const Image& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::equal(a.data(), a.data() + 3 * a.width() * a.height(), b.data());
+}
+
+class Raster : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::unique_ptr<GlContext> context;
+    try {
+      context = make_osmesa_context(64, 64);
+    } catch (const std::exception& e) {
+      GTEST_SKIP() << "no OSMesa context: " << e.what();
+    }
+    // Past this point a failure is a real failure, not a missing back-end.
+    m_renderer = std::make_unique<RasterRenderer>(std::move(context));
+  }
+
+  // On failure, every image rendered by the test is written where a person can find it.
+  void TearDown() override {
+    if (!HasFailure() || m_rendered.empty()) return;
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const fs::path dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "render";
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    for (std::size_t i = 0; i < m_rendered.size(); ++i) {
+      const fs::path path = dir / (std::string(info->name()) + "_" + std::to_string(i) + "_" +
+                                   m_rendered[i].first + ".png");
+      try {
+        write_png(m_rendered[i].second, path);
+        std::cerr << "  rendered image: " << path.string() << "\n";
+      } catch (const std::exception& e) {
+        std::cerr << "  could not save evidence: " << e.what() << "\n";
+      }
+    }
+  }
+
+  Image render(const RenderMesh& mesh, const RenderSettings& s, const std::string& name) {
+    Image image = m_renderer->render(mesh, s);
+    m_rendered.emplace_back(name, image);
+    return image;
+  }
+
+  std::unique_ptr<RasterRenderer> m_renderer;
+  std::vector<std::pair<std::string, Image>> m_rendered;
+};
+
+TEST_F(Raster, DescriptionNamesTheContext) {
+  EXPECT_NE(m_renderer->description().find("OSMesa"), std::string::npos)
+      << m_renderer->description();
+}
+
+TEST_F(Raster, FrontFaceIsLitFrontColourOnBackground) {
+  const RenderSettings s = view_from_above(160, 120);
+  const Image image = render(unit_square(), s, "front");
+  ASSERT_EQ(image.width(), 160);
+  ASSERT_EQ(image.height(), 120);
+
+  EXPECT_TRUE(colour_at(image, project(s, {0, 0, 0.5}), expected_lit(s.front_color, s, {0, 0, 1}),
+                        colour_tolerance));
+  const Rgb8 background = to_rgb8(s.background);
+  for (Pixel corner : {Pixel{0, 0}, Pixel{159, 0}, Pixel{0, 119}, Pixel{159, 119}}) {
+    EXPECT_TRUE(colour_at(image, corner, background, 0));
+  }
+}
+
+TEST_F(Raster, BackFaceGetsBackColourAndFlippedNormal) {
+  RenderSettings s = view_from_above(120, 120);
+  s.camera.eye = {0, 0, -2};  // below the square: sees its back
+  // Default light is above: the back face gets ambient only.
+  Image image = render(unit_square(), s, "back_ambient");
+  const Pixel centre = project(s, {0, 0, 0.5});
+  EXPECT_TRUE(
+      colour_at(image, centre, expected_lit(s.back_color, s, {0, 0, -1}), colour_tolerance));
+  EXPECT_TRUE(colour_near(expected_lit(s.back_color, s, {0, 0, -1}),
+                          to_rgb8(s.back_color * std::pow(0.25f, 1.0f / 2.2f)), 1));
+
+  // Light from below: the flipped normal (0, 0, −1) faces it.
+  s.light_direction = {0.6, 0.0, -0.8};
+  image = render(unit_square(), s, "back_lit");
+  EXPECT_TRUE(
+      colour_at(image, centre, expected_lit(s.back_color, s, {0, 0, -1}), colour_tolerance));
+}
+
+TEST_F(Raster, NormalsShadingShowsTheFacingNormal) {
+  RenderSettings s = view_from_above(100, 100);
+  s.shading = Shading::normals;
+  Image image = render(unit_square(), s, "normals_front");
+  const Pixel centre = project(s, {0, 0, 0.5});
+  EXPECT_TRUE(colour_at(image, centre, expected_normal_colour({0, 0, 1}), 1));
+
+  s.camera.eye = {0, 0, -2};
+  image = render(unit_square(), s, "normals_back");
+  EXPECT_TRUE(colour_at(image, project(s, {0, 0, 0.5}), expected_normal_colour({0, 0, -1}), 1));
+}
+
+TEST_F(Raster, ImageHasTheRequestedSizeAcrossResizes) {
+  RenderSettings s = view_from_above(64, 48);
+  const Image first = render(unit_square(), s, "64x48");
+  EXPECT_EQ(first.width(), 64);
+  EXPECT_EQ(first.height(), 48);
+
+  s.width = 101;  // odd: rows are not 4-byte aligned
+  s.height = 31;
+  const Image wide = render(unit_square(), s, "101x31");
+  EXPECT_EQ(wide.width(), 101);
+  EXPECT_EQ(wide.height(), 31);
+
+  s.width = 64;
+  s.height = 48;
+  s.msaa_samples = 0;
+  EXPECT_EQ(render(unit_square(), s, "64x48_no_msaa").width(), 64);
+  s.msaa_samples = 4;
+  EXPECT_TRUE(same_bytes(render(unit_square(), s, "64x48_again"), first));
+}
+
+TEST_F(Raster, RowsRunTopToBottomAndColumnsLeftToRight) {
+  // A rectangle in the +x, +y quadrant must appear in the image's top-right quarter only.
+  const RenderSettings s = view_from_above(120, 90);
+  const Image image = render(rectangle(0.15, 0.65, 0.15, 0.65, 0.5), s, "top_right");
+  const Rgb8 background = to_rgb8(s.background);
+  int cloth_top_right = 0, cloth_elsewhere = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      if (image.at(x, y) == background) continue;
+      (x >= image.width() / 2 && y < image.height() / 2 ? cloth_top_right : cloth_elsewhere)++;
+    }
+  }
+  EXPECT_GT(cloth_top_right, 100);
+  EXPECT_EQ(cloth_elsewhere, 0);
+  EXPECT_TRUE(colour_at(image, project(s, {0.4, 0.4, 0.5}),
+                        expected_lit(s.front_color, s, {0, 0, 1}), colour_tolerance));
+}
+
+TEST_F(Raster, MultisamplingBlendsEdgesAndIsDeterministic) {
+  // A slanted triangle: its edges cross pixels at every fraction.
+  RenderMesh triangle;
+  triangle.positions = {{-0.6f, -0.5f, 0.5f}, {0.6f, -0.3f, 0.5f}, {0.1f, 0.6f, 0.5f}};
+  triangle.triangles = {{0, 1, 2}};
+  compute_vertex_normals(triangle);
+  RenderSettings s = view_from_above(128, 128);
+  const Rgb8 background = to_rgb8(s.background);
+  const Rgb8 cloth = expected_lit(s.front_color, s, {0, 0, 1});
+
+  const auto count_blended = [&](const Image& image) {
+    int blended = 0;
+    for (int y = 0; y < image.height(); ++y) {
+      for (int x = 0; x < image.width(); ++x) {
+        const Rgb8 c = image.at(x, y);
+        if (!(c == background) && max_channel_difference(c, cloth) > colour_tolerance) ++blended;
+      }
+    }
+    return blended;
+  };
+
+  s.msaa_samples = 4;
+  const Image msaa = render(triangle, s, "msaa4");
+  EXPECT_GT(count_blended(msaa), 50) << "edge pixels should mix cloth and background";
+  EXPECT_TRUE(same_bytes(render(triangle, s, "msaa4_again"), msaa));
+
+  s.msaa_samples = 1;
+  EXPECT_EQ(count_blended(render(triangle, s, "msaa1")), 0)
+      << "without multisampling every pixel is cloth or background";
+}
+
+TEST_F(Raster, FreshRendererGivesTheSameBytes) {
+  RenderSettings s = view_from_above(96, 80);
+  s.ground = true;
+  s.camera.eye = {1.5, -2.0, 1.5};
+  const Image first = render(unit_square(), s, "first");
+  RasterRenderer other(make_osmesa_context(16, 16));
+  EXPECT_TRUE(same_bytes(other.render(unit_square(), s), first));
+}
+
+TEST_F(Raster, MissingNormalsAreComputed) {
+  const RenderSettings s = view_from_above(80, 60);
+  RenderMesh without = unit_square();
+  without.normals.clear();
+  EXPECT_TRUE(same_bytes(render(without, s, "computed"), render(unit_square(), s, "given")));
+}
+
+TEST_F(Raster, GroundIsLitAndShadowedByTheCloth) {
+  RenderSettings s;  // default oblique camera, ground on at z = 0
+  s.width = 200;
+  s.height = 150;
+  s.light_direction = {0, 0, 1};  // straight down: the shadow is the square's footprint
+  const Image image = render(unit_square(), s, "ground");
+
+  // Points in the middle of 10 cm grid cells, away from the grid lines, and not hidden by the
+  // square from the camera.
+  const Pixel in_shadow = project(s, {0.25, 0.25, 0.0});
+  const Pixel in_light = project(s, {0.75, -0.65, 0.0});
+  const Rgb8 shadowed = expected_lit(s.ground_color, s, Eigen::Vector3d::Zero());  // ambient only
+  EXPECT_TRUE(colour_at(image, in_shadow, shadowed, colour_tolerance));
+  EXPECT_TRUE(
+      colour_at(image, in_light, expected_lit(s.ground_color, s, {0, 0, 1}), colour_tolerance));
+  // The cloth itself, seen from above at an angle, is its lit front colour.
+  EXPECT_TRUE(colour_at(image, project(s, {0.2, -0.3, 0.5}),
+                        expected_lit(s.front_color, s, {0, 0, 1}), colour_tolerance));
+}
+
+TEST_F(Raster, EmptyMeshDrawsOnlyTheBackground) {
+  RenderSettings s = view_from_above(40, 30);
+  const Image image = render(RenderMesh{}, s, "empty");
+  const Rgb8 background = to_rgb8(s.background);
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) ASSERT_EQ(image.at(x, y), background);
+  }
+}
+
+TEST_F(Raster, GroundWithoutClothIsLit) {
+  // No cloth, so no shadow pass: the ground alone, seen from straight above (10 cm grid lines
+  // are too dense at this size and fade out; the points are away from the 1 m lines).
+  RenderSettings s = view_from_above(40, 30);
+  s.ground = true;
+  const Image image = render(RenderMesh{}, s, "ground_only");
+  EXPECT_TRUE(colour_at(image, project(s, {0.45, 0.45, 0.0}),
+                        expected_lit(s.ground_color, s, {0, 0, 1}), colour_tolerance));
+  // Light from below the ground: ambient only, and no shadow pass either.
+  s.light_direction = {0.0, 0.3, -1.0};
+  const Image from_below = render(unit_square(), s, "light_below");
+  EXPECT_TRUE(colour_at(from_below, project(s, {0.75, 0.65, 0.0}),
+                        expected_lit(s.ground_color, s, Eigen::Vector3d::Zero()),
+                        colour_tolerance));
+}
+
+TEST_F(Raster, BadInputThrows) {
+  RenderSettings s = view_from_above(32, 32);
+  s.width = 0;
+  EXPECT_THROW(m_renderer->render(unit_square(), s), std::invalid_argument);
+
+  s = view_from_above(32, 32);
+  RenderMesh bad_index = unit_square();
+  bad_index.triangles.push_back({0, 1, 9});
+  EXPECT_THROW(m_renderer->render(bad_index, s), std::invalid_argument);
+
+  RenderMesh not_finite = unit_square();
+  not_finite.positions[2].x() = std::nanf("");
+  EXPECT_THROW(m_renderer->render(not_finite, s), std::invalid_argument);
+
+  // Still usable afterwards.
+  EXPECT_EQ(m_renderer->render(unit_square(), s).width(), 32);
+}
+
+}  // namespace
+}  // namespace weft::render
