@@ -9,7 +9,7 @@ namespace weft::render {
 
 struct Rgb8 {
   std::uint8_t r = 0, g = 0, b = 0;
-  friend bool operator==(const Rgb8& a, const Rgb8& b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+  friend bool operator==(const Rgb8& p, const Rgb8& q) { return p.r == q.r && p.g == q.g && p.b == q.b; }
 };
 
 // width×height pixels, rows stored top row first, 3 bytes per pixel.

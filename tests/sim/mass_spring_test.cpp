@@ -16,8 +16,8 @@ Material test_material() {
   m.stretch_warp_N_m = 900.0;
   m.stretch_weft_N_m = 600.0;
   m.shear_N_m = 40.0;
-  m.bend_warp_N_m = 8e-6;
-  m.bend_weft_N_m = 5e-6;
+  m.bend_warp_Nm = 8e-6;
+  m.bend_weft_Nm = 5e-6;
   return m;
 }
 
@@ -83,7 +83,7 @@ double cylinder_bend_energy(Index n, double radius, double* exact_discrete) {
       x.row(mesh.index(i, j)) << radius * std::sin(i * alpha), mesh.material_coords[mesh.index(i, j)].y(),
           radius * (1 - std::cos(i * alpha));
   const double kappa = alpha / hu;
-  *exact_discrete = 0.5 * m.bend_warp_N_m * kappa * kappa * (n - 2) * hu * sv;
+  *exact_discrete = 0.5 * m.bend_warp_Nm * kappa * kappa * (n - 2) * hu * sv;
   return MassSpringModel(mesh, m).energy(x);
 }
 

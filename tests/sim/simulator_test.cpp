@@ -17,8 +17,8 @@ Material fabric(double stretch_N_m) {
   m.stretch_warp_N_m = stretch_N_m;
   m.stretch_weft_N_m = 0.7 * stretch_N_m;
   m.shear_N_m = 0.05 * stretch_N_m;
-  m.bend_warp_N_m = 1e-5;
-  m.bend_weft_N_m = 8e-6;
+  m.bend_warp_Nm = 1e-5;
+  m.bend_weft_Nm = 8e-6;
   return m;
 }
 

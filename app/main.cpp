@@ -1,0 +1,58 @@
+// The `weft` command.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "app/run_command.h"
+#include "app/scene.h"
+#include "app/version.h"
+
+namespace {
+
+std::string joined(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  return line;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace weft::app;
+  CLI::App app{"weft: offline cloth simulation and visualization.\n"
+               "Simulates a scene file and writes a PNG sequence, stats.csv and a copy of the scene."};
+  app.set_version_flag("--version", std::string("weft ") + version());
+  app.require_subcommand(1);
+
+  RunOptions run;
+  run.command_line = joined(argc, argv);
+  std::string scene_path, out_dir, size;
+  int frames = 0;
+  CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene and write out/<scene>/frame_0001.png, ...");
+  run_cmd->add_option("scene", scene_path, "Scene file (JSON, see docs/scene.md); the built-in default scene if omitted");
+  run_cmd->add_option("--out", out_dir, "Output folder (default: out/<scene name>)");
+  run_cmd->add_option("--frames", frames, "Number of frames to write (overrides output.frames)");
+  run_cmd->add_option("--size", size, "Image size WIDTHxHEIGHT (overrides render.size)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    if (run_cmd->parsed()) {
+      if (!scene_path.empty()) run.scene = scene_path;
+      if (!out_dir.empty()) run.out = out_dir;
+      if (run_cmd->count("--frames")) run.frames = frames;
+      if (!size.empty()) run.size = size;
+      return run_scene(run);
+    }
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "weft: error: %s\n", e.what());
+    return exit_bad_input;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "weft: error: %s\n", e.what());
+    return exit_failure;
+  }
+  return exit_ok;
+}

@@ -1,0 +1,136 @@
+#include "app/run_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <regex>
+
+#include "app/frame_mesh.h"
+#include "app/progress.h"
+#include "app/scene.h"
+#include "app/stats_csv.h"
+#include "app/version.h"
+#include "render/raster.h"
+#include "sim/pins.h"
+#include "sim/simulator.h"
+
+namespace weft::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string frame_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.png", frame);
+  return name;
+}
+
+// Removes the frames of an earlier run in the same folder, so that the folder holds one run.
+int remove_old_frames(const fs::path& dir) {
+  static const std::regex pattern(R"(frame_\d{4,}\.png)");
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path())) ++removed;
+  return removed;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+void apply_overrides(Scene& scene, const RunOptions& options) {
+  if (options.frames) {
+    if (*options.frames < 1 || *options.frames > 100000)
+      throw SceneError("--frames: expected an integer in 1..100000, got " + std::to_string(*options.frames));
+    scene.frames = *options.frames;
+  }
+  if (options.size) std::tie(scene.render.width, scene.render.height) = parse_size(*options.size, "--size");
+}
+
+}  // namespace
+
+std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
+  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+  std::smatch m;
+  if (std::regex_match(text, m, pattern)) {
+    const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+    if (w >= 16 && w <= 8192 && h >= 16 && h <= 8192) return {w, h};
+  }
+  throw SceneError(option + ": expected WIDTHxHEIGHT with each side in 16..8192 (e.g. 640x480), got '" + text + "'");
+}
+
+int run_scene(const RunOptions& options) {
+  Scene scene = options.scene ? load_scene(*options.scene) : default_scene();
+  apply_overrides(scene, options);
+
+  // Everything that can reject the input happens before the output folder is touched.
+  sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
+  std::optional<sim::Simulator> simulator;
+  try {
+    simulator.emplace(std::move(mesh), scene.material, std::move(pinned), scene.sim);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.source + ": cloth.material: " + e.what());
+  }
+  render::RasterRenderer renderer(render::make_osmesa_context(scene.render.width, scene.render.height));
+
+  const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  fs::create_directories(dir);
+  if (const int removed = remove_old_frames(dir))
+    std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed, dir.c_str());
+  write_text(dir / "scene.json", scene.text);
+  write_text(dir / "run.txt", "weft " + std::string(version()) + "\ncommand: " + options.command_line +
+                                  "\nscene: " + scene.source + "\n");
+  StatsCsv stats(dir / "stats.csv");
+
+  const double frame_dt = 1.0 / scene.fps;
+  std::fprintf(stderr, "weft: %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), %s\n",
+               scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
+               1e3 * simulator->time_step(), 1e3 * simulator->critical_time_step(),
+               renderer.description().c_str());
+  Progress progress(stderr, scene.frames, "frame");
+  double sim_ms_total = 0.0, render_ms_total = 0.0;
+  for (int frame = 1; frame <= scene.frames; ++frame) {
+    FrameStats row;
+    row.frame = frame;
+    const long steps_before = simulator->steps_taken();
+    auto start = std::chrono::steady_clock::now();
+    try {
+      simulator->advance(frame * frame_dt - simulator->state().time_s);
+    } catch (const sim::DivergenceError& e) {
+      progress.finish();
+      std::fprintf(stderr, "weft: error: frame %d: %s\nweft: kept frames 1..%d and stats.csv in %s\n",
+                   frame, e.what(), frame - 1, dir.c_str());
+      return exit_diverged;
+    }
+    row.sim_ms = ms_since(start);
+    row.steps = simulator->steps_taken() - steps_before;
+    row.diagnostics = simulator->diagnostics();
+
+    start = std::chrono::steady_clock::now();
+    const render::Image image =
+        renderer.render(to_render_mesh(simulator->mesh(), simulator->state().x), scene.render);
+    render::write_png(image, dir / frame_name(frame));
+    row.render_ms = ms_since(start);
+    stats.write(row);
+
+    sim_ms_total += row.sim_ms;
+    render_ms_total += row.render_ms;
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "t = %.2f s, max strain %.2f %%", row.diagnostics.time_s,
+                  100.0 * row.diagnostics.max_strain);
+    progress.update(frame, detail);
+  }
+  progress.finish();
+  std::printf("weft: wrote %d frames to %s (simulation %s, rendering %s, total %s)\n", scene.frames,
+              dir.c_str(), format_duration(sim_ms_total / 1e3).c_str(),
+              format_duration(render_ms_total / 1e3).c_str(), format_duration(progress.elapsed_s()).c_str());
+  return exit_ok;
+}
+
+}  // namespace weft::app

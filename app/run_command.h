@@ -1,0 +1,27 @@
+#pragma once
+// `weft run`: simulate a scene and write its PNG sequence, stats.csv and a copy of the scene.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace weft::app {
+
+struct RunOptions {
+  std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
+  std::optional<std::filesystem::path> out;    // default: out/<scene name>
+  std::optional<int> frames;                   // overrides the scene's output.frames
+  std::optional<std::string> size;             // "WxH", overrides render.size
+  std::string command_line;                    // recorded in run.txt
+};
+
+// Exit codes of the weft command.
+enum ExitCode : int { exit_ok = 0, exit_bad_input = 1, exit_failure = 2, exit_diverged = 3 };
+
+// Runs the job; bad input throws SceneError before anything is written.
+int run_scene(const RunOptions& options);
+
+// Parses "640x480" (each side 16..8192); throws SceneError naming the option.
+std::pair<int, int> parse_size(const std::string& text, const std::string& option);
+
+}  // namespace weft::app

@@ -1,0 +1,262 @@
+// Scene files → Scene, through ObjectReader (app/json_reader.h). The format is documented, key
+// by key, in docs/scene.md; keep the two in step.
+
+#include "app/scene.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+
+#include "app/json_reader.h"
+#include "app/units.h"
+
+// Defined in the .cpp that app/embed_default_scene.cmake generates from assets/scenes/default.json.
+const char* weft_default_scene_json();
+
+namespace weft::app {
+namespace {
+
+constexpr const char* builtin_source = "<built-in default scene>";
+constexpr double unit_tolerance = 1e-6;  // how far from unit length an axis may be
+
+// A unit direction: normalised when within `unit_tolerance` of unit length, an error otherwise.
+Eigen::Vector3d read_axis(ObjectReader& r, const std::string& key,
+                          const Eigen::Vector3d& fallback) {
+  const Eigen::Vector3d axis = r.vec3(key, fallback);
+  const double length = axis.norm();
+  if (std::fabs(length - 1.0) > unit_tolerance) {
+    char got[96];
+    std::snprintf(got, sizeof got, "[%g, %g, %g] (length %.9g)", axis.x(), axis.y(), axis.z(),
+                  length);
+    r.fail(key, std::string("expected a unit vector, got ") + got);
+  }
+  return axis / length;
+}
+
+sim::Material read_material(ObjectReader r) {
+  sim::Material m;
+  const Range positive = Range::gt(0.0);
+  m.density_kg_m2 = r.quantity("density", Quantity::areal_density, m.density_kg_m2, positive);
+  m.stretch_warp_N_m =
+      r.quantity("stretch_warp", Quantity::force_per_length, m.stretch_warp_N_m, positive);
+  m.stretch_weft_N_m =
+      r.quantity("stretch_weft", Quantity::force_per_length, m.stretch_weft_N_m, positive);
+  m.shear_N_m = r.quantity("shear", Quantity::force_per_length, m.shear_N_m, positive);
+  m.bend_warp_Nm = r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, positive);
+  m.bend_weft_Nm = r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, positive);
+  r.finish();
+  return m;
+}
+
+// One pin object: exactly one of "corner", "vertex", "grid", "region".
+sim::PinSpec read_pin(ObjectReader r) {
+  const std::vector<std::string> selectors{"corner", "vertex", "grid", "region"};
+  std::vector<std::string> given;
+  for (const auto& s : selectors)
+    if (r.has(s)) given.push_back(s);
+  if (given.size() != 1) {
+    const std::string got =
+        given.empty() ? "none of them" : "both '" + given[0] + "' and '" + given[1] + "'";
+    throw_scene_error(r.file(), r.path(),
+                      "expected exactly one of 'corner', 'vertex', 'grid' or 'region', got " + got);
+  }
+  const Range index_range = Range::closed(0, std::numeric_limits<sim::Index>::max());
+  sim::PinSpec pin;
+  if (given[0] == "corner") {
+    // resolve_pins checks the name and lists the choices.
+    pin = sim::PinCorner{r.string("corner", required)};
+  } else if (given[0] == "vertex") {
+    pin = sim::PinVertex{static_cast<sim::Index>(r.integer("vertex", required, index_range))};
+  } else if (given[0] == "grid") {
+    const auto ij = r.integers("grid", 2, required, index_range);
+    pin = sim::PinGrid{static_cast<sim::Index>(ij[0]), static_cast<sim::Index>(ij[1])};
+  } else {
+    ObjectReader region = r.required_object("region");
+    const auto u = region.numbers("u", 2, required, Range::closed(0, 1));
+    const auto v = region.numbers("v", 2, required, Range::closed(0, 1));
+    if (u[0] > u[1]) region.fail("u", "expected [min, max] with min ≤ max, got a reversed range");
+    if (v[0] > v[1]) region.fail("v", "expected [min, max] with min ≤ max, got a reversed range");
+    region.finish();
+    pin = sim::PinRegion{u[0], u[1], v[0], v[1]};
+  }
+  r.finish();
+  return pin;
+}
+
+// Resolves each pin against the grid alone, so that an error names its own key path.
+void check_pins(const std::vector<sim::PinSpec>& pins, const sim::GridSpec& grid,
+                const std::string& file, const std::string& pins_path) {
+  if (pins.empty()) return;  // no pins: the cloth falls freely
+  const sim::ClothMesh mesh = sim::make_grid(grid);
+  for (std::size_t k = 0; k < pins.size(); ++k) {
+    try {
+      (void)sim::resolve_pins({pins[k]}, mesh);
+    } catch (const std::invalid_argument& e) {
+      std::string what = e.what();
+      const std::string prefix = "pin 0: ";  // resolve_pins names the pin by its index, here 0
+      if (what.compare(0, prefix.size(), prefix) == 0) what.erase(0, prefix.size());
+      throw_scene_error(file, pins_path + "[" + std::to_string(k) + "]", what);
+    }
+  }
+}
+
+// "cloth": the grid, its material and its pins.
+void read_cloth(ObjectReader r, Scene& scene) {
+  sim::GridSpec& g = scene.grid;
+  const auto size = r.quantities("size", Quantity::length, 2, required, Range::gt(0.0));
+  g.size_u_m = size[0];
+  g.size_v_m = size[1];
+  const auto n = r.integers("resolution", 2, required, Range::closed(2, 4096));
+  g.nu = static_cast<sim::Index>(n[0]);
+  g.nv = static_cast<sim::Index>(n[1]);
+  g.origin = r.quantity_vec3("origin", Quantity::length, g.origin);
+  g.warp_axis = read_axis(r, "warp_axis", g.warp_axis);
+  g.weft_axis = read_axis(r, "weft_axis", g.weft_axis);
+  if (std::fabs(g.warp_axis.dot(g.weft_axis)) > unit_tolerance) {
+    char got[64];
+    std::snprintf(got, sizeof got, "one at %.6g deg to it",
+                  std::acos(g.warp_axis.dot(g.weft_axis)) * 180.0 / 3.14159265358979323846);
+    r.fail("weft_axis", std::string("expected a unit vector orthogonal to warp_axis, got ") + got);
+  }
+  scene.material = read_material(r.object("material"));
+  for (ObjectReader& pin : r.objects("pins")) scene.pins.push_back(read_pin(pin));
+  r.finish();
+  check_pins(scene.pins, g, r.file(), r.path_of("pins"));
+}
+
+// "simulation": integrator settings (sim::SimSettings).
+void read_simulation(ObjectReader r, sim::SimSettings& s) {
+  enum class Model { mass_spring };
+  (void)r.enumeration<Model>("model", {{"mass_spring", Model::mass_spring}}, Model::mass_spring);
+  s.integrator = r.enumeration<sim::Integrator>(
+      "integrator", {{"symplectic_euler", sim::Integrator::symplectic_euler}}, s.integrator);
+  s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
+  s.air_damping_1_s =
+      r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));
+  s.time_step_s = r.quantity_or_keyword("time_step", Quantity::time, "auto", Range::gt(0.0));
+  s.time_step_safety = r.number("time_step_safety", s.time_step_safety, Range::gt(0.0).le(1.0));
+  s.max_speed_m_s = r.quantity("max_speed", Quantity::speed, s.max_speed_m_s, Range::gt(0.0));
+  r.finish();
+}
+
+void read_output(ObjectReader r, Scene& scene) {
+  scene.fps = r.number("fps", scene.fps, Range::gt(0.0).le(1000.0));
+  scene.frames = static_cast<int>(r.integer("frames", scene.frames, Range::closed(1, 100000)));
+  r.finish();
+}
+
+Eigen::Vector3f read_color(ObjectReader& r, const std::string& key,
+                           const Eigen::Vector3f& fallback) {
+  return r.vec3(key, fallback.cast<double>(), Range::closed(0.0, 1.0)).cast<float>();
+}
+
+render::Camera read_camera(ObjectReader r) {
+  render::Camera c;
+  c.eye = r.quantity_vec3("eye", Quantity::length, c.eye);
+  c.target = r.quantity_vec3("target", Quantity::length, c.target);
+  c.up = r.vec3("up", c.up);
+  c.fov_y_deg = r.angle_deg("fov", c.fov_y_deg, Range::gt(0.0).lt(180.0));
+  c.near_m = r.quantity("near", Quantity::length, c.near_m, Range::gt(0.0));
+  c.far_m = r.quantity("far", Quantity::length, c.far_m, Range::gt(c.near_m));
+  const Eigen::Vector3d view = c.target - c.eye;
+  if (!(view.norm() > 0.0)) r.fail("target", "expected a target different from the eye");
+  if (!(c.up.norm() > 0.0) || view.normalized().cross(c.up.normalized()).norm() < 1e-6)
+    r.fail("up", "expected a direction that is not zero and not parallel to target - eye");
+  r.finish();
+  return c;
+}
+
+// "render": image size, camera, light, colours, ground, shading (render::RenderSettings).
+void read_render(ObjectReader r, render::RenderSettings& s) {
+  const auto size =
+      r.integers("size", 2, std::vector<std::int64_t>{s.width, s.height}, Range::closed(16, 8192));
+  s.width = static_cast<int>(size[0]);
+  s.height = static_cast<int>(size[1]);
+  s.camera = read_camera(r.object("camera"));
+
+  ObjectReader light = r.object("light");
+  s.light_direction = light.vec3("direction", s.light_direction);
+  if (!(s.light_direction.norm() > 0.0))
+    light.fail("direction", "expected a non-zero vector towards the light, got [0, 0, 0]");
+  s.light_intensity = light.number("intensity", s.light_intensity, Range::ge(0.0));
+  s.ambient = light.number("ambient", s.ambient, Range::closed(0.0, 1.0));
+  light.finish();
+
+  ObjectReader colors = r.object("colors");
+  s.front_color = read_color(colors, "front", s.front_color);
+  s.back_color = read_color(colors, "back", s.back_color);
+  s.background = read_color(colors, "background", s.background);
+  colors.finish();
+
+  // "ground": false disables it, true keeps the defaults, an object sets them.
+  if (r.holds_boolean("ground")) {
+    s.ground = r.boolean("ground", required);
+  } else {
+    ObjectReader ground = r.object("ground");
+    s.ground_z_m = ground.quantity("z", Quantity::length, s.ground_z_m);
+    s.ground_half_size_m =
+        ground.quantity("half_size", Quantity::length, s.ground_half_size_m, Range::gt(0.0));
+    s.ground_color = read_color(ground, "color", s.ground_color);
+    ground.finish();
+  }
+
+  s.shading = r.enumeration<render::Shading>(
+      "shading", {{"lit", render::Shading::lit}, {"normals", render::Shading::normals}}, s.shading);
+  s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
+  if (s.msaa_samples & (s.msaa_samples - 1))
+    r.fail("msaa", "expected 1, 2, 4 or 8 samples, got " + std::to_string(s.msaa_samples));
+  r.finish();
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  const Json document = parse_json(text, source);
+  ObjectReader top = ObjectReader::root(document, source);
+
+  Scene scene;
+  scene.source = source;
+  scene.name = std::filesystem::path(source).stem().string();
+  scene.text = text;
+  scene.description = top.string("description", required);
+  if (scene.description.find_first_not_of(" \t\r\n") == std::string::npos)
+    top.fail("description", "expected a non-empty string saying what the scene shows");
+  read_cloth(top.required_object("cloth"), scene);
+  read_simulation(top.object("simulation"), scene.sim);
+  read_output(top.object("output"), scene);
+  read_render(top.object("render"), scene.render);
+  top.finish();
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  const auto cannot_read = [&]() {
+    const std::string reason = std::strerror(errno);
+    throw SceneError(path.string() + ": cannot read scene file (" + reason + ")");
+  };
+  if (!file) cannot_read();
+  std::string text;
+  char buffer[65536];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+  if (std::ferror(file.get())) cannot_read();
+  return parse_scene(text, path.string());
+}
+
+const std::string& default_scene_text() {
+  static const std::string text = weft_default_scene_json();
+  return text;
+}
+
+Scene default_scene() {
+  Scene scene = parse_scene(default_scene_text(), builtin_source);
+  scene.name = "default";
+  return scene;
+}
+
+}  // namespace weft::app

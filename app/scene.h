@@ -1,0 +1,49 @@
+#pragma once
+// A scene file, validated and converted to SI units. The format is documented in docs/scene.md.
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/raster.h"
+#include "sim/grid.h"
+#include "sim/material.h"
+#include "sim/pins.h"
+#include "sim/simulator.h"
+
+namespace weft::app {
+
+// Bad scene input. what() reads "FILE: KEY.PATH: what was expected (got …)".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Scene {
+  std::string source;       // file path as given, or "<built-in default scene>"
+  std::string name;         // output folder name: the file's stem ("default" for the built-in)
+  std::string description;  // what the scene shows and which figure or test it reproduces
+  std::string text;         // the scene file's text, copied into the output folder
+
+  sim::GridSpec grid;
+  sim::Material material;
+  std::vector<sim::PinSpec> pins;
+  sim::SimSettings sim;
+
+  double fps = 24.0;  // output frames per second of simulated time
+  int frames = 72;    // frames written; frame k (1-based) shows time k / fps
+
+  render::RenderSettings render;
+};
+
+// Parses and validates scene text; `source` names it in error messages and resolves relative
+// paths. Pins are checked against the grid. Throws SceneError.
+Scene parse_scene(const std::string& text, const std::string& source);
+// Reads a scene file. Throws SceneError (a missing or unreadable file included).
+Scene load_scene(const std::filesystem::path& path);
+// The built-in default scene (the text of assets/scenes/default.json, compiled in).
+Scene default_scene();
+const std::string& default_scene_text();
+
+}  // namespace weft::app

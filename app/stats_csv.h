@@ -1,0 +1,30 @@
+#pragma once
+// stats.csv: one row per written frame, flushed as it is written so that a run that stops
+// (divergence, interruption) keeps the rows of the frames it wrote.
+
+#include <filesystem>
+#include <fstream>
+
+#include "sim/diagnostics.h"
+
+namespace weft::app {
+
+struct FrameStats {
+  int frame = 0;          // 1-based
+  double sim_ms = 0.0;    // wall time simulating this frame
+  double render_ms = 0.0;  // wall time rendering and writing this frame
+  long steps = 0;         // time steps taken for this frame
+  sim::Diagnostics diagnostics;
+};
+
+class StatsCsv {
+ public:
+  explicit StatsCsv(const std::filesystem::path& path);  // throws std::runtime_error
+  void write(const FrameStats& row);
+
+ private:
+  std::filesystem::path m_path;
+  std::ofstream m_out;
+};
+
+}  // namespace weft::app

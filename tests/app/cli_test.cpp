@@ -1,0 +1,176 @@
+// End to end through the real `weft` command: a tiny scene writes its frames and stats, and
+// each class of bad input gets its one-line message and exit code with nothing written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "render/image.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result run_weft(const std::string& args) {
+  const std::string command = std::string(WEFT_EXECUTABLE) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buffer{};
+  std::size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "cli" / info->name();
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  fs::path write_scene(const std::string& name, const std::string& text) const {
+    const fs::path path = m_dir / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  fs::path m_dir;
+};
+
+// A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels.
+std::string tiny_scene(const std::string& cloth_extra = "", const std::string& top_extra = "") {
+  return R"({
+  "description": "tiny end-to-end test scene",
+  "cloth": {
+    "size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
+    "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}])" + cloth_extra + R"(
+  },
+  "output": {"fps": 24, "frames": 4},
+  "render": {"size": [96, 64], "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]}})" +
+         top_extra + "\n}\n";
+}
+
+TEST_F(Cli, VersionAndHelp) {
+  const Result version = run_weft("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.output.rfind("weft ", 0), 0u) << version.output;
+  const Result help = run_weft("run --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("--frames"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("--size"), std::string::npos) << help.output;
+}
+
+TEST_F(Cli, RunWritesFramesStatsAndTheScene) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const fs::path out = m_dir / "out";
+  const Result r = run_weft("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote 4 frames"), std::string::npos) << r.output;
+  for (int k = 1; k <= 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", k);
+    const weft::render::Image image = weft::render::read_image(out / name);
+    EXPECT_EQ(image.width(), 96);
+    EXPECT_EQ(image.height(), 64);
+    // Not a blank image: the cloth, the ground and the background give several colours.
+    std::set<std::array<int, 3>> colours;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) {
+        const auto c = image.at(x, y);
+        colours.insert({c.r / 16, c.g / 16, c.b / 16});
+      }
+    EXPECT_GE(colours.size(), 4u) << name;
+  }
+  EXPECT_FALSE(fs::exists(out / "frame_0005.png"));
+  std::ifstream stats(out / "stats.csv");
+  std::string line;
+  int rows = -1;  // the header
+  while (std::getline(stats, line)) ++rows;
+  EXPECT_EQ(rows, 4);
+  std::ifstream copy(out / "scene.json");
+  std::stringstream text;
+  text << copy.rdbuf();
+  EXPECT_EQ(text.str(), tiny_scene());
+}
+
+TEST_F(Cli, FramesAndSizeOptionsOverrideTheScene) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const fs::path out = m_dir / "out";
+  const Result r = run_weft("run " + scene.string() + " --out " + out.string() + " --frames 2 --size 40x30");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(weft::render::read_image(out / "frame_0002.png").width(), 40);
+  EXPECT_FALSE(fs::exists(out / "frame_0003.png"));
+}
+
+struct BadInput {
+  std::string name;
+  std::string args_after_scene;
+  std::string scene_text;  // empty: no scene file is written (a missing file)
+  std::string expected;    // part of the one-line message
+};
+
+void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
+
+class CliBadInput : public Cli, public ::testing::WithParamInterface<BadInput> {};
+
+TEST_P(CliBadInput, OneLineErrorExitCodeOneAndNothingWritten) {
+  const BadInput& bad = GetParam();
+  const fs::path scene = bad.scene_text.empty() ? m_dir / "missing.json" : write_scene("scene.json", bad.scene_text);
+  const fs::path out = m_dir / "out";
+  const Result r = run_weft("run " + scene.string() + " --out " + out.string() + " " + bad.args_after_scene);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.output.rfind("weft: error: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(bad.expected), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "a rejected run must write nothing";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Errors, CliBadInput,
+    ::testing::Values(
+        BadInput{"MissingFile", "", "", "missing.json: cannot read scene file"},
+        BadInput{"MalformedJson", "", "{\"description\": \"x\",\n \"cloth\": {", "scene.json:2:"},
+        BadInput{"UnknownKey", "", tiny_scene(",\n    \"colour\": 3"), "cloth.colour: unknown key"},
+        BadInput{"NonFinite", "", tiny_scene(",\n    \"material\": {\"density\": 1e999}"),
+                 "cloth.material.density"},
+        BadInput{"NanString", "", tiny_scene(",\n    \"material\": {\"shear\": \"nan N/m\"}"),
+                 "cloth.material.shear"},
+        BadInput{"ZeroResolution", "",
+                 tiny_scene().replace(tiny_scene().find("[9, 9]"), 6, "[0, 9]"), "cloth.resolution[0]"},
+        BadInput{"PinOutsideTheMesh", "",
+                 tiny_scene().replace(tiny_scene().find("{\"corner\": \"u1v1\"}"), 18, "{\"vertex\": 81}"),
+                 "cloth.pins[1]: vertex 81 is outside the mesh (0..80)"},
+        BadInput{"WrongEnum", "", tiny_scene("", ",\n  \"simulation\": {\"integrator\": \"rk9\"}"),
+                 "simulation.integrator"},
+        BadInput{"BadSizeOption", "--size 10x", tiny_scene(), "--size: expected WIDTHxHEIGHT"},
+        BadInput{"BadFramesOption", "--frames 0", tiny_scene(), "--frames: expected an integer in 1..100000"}),
+    [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
+
+// A time step far beyond the critical one explodes: the run stops with exit code 3, names
+// the frame, step, time and quantity, and keeps the frames it wrote before.
+TEST_F(Cli, DivergingRunStopsAndKeepsItsFrames) {
+  std::string text = tiny_scene("", ",\n  \"simulation\": {\"time_step\": \"4 ms\"}");
+  text.replace(text.find("\"frames\": 4"), 11, "\"frames\": 40");
+  const fs::path scene = write_scene("explode.json", text);
+  const fs::path out = m_dir / "out";
+  const Result r = run_weft("run " + scene.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("simulation diverged at step"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("vertex"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "stats.csv"));
+}
+
+}  // namespace
