@@ -32,11 +32,20 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out", out_dir, "Output folder (default: out/<scene name>)");
   run_cmd->add_option("--frames", frames, "Number of frames to write (overrides output.frames)");
   run_cmd->add_option("--size", size, "Image size WIDTHxHEIGHT (overrides render.size)");
+  std::string shading;
+  run_cmd->add_option("--shading", shading, "lit, or normals: the normal as colour (overrides render.shading)")
+      ->check(CLI::IsMember({"lit", "normals"}));
 
+  if (argc == 1) {  // no command: say what there is
+    std::fputs(app.help().c_str(), stdout);
+    return exit_bad_input;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::fprintf(stderr, "weft: error: %s (see weft --help)\n", e.what());
+    return exit_bad_input;
   }
 
   try {
@@ -45,6 +54,7 @@ int main(int argc, char** argv) {
       if (!out_dir.empty()) run.out = out_dir;
       if (run_cmd->count("--frames")) run.frames = frames;
       if (!size.empty()) run.size = size;
+      if (!shading.empty()) run.normals_shading = shading == "normals";
       return run_scene(run);
     }
   } catch (const SceneError& e) {

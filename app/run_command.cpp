@@ -50,6 +50,8 @@ void apply_overrides(Scene& scene, const RunOptions& options) {
     scene.frames = *options.frames;
   }
   if (options.size) std::tie(scene.render.width, scene.render.height) = parse_size(*options.size, "--size");
+  if (options.normals_shading)
+    scene.render.shading = *options.normals_shading ? render::Shading::normals : render::Shading::lit;
 }
 
 }  // namespace

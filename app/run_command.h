@@ -12,6 +12,7 @@ struct RunOptions {
   std::optional<std::filesystem::path> out;    // default: out/<scene name>
   std::optional<int> frames;                   // overrides the scene's output.frames
   std::optional<std::string> size;             // "WxH", overrides render.size
+  std::optional<bool> normals_shading;         // overrides render.shading (true: normals)
   std::string command_line;                    // recorded in run.txt
 };
 

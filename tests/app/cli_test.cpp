@@ -66,6 +66,9 @@ TEST_F(Cli, VersionAndHelp) {
   const Result version = run_weft("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.output.rfind("weft ", 0), 0u) << version.output;
+  const Result bare = run_weft("");
+  EXPECT_EQ(bare.exit_code, 1);
+  EXPECT_NE(bare.output.find("run"), std::string::npos) << bare.output;  // lists the commands
   const Result help = run_weft("run --help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.output.find("--frames"), std::string::npos) << help.output;
@@ -155,7 +158,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"WrongEnum", "", tiny_scene("", ",\n  \"simulation\": {\"integrator\": \"rk9\"}"),
                  "simulation.integrator"},
         BadInput{"BadSizeOption", "--size 10x", tiny_scene(), "--size: expected WIDTHxHEIGHT"},
-        BadInput{"BadFramesOption", "--frames 0", tiny_scene(), "--frames: expected an integer in 1..100000"}),
+        BadInput{"BadFramesOption", "--frames 0", tiny_scene(), "--frames: expected an integer in 1..100000"},
+        BadInput{"BadShadingOption", "--shading glossy", tiny_scene(), "--shading: glossy not in {lit,normals}"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 // A time step far beyond the critical one explodes: the run stops with exit code 3, names
