@@ -5,6 +5,7 @@
 #include <regex>
 
 #include "app/frame_mesh.h"
+#include "app/obstacle_meshes.h"
 #include "app/progress.h"
 #include "app/scene.h"
 #include "app/stats_csv.h"
@@ -95,12 +96,14 @@ int run_scene(const RunOptions& options) {
                scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
                1e3 * simulator->time_step(), 1e3 * simulator->critical_time_step(),
                renderer.description().c_str());
+  const std::vector<render::RenderObject> obstacle_objects =
+      obstacle_render_objects(scene.sim.obstacles, scene.render);
   Progress progress(stderr, scene.frames, "frame");
   double sim_ms_total = 0.0, render_ms_total = 0.0;
+  long unconverged_total = 0, steps_total = 0;
   for (int frame = 1; frame <= scene.frames; ++frame) {
     FrameStats row;
     row.frame = frame;
-    const long steps_before = simulator->steps_taken();
     auto start = std::chrono::steady_clock::now();
     try {
       simulator->advance(frame * frame_dt - simulator->state().time_s);
@@ -111,24 +114,31 @@ int run_scene(const RunOptions& options) {
       return exit_diverged;
     }
     row.sim_ms = ms_since(start);
-    row.steps = simulator->steps_taken() - steps_before;
+    row.steps = simulator->take_step_statistics();
     row.diagnostics = simulator->diagnostics();
 
     start = std::chrono::steady_clock::now();
     const render::Image image =
-        renderer.render(to_render_mesh(simulator->mesh(), simulator->state().x), scene.render);
+        renderer.render(to_render_mesh(simulator->mesh(), simulator->state().x), scene.render,
+                        obstacle_objects);
     render::write_png(image, dir / frame_name(frame));
     row.render_ms = ms_since(start);
     stats.write(row);
 
     sim_ms_total += row.sim_ms;
+    unconverged_total += row.steps.unconverged_steps;
+    steps_total += row.steps.steps;
     render_ms_total += row.render_ms;
-    char detail[96];
-    std::snprintf(detail, sizeof detail, "t = %.2f s, max strain %.2f %%", row.diagnostics.time_s,
-                  100.0 * row.diagnostics.max_strain);
+    char detail[128];
+    std::snprintf(detail, sizeof detail, "t = %.2f s, max strain %.2f %%%s", row.diagnostics.time_s,
+                  100.0 * row.diagnostics.max_strain,
+                  row.steps.unconverged_steps ? ", projection missed its tolerance" : "");
     progress.update(frame, detail);
   }
   progress.finish();
+  if (unconverged_total > 0)
+    std::fprintf(stderr, "weft: warning: the constraint projection missed its tolerance in %ld of %ld steps "
+                 "(see unconverged_steps in stats.csv)\n", unconverged_total, steps_total);
   std::printf("weft: wrote %d frames to %s (simulation %s, rendering %s, total %s)\n", scene.frames,
               dir.c_str(), format_duration(sim_ms_total / 1e3).c_str(),
               format_duration(render_ms_total / 1e3).c_str(), format_duration(progress.elapsed_s()).c_str());

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "app/json_reader.h"
 #include "app/units.h"
@@ -24,7 +25,7 @@ constexpr double unit_tolerance = 1e-6;  // how far from unit length an axis may
 
 // A unit direction: normalised when within `unit_tolerance` of unit length, an error otherwise.
 Eigen::Vector3d read_axis(ObjectReader& r, const std::string& key,
-                          const Eigen::Vector3d& fallback) {
+                          std::optional<Eigen::Vector3d> fallback) {
   const Eigen::Vector3d axis = r.vec3(key, fallback);
   const double length = axis.norm();
   if (std::fabs(length - 1.0) > unit_tolerance) {
@@ -127,6 +128,35 @@ void read_cloth(ObjectReader r, Scene& scene) {
   check_pins(scene.pins, g, r.file(), r.path_of("pins"));
 }
 
+// One obstacle object: exactly one of "sphere", "plane" (sim::Obstacle).
+sim::Obstacle read_obstacle(ObjectReader r) {
+  const bool sphere = r.has("sphere"), plane = r.has("plane");
+  if (!sphere && !plane) r.finish();  // a misspelt "sphere" gets its "did you mean"
+  if (sphere == plane) {
+    throw_scene_error(r.file(), r.path(),
+                      std::string("expected exactly one of 'sphere' or 'plane', got ") +
+                          (sphere ? "both" : "neither"));
+  }
+  sim::Obstacle obstacle;
+  if (sphere) {
+    ObjectReader o = r.required_object("sphere");
+    sim::SphereObstacle s;
+    s.center_m = o.quantity_vec3("center", Quantity::length, required);
+    s.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
+    o.finish();
+    obstacle = s;
+  } else {
+    ObjectReader o = r.required_object("plane");
+    sim::PlaneObstacle p;
+    p.point_m = o.quantity_vec3("point", Quantity::length, required);
+    p.normal = read_axis(o, "normal", required);
+    o.finish();
+    obstacle = p;
+  }
+  r.finish();
+  return obstacle;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s) {
   enum class Model { mass_spring };
@@ -139,6 +169,8 @@ void read_simulation(ObjectReader r, sim::SimSettings& s) {
   s.time_step_s = r.quantity_or_keyword("time_step", Quantity::time, "auto", Range::gt(0.0));
   s.time_step_safety = r.number("time_step_safety", s.time_step_safety, Range::gt(0.0).le(1.0));
   s.max_speed_m_s = r.quantity("max_speed", Quantity::speed, s.max_speed_m_s, Range::gt(0.0));
+  s.collision_thickness_m =
+      r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
   r.finish();
 }
 
@@ -189,6 +221,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   s.front_color = read_color(colors, "front", s.front_color);
   s.back_color = read_color(colors, "back", s.back_color);
   s.background = read_color(colors, "background", s.background);
+  s.obstacle_color = read_color(colors, "obstacle", s.obstacle_color);
   colors.finish();
 
   // "ground": false disables it, true keeps the defaults, an object sets them.
@@ -225,6 +258,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   if (scene.description.find_first_not_of(" \t\r\n") == std::string::npos)
     top.fail("description", "expected a non-empty string saying what the scene shows");
   read_cloth(top.required_object("cloth"), scene);
+  for (ObjectReader& obstacle : top.objects("obstacles"))
+    scene.sim.obstacles.push_back(read_obstacle(obstacle));
   read_simulation(top.object("simulation"), scene.sim);
   read_output(top.object("output"), scene);
   read_render(top.object("render"), scene.render);

@@ -1,8 +1,10 @@
 // OpenGL 3.3 core rasterizer. Per render():
-//   1. validate the settings and the mesh (computing vertex normals on a copy if missing),
-//   2. upload positions, normals and triangles (the mesh changes every frame),
-//   3. shadow pass (ground on, lit): cloth depth from the key light, orthographic,
-//   4. main pass into a multisampled FBO: clear to the background, ground, cloth,
+//   1. validate the settings and the meshes (computing vertex normals on a copy if missing);
+//      the extra objects are merged into one mesh, drawn range by range in their colours,
+//   2. upload positions, normals and triangles of the cloth and of the objects (the cloth
+//      changes every frame),
+//   3. shadow pass (ground on, lit): cloth and object depth from the key light, orthographic,
+//   4. main pass into a multisampled FBO: clear to the background, ground, cloth, objects,
 //   5. resolve (glBlitFramebuffer) into a single-sample FBO, glFinish, glReadPixels,
 //      and flip rows so that Image row 0 is the top.
 // GL entry points come from the GlContext (gl_functions.h); nothing links GL directly.
@@ -12,10 +14,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/gl_functions.h"
@@ -62,25 +66,26 @@ void validate(const RenderSettings& s, int max_size) {
 }
 
 // Bad input in the mesh: indices in range, positions finite, at most INT_MAX/3 triangles.
-void validate(const RenderMesh& mesh) {
+// Messages start with `name` ("RenderMesh", "object 2").
+void validate(const RenderMesh& mesh, const std::string& name = "RenderMesh") {
   const std::size_t vertex_count = mesh.positions.size();
   for (std::size_t v = 0; v < vertex_count; ++v) {
     if (!mesh.positions[v].allFinite()) {
-      throw std::invalid_argument("RenderMesh: vertex " + std::to_string(v) +
+      throw std::invalid_argument(name + ": vertex " + std::to_string(v) +
                                   " has a non-finite position");
     }
   }
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (std::uint32_t v : mesh.triangles[f]) {
       if (v >= vertex_count) {
-        throw std::invalid_argument("RenderMesh: triangle " + std::to_string(f) + " uses vertex " +
+        throw std::invalid_argument(name + ": triangle " + std::to_string(f) + " uses vertex " +
                                     std::to_string(v) + " but the mesh has " +
                                     std::to_string(vertex_count) + " vertices");
       }
     }
   }
   if (mesh.triangles.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max() / 3)) {
-    throw std::invalid_argument("RenderMesh: too many triangles for one draw call");
+    throw std::invalid_argument(name + ": too many triangles for one draw call");
   }
 }
 
@@ -146,14 +151,61 @@ void check_framebuffer(const GlFunctions& gl, GLenum target, const std::string& 
   }
 }
 
+// `mesh`, or a copy with vertex normals computed into `storage` when they are missing or
+// stale in size.
+const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
+  if (mesh.normals.size() == mesh.positions.size()) return mesh;
+  storage.positions = mesh.positions;
+  storage.triangles = mesh.triangles;
+  compute_vertex_normals(storage);
+  return storage;
+}
+
+// Index range of one object in the merged object mesh, and its colour.
+struct ObjectRange {
+  std::size_t first_index = 0;  // into the element buffer (3 per triangle)
+  GLsizei index_count = 0;
+  Eigen::Vector3f color;
+};
+
+// All objects as one mesh (with normals), and where each one's triangles lie in it.
+RenderMesh merge_objects(const std::vector<RenderObject>& objects,
+                         std::vector<ObjectRange>& ranges) {
+  RenderMesh merged;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    const std::string name = "object " + std::to_string(k);
+    const RenderObject& object = objects[k];
+    validate(object.mesh, name);
+    if (!object.color.allFinite()) throw std::invalid_argument(name + ": colour is not finite");
+    if (merged.positions.size() + object.mesh.positions.size() >
+        std::numeric_limits<std::uint32_t>::max()) {
+      throw std::invalid_argument(name + ": too many vertices in all objects together");
+    }
+    RenderMesh storage;
+    const RenderMesh& mesh = with_normals(object.mesh, storage);
+    const auto base = static_cast<std::uint32_t>(merged.positions.size());
+    ranges.push_back({3 * merged.triangles.size(), static_cast<GLsizei>(3 * mesh.triangles.size()),
+                      object.color});
+    merged.positions.insert(merged.positions.end(), mesh.positions.begin(), mesh.positions.end());
+    merged.normals.insert(merged.normals.end(), mesh.normals.begin(), mesh.normals.end());
+    for (const auto& t : mesh.triangles)
+      merged.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  validate(merged, "objects");  // the total must fit one draw call too
+  return merged;
+}
+
 // World → light clip space for the shadow pass: an orthographic box looking along
-// −light_direction that encloses the sphere around the mesh's bounding box.
-Eigen::Matrix4f light_view_projection(const RenderMesh& mesh, const Eigen::Vector3d& light_unit) {
+// −light_direction that encloses the sphere around the meshes' bounding box.
+Eigen::Matrix4f light_view_projection(const std::vector<const RenderMesh*>& meshes,
+                                      const Eigen::Vector3d& light_unit) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
   Eigen::Vector3d hi = -lo;
-  for (const Eigen::Vector3f& p : mesh.positions) {
-    lo = lo.cwiseMin(p.cast<double>());
-    hi = hi.cwiseMax(p.cast<double>());
+  for (const RenderMesh* mesh : meshes) {
+    for (const Eigen::Vector3f& p : mesh->positions) {
+      lo = lo.cwiseMin(p.cast<double>());
+      hi = hi.cwiseMax(p.cast<double>());
+    }
   }
   const Eigen::Vector3d centre = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * (hi - lo).norm(), 1e-3);  // metres
@@ -181,19 +233,31 @@ struct RasterRenderer::Impl {
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
 
-  Image render(const RenderMesh& mesh, const RenderSettings& settings);
+  Image render(const RenderMesh& cloth, const RenderSettings& settings,
+               const std::vector<RenderObject>& objects);
   std::string description() const { return m_context->description(); }
 
  private:
+  // Vertex array and buffers of one mesh: attribute 0 position, 1 normal, 3 floats each.
+  struct MeshBuffers {
+    GLuint vao = 0, positions = 0, normals = 0, indices = 0;
+  };
+
+  void create_buffers(MeshBuffers& b);
+  void release_buffers(MeshBuffers& b);
   void release_gl();
   void ensure_targets(int width, int height, int samples);
   void ensure_shadow_map();
-  void upload(const RenderMesh& mesh);
-  void draw_shadow_map(GLsizei index_count, const Eigen::Matrix4f& light_matrix);
+  void upload(const MeshBuffers& b, const RenderMesh& mesh);
+  void draw_shadow_map(const Eigen::Matrix4f& light_matrix, GLsizei cloth_index_count,
+                       GLsizei object_index_count);
   void draw_ground(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
                    const Eigen::Matrix4f* shadow_matrix);
-  void draw_cloth(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
-                  GLsizei index_count);
+  // Lit (or normals-shaded) surfaces: the cloth program with its uniforms set, then one draw
+  // per index range with its front and back colours.
+  void use_surface_program(const RenderSettings& s, const Eigen::Matrix4f& view_projection);
+  void draw_surface(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
+                    const Eigen::Vector3f& front, const Eigen::Vector3f& back);
   Image read_back(int width, int height);
 
   GLint uniform(GLuint program, const char* name) const {
@@ -219,8 +283,8 @@ struct RasterRenderer::Impl {
   GlFunctions m_gl;
   GLint m_max_samples = 0, m_max_size = 0;
   GLuint m_cloth_program = 0, m_ground_program = 0, m_shadow_program = 0;
-  GLuint m_cloth_vao = 0, m_empty_vao = 0;  // m_empty_vao: the ground needs no attributes
-  GLuint m_position_buffer = 0, m_normal_buffer = 0, m_index_buffer = 0;
+  MeshBuffers m_cloth, m_objects;
+  GLuint m_empty_vao = 0;                       // the ground needs no attributes
   GLuint m_shadow_fbo = 0, m_shadow_depth = 0;  // created on first use
   // Size-dependent render targets, recreated when width, height or samples change.
   int m_target_width = 0, m_target_height = 0, m_target_samples = -1;
@@ -242,21 +306,9 @@ RasterRenderer::Impl::Impl(std::unique_ptr<GlContext> context) : m_context(std::
     m_shadow_program =
         link_program(m_gl, detail::shadow_vertex_shader, detail::shadow_fragment_shader, "shadow");
 
-    m_gl.GenVertexArrays(1, &m_cloth_vao);
     m_gl.GenVertexArrays(1, &m_empty_vao);
-    m_gl.GenBuffers(1, &m_position_buffer);
-    m_gl.GenBuffers(1, &m_normal_buffer);
-    m_gl.GenBuffers(1, &m_index_buffer);
-    // Attribute 0: position, attribute 1: normal; 3 floats each, tightly packed.
-    m_gl.BindVertexArray(m_cloth_vao);
-    m_gl.BindBuffer(GL_ARRAY_BUFFER, m_position_buffer);
-    m_gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-    m_gl.EnableVertexAttribArray(0);
-    m_gl.BindBuffer(GL_ARRAY_BUFFER, m_normal_buffer);
-    m_gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-    m_gl.EnableVertexAttribArray(1);
-    m_gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_index_buffer);  // recorded in the VAO
-    m_gl.BindVertexArray(0);
+    create_buffers(m_cloth);
+    create_buffers(m_objects);
     check_gl_error(m_gl, "RasterRenderer setup");
   } catch (...) {
     release_gl();
@@ -273,24 +325,47 @@ RasterRenderer::Impl::~Impl() {
   }
 }
 
+void RasterRenderer::Impl::create_buffers(MeshBuffers& b) {
+  m_gl.GenVertexArrays(1, &b.vao);
+  m_gl.GenBuffers(1, &b.positions);
+  m_gl.GenBuffers(1, &b.normals);
+  m_gl.GenBuffers(1, &b.indices);
+  // Attribute 0: position, attribute 1: normal; 3 floats each, tightly packed.
+  m_gl.BindVertexArray(b.vao);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, b.positions);
+  m_gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  m_gl.EnableVertexAttribArray(0);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, b.normals);
+  m_gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  m_gl.EnableVertexAttribArray(1);
+  m_gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.indices);  // recorded in the VAO
+  m_gl.BindVertexArray(0);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void RasterRenderer::Impl::release_buffers(MeshBuffers& b) {
+  const GLuint buffers[] = {b.positions, b.normals, b.indices};
+  if (m_gl.DeleteBuffers) m_gl.DeleteBuffers(3, buffers);
+  if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(1, &b.vao);
+  b = MeshBuffers{};
+}
+
 void RasterRenderer::Impl::release_gl() {
   // glDelete* ignore the name 0, so this is safe on a partially built renderer.
   const GLuint framebuffers[] = {m_msaa_fbo, m_resolve_fbo, m_shadow_fbo};
   const GLuint renderbuffers[] = {m_msaa_color, m_msaa_depth, m_resolve_color};
-  const GLuint buffers[] = {m_position_buffer, m_normal_buffer, m_index_buffer};
-  const GLuint vertex_arrays[] = {m_cloth_vao, m_empty_vao};
   if (m_gl.DeleteFramebuffers) m_gl.DeleteFramebuffers(3, framebuffers);
   if (m_gl.DeleteRenderbuffers) m_gl.DeleteRenderbuffers(3, renderbuffers);
   if (m_gl.DeleteTextures) m_gl.DeleteTextures(1, &m_shadow_depth);
-  if (m_gl.DeleteBuffers) m_gl.DeleteBuffers(3, buffers);
-  if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(2, vertex_arrays);
+  release_buffers(m_cloth);
+  release_buffers(m_objects);
+  if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(1, &m_empty_vao);
   for (GLuint program : {m_cloth_program, m_ground_program, m_shadow_program}) {
     if (m_gl.DeleteProgram && program != 0) m_gl.DeleteProgram(program);
   }
   m_msaa_fbo = m_resolve_fbo = m_shadow_fbo = 0;
   m_msaa_color = m_msaa_depth = m_resolve_color = m_shadow_depth = 0;
-  m_position_buffer = m_normal_buffer = m_index_buffer = 0;
-  m_cloth_vao = m_empty_vao = 0;
+  m_empty_vao = 0;
   m_cloth_program = m_ground_program = m_shadow_program = 0;
   m_target_width = m_target_height = 0;
   m_target_samples = -1;
@@ -359,18 +434,18 @@ void RasterRenderer::Impl::ensure_shadow_map() {
   check_gl_error(m_gl, "creating the shadow map");
 }
 
-void RasterRenderer::Impl::upload(const RenderMesh& mesh) {
+void RasterRenderer::Impl::upload(const MeshBuffers& b, const RenderMesh& mesh) {
   const auto bytes = [](std::size_t count, std::size_t size) {
     return static_cast<GLsizeiptr>(count * size);
   };
-  m_gl.BindBuffer(GL_ARRAY_BUFFER, m_position_buffer);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, b.positions);
   m_gl.BufferData(GL_ARRAY_BUFFER, bytes(mesh.positions.size(), sizeof(Eigen::Vector3f)),
                   mesh.positions.data(), GL_STREAM_DRAW);
-  m_gl.BindBuffer(GL_ARRAY_BUFFER, m_normal_buffer);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, b.normals);
   m_gl.BufferData(GL_ARRAY_BUFFER, bytes(mesh.normals.size(), sizeof(Eigen::Vector3f)),
                   mesh.normals.data(), GL_STREAM_DRAW);
   m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
-  m_gl.BindVertexArray(m_cloth_vao);  // the element buffer binding belongs to the VAO
+  m_gl.BindVertexArray(b.vao);  // the element buffer binding belongs to the VAO
   m_gl.BufferData(GL_ELEMENT_ARRAY_BUFFER,
                   bytes(mesh.triangles.size(), sizeof(std::array<std::uint32_t, 3>)),
                   mesh.triangles.data(), GL_STREAM_DRAW);
@@ -378,8 +453,8 @@ void RasterRenderer::Impl::upload(const RenderMesh& mesh) {
   check_gl_error(m_gl, "uploading the mesh");
 }
 
-void RasterRenderer::Impl::draw_shadow_map(GLsizei index_count,
-                                           const Eigen::Matrix4f& light_matrix) {
+void RasterRenderer::Impl::draw_shadow_map(const Eigen::Matrix4f& light_matrix,
+                                           GLsizei cloth_index_count, GLsizei object_index_count) {
   ensure_shadow_map();
   m_gl.BindFramebuffer(GL_FRAMEBUFFER, m_shadow_fbo);
   m_gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
@@ -392,8 +467,12 @@ void RasterRenderer::Impl::draw_shadow_map(GLsizei index_count,
   m_gl.PolygonOffset(2.0f, 4.0f);
   m_gl.UseProgram(m_shadow_program);
   set(m_shadow_program, "u_light_view_projection", light_matrix);
-  m_gl.BindVertexArray(m_cloth_vao);
-  m_gl.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+  for (const auto& [buffers, count] :
+       {std::pair{&m_cloth, cloth_index_count}, std::pair{&m_objects, object_index_count}}) {
+    if (count == 0) continue;
+    m_gl.BindVertexArray(buffers->vao);
+    m_gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+  }
   m_gl.BindVertexArray(0);
   m_gl.Disable(GL_POLYGON_OFFSET_FILL);
   check_gl_error(m_gl, "shadow pass");
@@ -438,8 +517,8 @@ void RasterRenderer::Impl::draw_ground(const RenderSettings& s,
   check_gl_error(m_gl, "ground pass");
 }
 
-void RasterRenderer::Impl::draw_cloth(const RenderSettings& s,
-                                      const Eigen::Matrix4f& view_projection, GLsizei index_count) {
+void RasterRenderer::Impl::use_surface_program(const RenderSettings& s,
+                                               const Eigen::Matrix4f& view_projection) {
   const GLuint p = m_cloth_program;
   m_gl.UseProgram(p);
   set(p, "u_view_projection", view_projection);
@@ -447,13 +526,21 @@ void RasterRenderer::Impl::draw_cloth(const RenderSettings& s,
   set(p, "u_light_dir", Eigen::Vector3d(s.light_direction.normalized()));
   set(p, "u_light_intensity", static_cast<float>(s.light_intensity));
   set(p, "u_ambient", static_cast<float>(s.ambient));
-  set(p, "u_front_color", s.front_color);
-  set(p, "u_back_color", s.back_color);
   set(p, "u_shading", s.shading == Shading::normals ? 1 : 0);
-  m_gl.BindVertexArray(m_cloth_vao);
-  m_gl.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+}
+
+void RasterRenderer::Impl::draw_surface(const MeshBuffers& b, std::size_t first_index,
+                                        GLsizei index_count, const Eigen::Vector3f& front,
+                                        const Eigen::Vector3f& back) {
+  set(m_cloth_program, "u_front_color", front);
+  set(m_cloth_program, "u_back_color", back);
+  m_gl.BindVertexArray(b.vao);
+  // The offset into the bound element buffer, in bytes, passed as a pointer (GL convention).
+  const auto offset = static_cast<std::uintptr_t>(first_index * sizeof(std::uint32_t));
+  m_gl.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT,
+                    reinterpret_cast<const void*>(offset));
   m_gl.BindVertexArray(0);
-  check_gl_error(m_gl, "cloth pass");
+  check_gl_error(m_gl, "surface pass");
 }
 
 Image RasterRenderer::Impl::read_back(int width, int height) {
@@ -484,32 +571,31 @@ Image RasterRenderer::Impl::read_back(int width, int height) {
   return image;
 }
 
-Image RasterRenderer::Impl::render(const RenderMesh& input, const RenderSettings& s) {
+Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSettings& s,
+                                   const std::vector<RenderObject>& objects) {
   m_context->make_current();
   validate(s, m_max_size);
-  validate(input);
-  // Vertex normals are required; compute them on a copy when missing or stale in size.
-  RenderMesh with_normals;
-  const RenderMesh* mesh = &input;
-  if (input.normals.size() != input.positions.size()) {
-    with_normals.positions = input.positions;
-    with_normals.triangles = input.triangles;
-    compute_vertex_normals(with_normals);
-    mesh = &with_normals;
-  }
-  const auto index_count = static_cast<GLsizei>(3 * mesh->triangles.size());
+  validate(cloth_input);
+  // Vertex normals are required; computed on a copy when missing or stale in size.
+  RenderMesh cloth_storage;
+  const RenderMesh& cloth = with_normals(cloth_input, cloth_storage);
+  std::vector<ObjectRange> ranges;
+  const RenderMesh merged = merge_objects(objects, ranges);
+  const auto cloth_count = static_cast<GLsizei>(3 * cloth.triangles.size());
+  const auto object_count = static_cast<GLsizei>(3 * merged.triangles.size());
 
   const int samples = s.msaa_samples <= 1 ? 0 : std::min(s.msaa_samples, int{m_max_samples});
   ensure_targets(s.width, s.height, samples);
-  if (index_count > 0) upload(*mesh);
+  if (cloth_count > 0) upload(m_cloth, cloth);
+  if (object_count > 0) upload(m_objects, merged);
 
   const Eigen::Vector3d light_unit = s.light_direction.normalized();
-  const bool shadow = s.ground && s.shading == Shading::lit && index_count > 0 &&
+  const bool shadow = s.ground && s.shading == Shading::lit && cloth_count + object_count > 0 &&
                       light_unit.z() > 1e-6 && s.light_intensity > 0.0;
   Eigen::Matrix4f light_matrix = Eigen::Matrix4f::Identity();
   if (shadow) {
-    light_matrix = light_view_projection(*mesh, light_unit);
-    draw_shadow_map(index_count, light_matrix);
+    light_matrix = light_view_projection({&cloth, &merged}, light_unit);
+    draw_shadow_map(light_matrix, cloth_count, object_count);
   }
 
   const double aspect = static_cast<double>(s.width) / static_cast<double>(s.height);
@@ -528,7 +614,14 @@ Image RasterRenderer::Impl::render(const RenderMesh& input, const RenderSettings
   m_gl.Disable(GL_CULL_FACE);  // two-sided cloth
   check_gl_error(m_gl, "starting the main pass");
   if (s.ground) draw_ground(s, view_projection, shadow ? &light_matrix : nullptr);
-  if (index_count > 0) draw_cloth(s, view_projection, index_count);
+  if (cloth_count + object_count > 0) {
+    use_surface_program(s, view_projection);
+    if (cloth_count > 0) draw_surface(m_cloth, 0, cloth_count, s.front_color, s.back_color);
+    for (const ObjectRange& r : ranges) {
+      if (r.index_count > 0)
+        draw_surface(m_objects, r.first_index, r.index_count, r.color, r.color);
+    }
+  }
   return read_back(s.width, s.height);
 }
 
@@ -538,7 +631,12 @@ RasterRenderer::RasterRenderer(std::unique_ptr<GlContext> context)
 RasterRenderer::~RasterRenderer() = default;
 
 Image RasterRenderer::render(const RenderMesh& mesh, const RenderSettings& settings) {
-  return m_impl->render(mesh, settings);
+  return m_impl->render(mesh, settings, {});
+}
+
+Image RasterRenderer::render(const RenderMesh& cloth, const RenderSettings& settings,
+                             const std::vector<RenderObject>& objects) {
+  return m_impl->render(cloth, settings, objects);
 }
 
 std::string RasterRenderer::description() const {

@@ -70,7 +70,7 @@ TEST(SceneErrors, UnknownKeyAtTopLevel) {
   s["simulaton"] = Json::object();
   EXPECT_EQ(error_of(s),
             "scene.json: simulaton: unknown key; did you mean 'simulation'? "
-            "(known keys here: description, cloth, simulation, output, render)");
+            "(known keys here: description, cloth, obstacles, simulation, output, render)");
   s = valid_scene();
   s["comment"] = "hello";
   EXPECT_CONTAINS(error_of(s), "scene.json: comment: unknown key (known keys here:");

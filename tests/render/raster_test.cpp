@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "render/primitives.h"
+
 namespace weft::render {
 namespace {
 
@@ -149,6 +151,13 @@ class Raster : public ::testing::Test {
 
   Image render(const RenderMesh& mesh, const RenderSettings& s, const std::string& name) {
     Image image = m_renderer->render(mesh, s);
+    m_rendered.emplace_back(name, image);
+    return image;
+  }
+
+  Image render(const RenderMesh& cloth, const RenderSettings& s,
+               const std::vector<RenderObject>& objects, const std::string& name) {
+    Image image = m_renderer->render(cloth, s, objects);
     m_rendered.emplace_back(name, image);
     return image;
   }
@@ -352,6 +361,107 @@ TEST_F(Raster, BadInputThrows) {
 
   // Still usable afterwards.
   EXPECT_EQ(m_renderer->render(unit_square(), s).width(), 32);
+}
+
+// Extra opaque objects (obstacles): a sphere seen from straight above, lit from straight above
+// so that the shading near its top hardly depends on the tessellation.
+RenderSettings sphere_view(int width, int height) {
+  RenderSettings s = view_from_above(width, height);
+  s.light_direction = {0, 0, 1};
+  return s;
+}
+
+RenderObject sphere_object(const Eigen::Vector3d& centre, double radius,
+                           const Eigen::Vector3f& colour) {
+  return {make_sphere_mesh(centre, radius), colour};
+}
+
+TEST_F(Raster, SphereObjectIsLitInItsOwnColour) {
+  const RenderSettings s = sphere_view(160, 120);
+  const Eigen::Vector3f colour(0.3f, 0.7f, 0.4f);
+  const Eigen::Vector3d centre(0, 0, 0.5);
+  const double radius = 0.3;
+  const Image image = render(RenderMesh{}, s, {sphere_object(centre, radius, colour)}, "sphere");
+
+  EXPECT_TRUE(
+      colour_at(image, project(s, centre), expected_lit(colour, s, {0, 0, 1}), colour_tolerance));
+  // Half-way out along +x the surface normal is (0.5, 0, √0.75): darker, as the formula says.
+  const Eigen::Vector3d normal(0.5, 0.0, std::sqrt(0.75));
+  EXPECT_TRUE(colour_at(image, project(s, centre + radius * normal),
+                        expected_lit(colour, s, normal), colour_tolerance));
+  const Rgb8 background = to_rgb8(s.background);
+  for (Pixel corner : {Pixel{0, 0}, Pixel{159, 0}, Pixel{0, 119}, Pixel{159, 119}}) {
+    EXPECT_TRUE(colour_at(image, corner, background, 0));
+  }
+}
+
+TEST_F(Raster, ClothAndObjectsOccludeEachOtherByDepth) {
+  const RenderSettings s = sphere_view(160, 120);
+  const Eigen::Vector3f sphere_colour(0.3f, 0.7f, 0.4f);
+  const RenderObject sphere = sphere_object({0, 0, 0.5}, 0.3, sphere_colour);
+  const Rgb8 cloth_lit = expected_lit(s.front_color, s, {0, 0, 1});
+  const Rgb8 sphere_top = expected_lit(sphere_colour, s, {0, 0, 1});
+
+  // The cloth above the sphere's left half (z = 1 > 0.8, the sphere's top) hides that half.
+  Image image = render(rectangle(-0.6, 0.0, -0.6, 0.6, 1.0), s, {sphere}, "cloth_in_front");
+  EXPECT_TRUE(colour_at(image, project(s, {-0.05, 0.0, 1.0}), cloth_lit, colour_tolerance));
+  EXPECT_TRUE(colour_at(image, project(s, {0.05, 0.0, 0.8}), sphere_top, colour_tolerance));
+
+  // A cloth cutting through the sphere's lower part (z = 0.3; the sphere spans 0.2 … 0.8) is
+  // hidden by it in the middle and seen around it.
+  image = render(rectangle(-1.0, 1.0, -1.0, 1.0, 0.3), s, {sphere}, "cloth_behind");
+  EXPECT_TRUE(colour_at(image, project(s, {0, 0, 0.8}), sphere_top, colour_tolerance));
+  EXPECT_TRUE(colour_at(image, project(s, {0.6, 0.4, 0.3}), cloth_lit, colour_tolerance));
+
+  // Objects against each other: a small red sphere in front of the big one, listed first.
+  const Eigen::Vector3f red(0.9f, 0.1f, 0.1f);
+  image = render(RenderMesh{}, s, {sphere_object({0, 0, 0.95}, 0.1, red), sphere}, "two_spheres");
+  EXPECT_TRUE(colour_at(image, project(s, {0, 0, 1.05}), expected_lit(red, s, {0, 0, 1}),
+                        colour_tolerance));
+  image = render(RenderMesh{}, s, {sphere, sphere_object({0, 0, 0.95}, 0.1, red)},
+                 "two_spheres_reversed");
+  EXPECT_TRUE(colour_at(image, project(s, {0, 0, 1.05}), expected_lit(red, s, {0, 0, 1}),
+                        colour_tolerance));
+}
+
+TEST_F(Raster, ObjectsCastShadowsOnTheGround) {
+  RenderSettings s;  // default oblique camera, ground on at z = 0
+  s.width = 200;
+  s.height = 150;
+  s.light_direction = {0, 0, 1};  // straight down: the shadow is the sphere's disc
+  const Image image =
+      render(RenderMesh{}, s, {sphere_object({0, 0, 0.5}, 0.2, s.obstacle_color)}, "shadow");
+  // Middles of 10 cm grid cells: under the sphere (seen in front of it) and far from it.
+  const Rgb8 shadowed = expected_lit(s.ground_color, s, Eigen::Vector3d::Zero());
+  EXPECT_TRUE(colour_at(image, project(s, {0.05, -0.05, 0.0}), shadowed, colour_tolerance));
+  EXPECT_TRUE(colour_at(image, project(s, {0.75, -0.65, 0.0}),
+                        expected_lit(s.ground_color, s, {0, 0, 1}), colour_tolerance));
+}
+
+TEST_F(Raster, NoObjectsIsTheClothAlone) {
+  RenderSettings s = view_from_above(96, 80);
+  s.ground = true;
+  s.camera.eye = {1.5, -2.0, 1.5};
+  EXPECT_TRUE(same_bytes(render(unit_square(), s, {}, "no_objects"),
+                         render(unit_square(), s, "cloth_only")));
+}
+
+TEST_F(Raster, BadObjectThrowsNamingIt) {
+  const RenderSettings s = sphere_view(32, 32);
+  RenderObject bad = sphere_object({0, 0, 0.5}, 0.2, {0.5f, 0.5f, 0.5f});
+  bad.mesh.triangles.push_back({0, 1, 100000});
+  try {
+    m_renderer->render(unit_square(), s, {sphere_object({0, 0, 0}, 0.1, {1, 1, 1}), bad});
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("object 1: triangle", 0), 0u) << e.what();
+  }
+  // Normals are computed when missing: the same image as with the analytic ones.
+  RenderObject without = sphere_object({0, 0, 0.5}, 0.2, {0.5f, 0.5f, 0.5f});
+  without.mesh.normals.clear();
+  const Image computed = render(RenderMesh{}, s, {without}, "computed_normals");
+  EXPECT_TRUE(colour_at(computed, project(s, {0, 0, 0.7}),
+                        expected_lit({0.5f, 0.5f, 0.5f}, s, {0, 0, 1}), colour_tolerance));
 }
 
 }  // namespace

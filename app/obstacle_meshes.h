@@ -1,0 +1,22 @@
+#pragma once
+// The meeting point of sim and render for obstacles: each analytic obstacle as a RenderObject.
+
+#include <vector>
+
+#include "render/raster.h"
+#include "sim/collision/obstacle.h"
+
+namespace weft::app {
+
+// Half the side of the square drawn for a plane obstacle that is not the rendered ground, m.
+inline constexpr double plane_patch_half_size_m = 2.0;
+
+// One RenderObject per obstacle to draw, in settings.obstacle_color:
+// - a sphere: a sphere mesh at its true radius (the cloth rests collision_thickness outside it);
+// - a plane: a 4 m × 4 m square centred on the point of the plane nearest the camera target,
+//   facing along its normal; none when the plane is the rendered ground (settings.ground on,
+//   normal +z and height ground_z_m, within 1e-9), which already shows it.
+std::vector<render::RenderObject> obstacle_render_objects(
+    const std::vector<sim::Obstacle>& obstacles, const render::RenderSettings& settings);
+
+}  // namespace weft::app

@@ -1,0 +1,239 @@
+// Vertex–obstacle collisions against analytic shapes (seed 003, "Cloth–Object Collisions":
+// a vertex inside an object is "repelled" to the closest point on its surface). See
+// obstacle.h for the order in which overlapping obstacles are resolved.
+
+#include "sim/collision/obstacle.h"
+
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace weft::sim {
+namespace {
+
+// Gauss–Seidel passes over the obstacles per vertex before the two-obstacle fallback. One pass
+// suffices for a single obstacle and for obstacles meeting at a convex corner.
+constexpr int max_passes = 4;
+constexpr double unit_tolerance = 1e-6;  // how far from unit length a plane normal may be
+
+// The closest point at distance t outside the obstacle: on the offset surface (a sphere of
+// radius r + t, or the plane moved by t along its normal).
+Vec3 to_offset_surface(const SphereObstacle& s, const Vec3& p, double t) {
+  const Vec3 r = p - s.center_m;
+  const double length = r.norm();
+  const Vec3 direction = length > 0.0 ? Vec3(r / length) : Vec3::UnitZ();
+  return s.center_m + (s.radius_m + t) * direction;
+}
+
+Vec3 to_offset_surface(const PlaneObstacle& s, const Vec3& p, double t) {
+  return p + (t - (p - s.point_m).dot(s.normal)) * s.normal;
+}
+
+Vec3 to_offset_surface(const Obstacle& o, const Vec3& p, double t) {
+  return std::visit([&](const auto& shape) { return to_offset_surface(shape, p, t); }, o);
+}
+
+// A circle in space: centre, unit axis (normal of its plane), radius.
+struct Circle {
+  Vec3 center;
+  Vec3 axis;
+  double radius;
+};
+
+// Where the sphere |x − c| = R meets the plane n·x = h (n unit); none when they do not meet.
+std::optional<Circle> sphere_plane_circle(const Vec3& c, double R, const Vec3& n, double h) {
+  const double height = n.dot(c) - h;  // signed distance of the centre from the plane
+  if (!(std::fabs(height) < R)) return std::nullopt;
+  return Circle{c - height * n, n, std::sqrt(R * R - height * height)};
+}
+
+Vec3 closest_on_circle(const Circle& k, const Vec3& p) {
+  Vec3 w = p - k.center;
+  w -= w.dot(k.axis) * k.axis;
+  const double length = w.norm();
+  // On the axis every circle point is equally near: pick a fixed one (deterministic).
+  const Vec3 direction = length > 1e-12 * k.radius ? Vec3(w / length) : k.axis.unitOrthogonal();
+  return k.center + k.radius * direction;
+}
+
+// The nearest point to p on the curve where the offset surfaces (at distance t) of a and b
+// intersect: a circle (sphere–plane, sphere–sphere) or a line (plane–plane). None when they do
+// not intersect (disjoint or nested spheres, parallel planes).
+std::optional<Vec3> closest_on_offset_intersection(const Obstacle& a, const Obstacle& b,
+                                                   const Vec3& p, double t) {
+  const auto* sphere_a = std::get_if<SphereObstacle>(&a);
+  const auto* sphere_b = std::get_if<SphereObstacle>(&b);
+  const auto* plane_a = std::get_if<PlaneObstacle>(&a);
+  const auto* plane_b = std::get_if<PlaneObstacle>(&b);
+  const auto offset_height = [t](const PlaneObstacle* s) { return s->normal.dot(s->point_m) + t; };
+
+  std::optional<Circle> circle;
+  if (sphere_a && sphere_b) {
+    // The circle lies in the radical plane u·x = u·c_a + d_a of the two offset spheres.
+    const double Ra = sphere_a->radius_m + t, Rb = sphere_b->radius_m + t;
+    const Vec3 between = sphere_b->center_m - sphere_a->center_m;
+    const double d = between.norm();
+    if (!(d > 0.0)) return std::nullopt;
+    const Vec3 u = between / d;
+    const double d_a = (d * d + Ra * Ra - Rb * Rb) / (2.0 * d);
+    circle = sphere_plane_circle(sphere_a->center_m, Ra, u, u.dot(sphere_a->center_m) + d_a);
+  } else if (sphere_a || sphere_b) {
+    const SphereObstacle* s = sphere_a ? sphere_a : sphere_b;
+    const PlaneObstacle* plane = plane_a ? plane_a : plane_b;
+    circle = sphere_plane_circle(s->center_m, s->radius_m + t, plane->normal, offset_height(plane));
+  } else {
+    // Two planes n1·x = h1, n2·x = h2 meet on the line x0 + s·(n1 × n2).
+    const Vec3& n1 = plane_a->normal;
+    const Vec3& n2 = plane_b->normal;
+    const Vec3 direction = n1.cross(n2);
+    const double dd = direction.squaredNorm();
+    if (!(dd > 1e-12)) return std::nullopt;
+    const Vec3 x0 = (offset_height(plane_a) * n2.cross(direction) +
+                     offset_height(plane_b) * direction.cross(n1)) /
+                    dd;
+    return x0 + ((p - x0).dot(direction) / dd) * direction;
+  }
+  if (!circle) return std::nullopt;
+  return closest_on_circle(*circle, p);
+}
+
+// Moves p out of every obstacle's thickness layer; see push_out_of_obstacles in obstacle.h.
+void resolve_vertex(const std::vector<Obstacle>& obstacles, double t, Vec3& p) {
+  // A projection lands on an offset surface up to rounding: within `rounding` counts as clear.
+  const auto rounding = [&] { return 1e-13 * (1.0 + p.lpNorm<Eigen::Infinity>()); };
+  bool clear = false;
+  for (int pass = 0; pass < max_passes && !clear; ++pass) {
+    for (const Obstacle& o : obstacles)
+      if (signed_distance(o, p) < t) p = to_offset_surface(o, p, t);
+    clear = true;
+    for (const Obstacle& o : obstacles) clear = clear && signed_distance(o, p) >= t - rounding();
+  }
+  if (clear) return;
+
+  // Caught between obstacles: the one it is deepest in, and the nearest of the others.
+  std::size_t deepest = 0, nearest = obstacles.size();
+  for (std::size_t k = 1; k < obstacles.size(); ++k)
+    if (signed_distance(obstacles[k], p) < signed_distance(obstacles[deepest], p)) deepest = k;
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    if (k == deepest) continue;
+    if (nearest == obstacles.size() ||
+        signed_distance(obstacles[k], p) < signed_distance(obstacles[nearest], p))
+      nearest = k;
+  }
+  if (nearest == obstacles.size()) return;  // unreachable: one obstacle is always resolved
+  if (const auto q = closest_on_offset_intersection(obstacles[deepest], obstacles[nearest], p, t))
+    p = *q;
+}
+
+bool clear_of_all(const std::vector<Obstacle>& obstacles, double t, const Vec3& p) {
+  for (const Obstacle& o : obstacles)
+    if (signed_distance(o, p) < t) return false;
+  return true;
+}
+
+// Coulomb friction for a vertex pushed from `predicted` to p (see obstacle.h): takes back the
+// part of its step from `start` tangent to the push, up to friction × the push distance.
+void apply_friction(const std::vector<Obstacle>& obstacles, double t, double friction,
+                    const Vec3& start, const Vec3& predicted, Vec3& p) {
+  const Vec3 push = p - predicted;
+  const double depth = push.norm();
+  if (!(depth > 0.0)) return;
+  const Vec3 n = push / depth;
+  Vec3 slide = p - start;
+  slide -= slide.dot(n) * n;
+  const double length = slide.norm();
+  const double limit = friction * depth;
+  p -= length <= limit ? slide : Vec3((limit / length) * slide);
+  // Convex surfaces bend away from their tangent plane, but a concave corner may not: if the
+  // frictional move went back in, resolve again without friction.
+  if (!clear_of_all(obstacles, t, p)) resolve_vertex(obstacles, t, p);
+}
+
+void check_arguments(const std::vector<Obstacle>& obstacles, double thickness_m,
+                     const Eigen::VectorXd& inv_mass, const Matrix3X& x) {
+  if (inv_mass.size() != x.rows()) {
+    throw std::invalid_argument("push_out_of_obstacles: " + std::to_string(inv_mass.size()) +
+                                " inverse masses for " + std::to_string(x.rows()) + " vertices");
+  }
+  if (!(thickness_m >= 0.0) || !std::isfinite(thickness_m)) {
+    throw std::invalid_argument("push_out_of_obstacles: thickness must be finite and >= 0, got " +
+                                std::to_string(thickness_m) + " m");
+  }
+  check_obstacles(obstacles);
+}
+
+// Both push_out_of_obstacles overloads; x_start is null without friction.
+int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
+             const Eigen::VectorXd& inv_mass, const Matrix3X* x_start, double friction,
+             Matrix3X& x) {
+  int moved = 0;
+  if (obstacles.empty()) return moved;
+  for (Index i = 0; i < x.rows(); ++i) {
+    if (!(inv_mass[i] > 0.0)) continue;  // pinned
+    const Vec3 predicted = x.row(i).transpose();
+    if (clear_of_all(obstacles, thickness_m, predicted)) continue;  // left exactly as it was
+    Vec3 p = predicted;
+    resolve_vertex(obstacles, thickness_m, p);
+    if (x_start && friction > 0.0)
+      apply_friction(obstacles, thickness_m, friction, x_start->row(i).transpose(), predicted, p);
+    if (p != predicted) {
+      x.row(i) = p.transpose();
+      ++moved;
+    }
+  }
+  return moved;
+}
+
+}  // namespace
+
+double signed_distance(const Obstacle& obstacle, const Vec3& p) {
+  if (const auto* s = std::get_if<SphereObstacle>(&obstacle))
+    return (p - s->center_m).norm() - s->radius_m;
+  const auto& plane = std::get<PlaneObstacle>(obstacle);
+  return (p - plane.point_m).dot(plane.normal);
+}
+
+void check_obstacles(const std::vector<Obstacle>& obstacles) {
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const std::string name = "obstacle " + std::to_string(k) + ": ";
+    if (const auto* s = std::get_if<SphereObstacle>(&obstacles[k])) {
+      if (!s->center_m.allFinite())
+        throw std::invalid_argument(name + "sphere centre must be finite");
+      if (!(s->radius_m > 0.0) || !std::isfinite(s->radius_m))
+        throw std::invalid_argument(name + "sphere radius must be finite and > 0, got " +
+                                    std::to_string(s->radius_m) + " m");
+    } else {
+      const auto& plane = std::get<PlaneObstacle>(obstacles[k]);
+      if (!plane.point_m.allFinite())
+        throw std::invalid_argument(name + "plane point must be finite");
+      const double length = plane.normal.norm();
+      if (!(std::fabs(length - 1.0) <= unit_tolerance))
+        throw std::invalid_argument(name + "plane normal must be a unit vector, got length " +
+                                    std::to_string(length));
+    }
+  }
+}
+
+int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
+                          const Eigen::VectorXd& inv_mass, Matrix3X& x) {
+  check_arguments(obstacles, thickness_m, inv_mass, x);
+  return push_out(obstacles, thickness_m, inv_mass, nullptr, 0.0, x);
+}
+
+int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
+                          const Eigen::VectorXd& inv_mass, const Matrix3X& x_start, double friction,
+                          Matrix3X& x) {
+  check_arguments(obstacles, thickness_m, inv_mass, x);
+  if (x_start.rows() != x.rows()) {
+    throw std::invalid_argument("push_out_of_obstacles: " + std::to_string(x_start.rows()) +
+                                " start positions for " + std::to_string(x.rows()) + " vertices");
+  }
+  if (!(friction >= 0.0) || !std::isfinite(friction)) {
+    throw std::invalid_argument("push_out_of_obstacles: friction must be finite and >= 0, got " +
+                                std::to_string(friction));
+  }
+  return push_out(obstacles, thickness_m, inv_mass, &x_start, friction, x);
+}
+
+}  // namespace weft::sim
