@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "sim/diagnostics.h"
+#include "sim/simulator.h"
 
 namespace weft::app {
 
@@ -13,7 +14,7 @@ struct FrameStats {
   int frame = 0;          // 1-based
   double sim_ms = 0.0;    // wall time simulating this frame
   double render_ms = 0.0;  // wall time rendering and writing this frame
-  long steps = 0;         // time steps taken for this frame
+  sim::StepStatistics steps;  // what this frame's time steps did (count, projection, solves)
   sim::Diagnostics diagnostics;
 };
 

@@ -13,24 +13,32 @@ struct Diagnostics {
   double elastic_energy_J = 0.0;
   double gravity_energy_J = 0.0;    // −Σ m g·x, relative to the origin
   double max_strain = 0.0;          // largest |length/rest − 1| over warp and weft edges
+  double mean_strain = 0.0;         // mean |length/rest − 1| over warp and weft edges
   double max_speed_m_s = 0.0;
   double total_energy_J() const { return kinetic_energy_J + elastic_energy_J + gravity_energy_J; }
 };
 
-enum class Phase { forces, integrate, check, count };
+enum class Phase { forces, integrate, project, collide, check, count };
 
 inline constexpr std::array<std::string_view, static_cast<int>(Phase::count)> phase_names{
-    "forces", "integrate", "check"};
+    "forces", "integrate", "project", "collide", "check"};
 
 // Accumulated wall time per phase, seconds.
 class PhaseTimers {
  public:
   template <class F>
-  void time(Phase phase, F&& work) {
+  auto time(Phase phase, F&& work) {
     const auto start = std::chrono::steady_clock::now();
-    work();
-    m_seconds[static_cast<int>(phase)] +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    struct Stop {
+      PhaseTimers* timers;
+      Phase phase;
+      std::chrono::steady_clock::time_point start;
+      ~Stop() {
+        timers->m_seconds[static_cast<int>(phase)] +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    } stop{this, phase, start};
+    return work();
   }
   double seconds(Phase phase) const { return m_seconds[static_cast<int>(phase)]; }
   double total_seconds() const {

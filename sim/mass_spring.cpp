@@ -24,7 +24,7 @@ double rest_length(const ClothMesh& mesh, Index a, Index b) {
 
 }  // namespace
 
-MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m) {
+MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs) {
   const Index nu = mesh.nu, nv = mesh.nv;
   const double hu = rest_length(mesh, mesh.index(0, 0), mesh.index(1, 0));
   const double hv = rest_length(mesh, mesh.index(0, 0), mesh.index(0, 1));
@@ -32,20 +32,21 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m) {
   // Part of the stretch rigidity carried by the shear diagonals, taken off the edges.
   const double yu = m.stretch_warp_N_m - G * (hu * hu) / (hv * hv);
   const double yv = m.stretch_weft_N_m - G * (hv * hv) / (hu * hu);
-  if (yu <= 0.0 || yv <= 0.0)
+  if (structural_springs && (yu <= 0.0 || yv <= 0.0))
     throw std::invalid_argument(
         "shear rigidity " + std::to_string(G) + " N/m is too large for the stretch rigidities at "
         "this cell aspect ratio (the shear springs alone would exceed the stretch stiffness)");
 
-  for (Index j = 0; j < nv; ++j)
-    for (Index i = 0; i + 1 < nu; ++i)
-      m_springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
-                           yu * tributary_width(j, nv, hv) / hu, SpringKind::warp});
-  for (Index j = 0; j + 1 < nv; ++j)
-    for (Index i = 0; i < nu; ++i)
-      m_springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
-                           yv * tributary_width(i, nu, hu) / hv, SpringKind::weft});
-  m_structural_count = m_springs.size();
+  if (structural_springs) {
+    for (Index j = 0; j < nv; ++j)
+      for (Index i = 0; i + 1 < nu; ++i)
+        m_springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
+                             yu * tributary_width(j, nv, hv) / hu, SpringKind::warp});
+    for (Index j = 0; j + 1 < nv; ++j)
+      for (Index i = 0; i < nu; ++i)
+        m_springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
+                             yv * tributary_width(i, nu, hu) / hv, SpringKind::weft});
+  }
 
   const double d = std::hypot(hu, hv);
   const double k_shear = G * d * d / (2.0 * hu * hv);
@@ -91,20 +92,8 @@ double MassSpringModel::energy(const Matrix3X& x) const {
   return e;
 }
 
-double MassSpringModel::max_structural_strain(const Matrix3X& x) const {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < m_structural_count; ++k) {
-    const Spring& s = m_springs[k];
-    worst = std::max(worst, std::abs((x.row(s.b) - x.row(s.a)).norm() / s.rest_m - 1.0));
-  }
-  return worst;
-}
-
-Eigen::VectorXd MassSpringModel::stiffness_row_bound() const {
-  Index n = 0;
-  for (const Spring& s : m_springs) n = std::max({n, s.a + 1, s.b + 1});
-  for (const AngularSpring& b : m_bends) n = std::max({n, b.v0 + 1, b.v1 + 1, b.v2 + 1});
-  Eigen::VectorXd bound = Eigen::VectorXd::Zero(n);
+Eigen::VectorXd MassSpringModel::stiffness_row_bound(Index vertex_count) const {
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(vertex_count);
   // A spring's 6×6 Hessian at rest is k [I −I; −I I] ⊗ d̂d̂ᵀ: each row of blocks sums to 2k.
   for (const Spring& s : m_springs) {
     bound[s.a] += 2.0 * s.k_N_m;

@@ -36,24 +36,24 @@ struct AngularSpring {  // vertices x0, x1, x2 along a warp or weft line
 // where w is the width of cloth the edge or line stands for (half a cell on the boundary).
 class MassSpringModel {
  public:
-  MassSpringModel(const ClothMesh& mesh, const Material& material);
+  // Without structural springs (structural_springs = false) the warp and weft edges are left
+  // to an inextensibility constraint solver (seed 000: constraints on warp/weft, soft shear
+  // springs, bending).
+  MassSpringModel(const ClothMesh& mesh, const Material& material, bool structural_springs = true);
 
   // f += −∇E(x), forces in N.
   void add_forces(const Matrix3X& x, Matrix3X& f) const;
   // Elastic energy, J.
   double energy(const Matrix3X& x) const;
-  // Largest |length / rest − 1| over warp and weft edges.
-  double max_structural_strain(const Matrix3X& x) const;
   // Per-vertex upper bound on the rows of the rest stiffness matrix (Gershgorin), N/m: with
   // masses m, the largest eigenvalue of M⁻¹K is at most max_i bound_i / m_i.
-  Eigen::VectorXd stiffness_row_bound() const;
+  Eigen::VectorXd stiffness_row_bound(Index vertex_count) const;
 
   const std::vector<Spring>& springs() const { return m_springs; }
   const std::vector<AngularSpring>& bends() const { return m_bends; }
 
  private:
-  std::vector<Spring> m_springs;  // warp and weft edges first, then shear diagonals
-  std::size_t m_structural_count = 0;
+  std::vector<Spring> m_springs;  // warp and weft edges (if any), then shear diagonals
   std::vector<AngularSpring> m_bends;
 };
 

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "sim/integrators/implicit_euler.h"
+
 namespace weft::sim {
 namespace {
 
@@ -22,24 +24,36 @@ DivergenceError::DivergenceError(long step, double time_s, std::string quantity)
 
 Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index> pinned,
                      const SimSettings& settings)
-    : m_mesh(std::move(mesh)), m_model(m_mesh, material), m_settings(settings),
+    : m_mesh(std::move(mesh)),
+      m_settings(settings),
+      m_model(m_mesh, material, settings.projection.method == ProjectionMethod::none),
       m_pinned(std::move(pinned)) {
   const Index n = m_mesh.vertex_count();
   m_mass_kg = material.density_kg_m2 * m_mesh.vertex_area_m2;
   m_inv_mass = m_mass_kg.cwiseInverse();
   for (Index p : m_pinned) m_inv_mass[p] = 0.0;
+  m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
+                                            Eigen::VectorXd::Ones(n));  // all of them
+  m_projector = make_projector(m_mesh, m_inv_mass, settings.projection, settings.sparse_backend);
+  if (settings.integrator == Integrator::implicit_euler)
+    m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass, settings.sparse_backend);
   m_state.x = m_mesh.rest_positions;
   m_state.v = Matrix3X::Zero(n, 3);
   m_forces = Matrix3X::Zero(n, 3);
 
   // Symplectic Euler is stable for h < 2/ω_max; ω_max² ≤ max_i bound_i / m_i (Gershgorin).
-  const Eigen::VectorXd bound = m_model.stiffness_row_bound();
+  const Eigen::VectorXd bound = m_model.stiffness_row_bound(n);
   double omega2 = 0.0;
   for (Index i = 0; i < n; ++i)
     if (m_inv_mass[i] > 0.0) omega2 = std::max(omega2, bound[i] * m_inv_mass[i]);
   m_critical_step_s = omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : 1.0;
-  m_time_step_s = settings.time_step_s.value_or(settings.time_step_safety * m_critical_step_s);
+  const double automatic = settings.integrator == Integrator::implicit_euler
+                               ? settings.implicit_default_step_s
+                               : settings.time_step_safety * m_critical_step_s;
+  m_time_step_s = settings.time_step_s.value_or(automatic);
 }
+
+Simulator::~Simulator() = default;
 
 void Simulator::advance(double dt_s) {
   if (dt_s <= 0.0) return;
@@ -51,9 +65,16 @@ void Simulator::advance(double dt_s) {
 }
 
 void Simulator::step(double h_s) {
-  m_timers.time(Phase::forces, [&] { compute_forces(); });
+  m_x_start = m_state.x;
+  if (!m_implicit) m_timers.time(Phase::forces, [&] { compute_forces(); });
   m_timers.time(Phase::integrate, [&] { integrate(h_s); });
+  const bool projected = m_timers.time(Phase::project, [&] { return project(); });
+  const bool collided = m_timers.time(Phase::collide, [&] { return collide(); });
+  // Velocity filter (seed 000): the velocity that carries x_n to the corrected x_{n+1}.
+  if (projected || collided) m_state.v = (m_state.x - m_x_start) / h_s;
+  m_state.time_s += h_s;
   ++m_steps;
+  ++m_stats.steps;
   m_timers.time(Phase::check, [&] { check_finite(); });
 }
 
@@ -66,13 +87,36 @@ void Simulator::compute_forces() {
     m_forces.row(i) += m_mass_kg[i] * (g - m_settings.air_damping_1_s * m_state.v.row(i));
 }
 
-// Symplectic Euler: v ← v + h M⁻¹ f(x, v); x ← x + h v. Pinned vertices keep v = 0.
+// The unconstrained step. Symplectic Euler: v ← v + h M⁻¹ f(x, v); implicit Euler: v from
+// one Newton step of backward Euler. Then x ← x + h v. Pinned vertices keep v = 0.
 void Simulator::integrate(double h_s) {
-  for (Index i = 0; i < m_state.x.rows(); ++i) {
-    m_state.v.row(i) += (h_s * m_inv_mass[i]) * m_forces.row(i);
-    m_state.x.row(i) += h_s * m_state.v.row(i);
+  if (m_implicit) {
+    const ImplicitStepResult r = m_implicit->step(m_state.x, m_state.v, h_s, m_settings.gravity_m_s2,
+                                                  m_settings.air_damping_1_s);
+    m_stats.solve_s += r.solve_s;
+    if (!r.solved) ++m_stats.failed_implicit_solves;
+  } else {
+    for (Index i = 0; i < m_state.x.rows(); ++i)
+      m_state.v.row(i) += (h_s * m_inv_mass[i]) * m_forces.row(i);
   }
-  m_state.time_s += h_s;
+  m_state.x += h_s * m_state.v;
+}
+
+bool Simulator::project() {
+  if (!m_projector) return false;
+  const ProjectionResult r = m_projector->project(m_state.x);
+  m_stats.projection_iterations += r.iterations;
+  m_stats.max_projection_iterations = std::max(m_stats.max_projection_iterations, r.iterations);
+  if (!r.converged) ++m_stats.unconverged_steps;
+  m_stats.worst_projected_strain = std::max(m_stats.worst_projected_strain, r.max_strain);
+  m_stats.solve_s += r.solve_s;
+  return true;
+}
+
+bool Simulator::collide() {
+  if (m_settings.obstacles.empty()) return false;
+  return push_out_of_obstacles(m_settings.obstacles, m_settings.collision_thickness_m, m_inv_mass,
+                               m_state.x) > 0;
 }
 
 void Simulator::check_finite() const {
@@ -92,6 +136,12 @@ void Simulator::check_finite() const {
   }
 }
 
+StepStatistics Simulator::take_step_statistics() {
+  StepStatistics out = m_stats;
+  m_stats = StepStatistics{};
+  return out;
+}
+
 Diagnostics Simulator::diagnostics() const {
   Diagnostics d;
   d.time_s = m_state.time_s;
@@ -102,7 +152,8 @@ Diagnostics Simulator::diagnostics() const {
     d.gravity_energy_J -= m_mass_kg[i] * m_state.x.row(i).dot(m_settings.gravity_m_s2.transpose());
   }
   d.elastic_energy_J = m_model.energy(m_state.x);
-  d.max_strain = m_model.max_structural_strain(m_state.x);
+  d.max_strain = max_edge_strain(m_warp_weft_edges, m_state.x);
+  d.mean_strain = mean_edge_strain(m_warp_weft_edges, m_state.x);
   return d;
 }
 

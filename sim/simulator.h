@@ -7,28 +7,42 @@
 #include <string>
 #include <vector>
 
+#include "sim/collision/obstacle.h"
+#include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/linear/sparse_spd_solver.h"
 #include "sim/mass_spring.h"
+#include "sim/material.h"
 #include "sim/state.h"
 
 namespace weft::sim {
 
-enum class Integrator { symplectic_euler };
+class ImplicitEuler;
+
+enum class Integrator { symplectic_euler, implicit_euler };
 
 struct SimSettings {
   Integrator integrator = Integrator::symplectic_euler;
   Vec3 gravity_m_s2{0.0, 0.0, -9.81};
   double air_damping_1_s = 0.5;        // mass-proportional damping α: f = −α m v (seed 002 eq. 27)
-  std::optional<double> time_step_s;   // empty: automatic, from the critical step
-  // Automatic step = safety × the critical step estimated from a Gershgorin bound on the
-  // largest eigenvalue of M⁻¹K (an upper bound, so 1.0 is still stable at rest; measured: the
-  // default scene is stable up to 1.2 and explodes at 1.5).
+  // Empty: automatic. Symplectic Euler: time_step_safety × the critical step estimated from a
+  // Gershgorin bound on the largest eigenvalue of M⁻¹K (an upper bound, so 1.0 is still stable
+  // at rest; measured: the default scene is stable up to 1.2 and explodes at 1.5). Implicit
+  // Euler, unconditionally stable: implicit_default_step_s.
+  std::optional<double> time_step_s;
   double time_step_safety = 0.8;
+  double implicit_default_step_s = 1.0 / 120.0;
   // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
   // explosion, not physics: free fall reaches 100 m/s only after 10 s).
   double max_speed_m_s = 200.0;
+  // Inextensibility after the unconstrained step (the "project" phase). With a projection
+  // method the warp/weft springs are replaced by constraints.
+  ProjectionSettings projection;
+  SparseBackend sparse_backend = default_sparse_backend();  // implicit Euler and fast projection
+  // Rigid obstacles (the "collide" phase) and how far the cloth keeps from their surfaces.
+  std::vector<Obstacle> obstacles;
+  double collision_thickness_m = 2e-3;
 };
 
 // Thrown when the simulation diverges; carries where and what.
@@ -45,42 +59,63 @@ class DivergenceError : public std::runtime_error {
   std::string m_quantity;
 };
 
+// What the steps since the last take_step_statistics() did.
+struct StepStatistics {
+  long steps = 0;
+  long projection_iterations = 0;     // summed over steps
+  int max_projection_iterations = 0;  // in any one step
+  long unconverged_steps = 0;         // steps whose projection missed its tolerance
+  double worst_projected_strain = 0.0;
+  double solve_s = 0.0;               // linear solves (implicit Euler and fast projection)
+  long failed_implicit_solves = 0;
+};
+
 class Simulator {
  public:
   Simulator(ClothMesh mesh, const Material& material, std::vector<Index> pinned,
             const SimSettings& settings);
+  ~Simulator();
 
-  // Advances by exactly dt_s, in substeps of at most time_step(). Throws DivergenceError.
+  // Advances by exactly dt_s, in equal substeps of at most time_step(). Throws DivergenceError.
   void advance(double dt_s);
-  // One step of h seconds: predict → forces → integrate → diagnostics.
+  // One step of h seconds: forces → integrate → project → collide → check.
   void step(double h_s);
 
   const State& state() const { return m_state; }
   const ClothMesh& mesh() const { return m_mesh; }
   const MassSpringModel& model() const { return m_model; }
   const Eigen::VectorXd& masses_kg() const { return m_mass_kg; }
+  const std::vector<Index>& pinned() const { return m_pinned; }
   double time_step() const { return m_time_step_s; }
   double critical_time_step() const { return m_critical_step_s; }
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
   const PhaseTimers& timers() const { return m_timers; }
+  StepStatistics take_step_statistics();
 
  private:
   void compute_forces();
   void integrate(double h_s);
+  bool project();
+  bool collide();
   void check_finite() const;
 
   ClothMesh m_mesh;
-  MassSpringModel m_model;
   SimSettings m_settings;
+  MassSpringModel m_model;
   std::vector<Index> m_pinned;
   Eigen::VectorXd m_mass_kg;       // #V lumped masses
   Eigen::VectorXd m_inv_mass;      // #V, 0 for pinned vertices
+  std::vector<EdgeConstraint> m_warp_weft_edges;  // for the strain diagnostic
+  std::unique_ptr<ConstraintProjector> m_projector;
+  std::unique_ptr<ImplicitEuler> m_implicit;
   State m_state;
   Matrix3X m_forces;               // #V×3 scratch, N
+  Matrix3X m_x_start;              // #V×3 positions at the start of the step
   double m_critical_step_s = 0.0;
   double m_time_step_s = 0.0;
   long m_steps = 0;
+  StepStatistics m_stats;
   PhaseTimers m_timers;
 };
 

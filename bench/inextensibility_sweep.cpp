@@ -1,0 +1,149 @@
+// The speed/accuracy trade of inextensibility, measured (issue 3's benchmark): a 1 m × 1 m
+// wool sheet hanging from two adjacent corners, 48 frames at 24 fps, simulated by
+//   - fast projection (Goldenthal 2007) at tolerances 1e-2, 1e-3, 1e-4,
+//   - pairwise projection (Provot / PBD Gauss–Seidel) with N sweeps per step,
+//   - stiff warp/weft springs with implicit Euler,
+// each after the same unconstrained implicit-Euler step. Prints one row per run: wall time
+// per frame (median of the frames), projection iterations per step, and the largest and mean
+// warp/weft strain over the frames after the first 0.5 s.
+//
+//   build/bench/inextensibility_sweep [--sizes 32,64,128] [--step 0.0083333] [--quick]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sim/pins.h"
+#include "sim/simulator.h"
+
+namespace {
+
+using namespace weft::sim;
+
+struct Method {
+  std::string name;
+  ProjectionMethod projection = ProjectionMethod::none;
+  double tolerance = 1e-3;
+  int iterations = 30;
+  double stretch_scale = 1.0;  // stiff springs: multiple of the wool's tensile rigidity
+};
+
+struct Row {
+  double ms_per_frame = 0.0;   // median over frames
+  double iterations_per_step = 0.0;
+  int max_iterations = 0;
+  double max_strain = 0.0, mean_strain = 0.0;
+  long unconverged = 0;
+  bool diverged = false;
+};
+
+Row run(Index n, const Method& method, double step_s, SparseBackend backend) {
+  GridSpec grid;
+  grid.nu = grid.nv = n;
+  grid.origin = Vec3(-0.5, 0.0, 1.6);
+  const ClothMesh mesh = make_grid(grid);
+  Material wool;  // Kang & Yu, seed 002
+  wool.stretch_warp_N_m *= method.stretch_scale;
+  wool.stretch_weft_N_m *= method.stretch_scale;
+  SimSettings s;
+  s.integrator = Integrator::implicit_euler;
+  s.time_step_s = step_s;
+  s.air_damping_1_s = 1.0;
+  s.sparse_backend = backend;
+  s.projection.method = method.projection;
+  s.projection.tolerance = method.tolerance;
+  s.projection.max_iterations = method.iterations;
+  Simulator sim(mesh, wool, resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), s);
+
+  Row row;
+  std::vector<double> frame_ms;
+  long steps = 0, iterations = 0;
+  double strain_sum = 0.0;
+  int strain_frames = 0;
+  for (int frame = 1; frame <= 48; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      sim.advance(frame / 24.0 - sim.state().time_s);
+    } catch (const DivergenceError&) {
+      row.diverged = true;
+      return row;
+    }
+    frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    const StepStatistics st = sim.take_step_statistics();
+    steps += st.steps;
+    iterations += st.projection_iterations;
+    row.max_iterations = std::max(row.max_iterations, st.max_projection_iterations);
+    row.unconverged += st.unconverged_steps;
+    if (frame / 24.0 > 0.5) {
+      const Diagnostics d = sim.diagnostics();
+      row.max_strain = std::max(row.max_strain, d.max_strain);
+      strain_sum += d.mean_strain;
+      ++strain_frames;
+    }
+  }
+  std::nth_element(frame_ms.begin(), frame_ms.begin() + frame_ms.size() / 2, frame_ms.end());
+  row.ms_per_frame = frame_ms[frame_ms.size() / 2];
+  row.iterations_per_step = static_cast<double>(iterations) / static_cast<double>(steps);
+  row.mean_strain = strain_sum / strain_frames;
+  return row;
+}
+
+std::vector<int> parse_list(const char* text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(std::atoi(item.c_str()));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{32, 64, 128};
+  double step_s = 1.0 / 120.0;
+  bool quick = false;
+  SparseBackend backend = default_sparse_backend();
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = parse_list(argv[++i]);
+    else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) step_s = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) backend = sparse_backend_from_name(argv[++i]);
+    else if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else {
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--quick]\n", argv[0]);
+      return 1;
+    }
+  }
+  std::vector<Method> methods{
+      {"fast_projection tol 1e-2", ProjectionMethod::fast_projection, 1e-2, 30, 1.0},
+      {"fast_projection tol 1e-3", ProjectionMethod::fast_projection, 1e-3, 30, 1.0},
+      {"fast_projection tol 1e-4", ProjectionMethod::fast_projection, 1e-4, 30, 1.0},
+      {"pairwise 10 sweeps", ProjectionMethod::pairwise, 0.0, 10, 1.0},
+      {"pairwise 100 sweeps", ProjectionMethod::pairwise, 0.0, 100, 1.0},
+      {"springs x1 implicit", ProjectionMethod::none, 0.0, 0, 1.0},
+      {"springs x10 implicit", ProjectionMethod::none, 0.0, 0, 10.0},
+      {"springs x100 implicit", ProjectionMethod::none, 0.0, 0, 100.0},
+  };
+  if (quick) methods = {methods[1], methods[3], methods[5]};
+  std::printf("two-corner hang, 1 m wool, 48 frames at 24 fps, implicit Euler h = %.4g s, %s\n", step_s,
+              sparse_backend_name(backend));
+  std::printf("%-6s %-26s %12s %10s %8s %11s %11s %11s\n", "size", "method", "ms/frame", "iter/step",
+              "max it", "max strain", "mean strain", "unconverged");
+  for (int n : sizes) {
+    for (const Method& m : methods) {
+      const Row r = run(n, m, step_s, backend);
+      if (r.diverged) {
+        std::printf("%-6s %-26s diverged\n", (std::to_string(n) + "²").c_str(), m.name.c_str());
+        continue;
+      }
+      std::printf("%-6s %-26s %12.2f %10.2f %8d %10.4f%% %10.4f%% %11ld\n", (std::to_string(n) + "²").c_str(),
+                  m.name.c_str(), r.ms_per_frame, r.iterations_per_step, r.max_iterations,
+                  100 * r.max_strain, 100 * r.mean_strain, r.unconverged);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

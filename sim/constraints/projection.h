@@ -1,0 +1,65 @@
+#pragma once
+// Position-level constraint solvers that run after an integrator's unconstrained step (the
+// "project" phase). The simulator then sets v = (x_{n+1} − x_n) / h: a velocity filter.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/grid.h"
+#include "sim/linear/sparse_spd_solver.h"
+#include "sim/types.h"
+
+namespace weft::sim {
+
+struct EdgeConstraint {
+  Index a, b;
+  double rest_m;
+};
+
+// Which edges carry inextensibility constraints: the warp and weft edges of the quad grid
+// (seed 000), or additionally the diagonal that triangulates each quad, so that every edge of
+// the triangle mesh is constrained (the "locking" configuration of seed 000 §3).
+enum class ConstrainedEdges { warp_weft, triangle_edges };
+
+// The constrained edges of the grid, without edges whose two ends are both pinned (nothing can
+// change their length: a redundant, all-zero row of the Jacobian).
+std::vector<EdgeConstraint> make_edge_constraints(const ClothMesh& mesh, ConstrainedEdges which,
+                                                  const Eigen::VectorXd& inv_mass);
+
+// Largest |length / rest − 1| over the constraints.
+double max_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x);
+double mean_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x);
+
+enum class ProjectionMethod { none, fast_projection, pairwise };
+
+struct ProjectionSettings {
+  ProjectionMethod method = ProjectionMethod::none;
+  ConstrainedEdges edges = ConstrainedEdges::warp_weft;
+  double tolerance = 1e-3;   // fast projection: stop when max strain ≤ tolerance
+  int max_iterations = 30;   // fast projection: iteration cap; pairwise: sweeps per step
+  double max_stretch = 0.0;  // pairwise: Provot's limit, |strain| allowed before correcting
+};
+
+struct [[nodiscard]] ProjectionResult {
+  bool converged = true;   // the tolerance was met (pairwise: always reports its sweeps)
+  int iterations = 0;
+  double max_strain = 0.0;  // after the projection
+  double solve_s = 0.0;     // wall time in factorizations and solves
+};
+
+class ConstraintProjector {
+ public:
+  virtual ~ConstraintProjector() = default;
+  // Moves x (#V×3, m) onto the constraints, changing only vertices with inv_mass > 0.
+  virtual ProjectionResult project(Matrix3X& x) = 0;
+  virtual const std::vector<EdgeConstraint>& constraints() const = 0;
+};
+
+// nullptr for ProjectionMethod::none.
+std::unique_ptr<ConstraintProjector> make_projector(const ClothMesh& mesh,
+                                                    const Eigen::VectorXd& inv_mass,
+                                                    const ProjectionSettings& settings,
+                                                    SparseBackend backend);
+
+}  // namespace weft::sim

@@ -1,0 +1,54 @@
+#pragma once
+// Hessian of the linear spring energy E = ½ k (|xb − xa| − l)² (sim/energies/spring.h), for
+// implicit integration (Baraff & Witkin 1998: the force Jacobian ∂f/∂x = −∂²E/∂x²).
+//
+// With d = xb − xa and d̂ = d / |d|, the 3×3 block with respect to xb is
+//   H = ∂²E/∂xb² = k [ d̂d̂ᵀ + (1 − l/|d|) (I − d̂d̂ᵀ) ]          (N/m)
+// and the full 6×6 Hessian with respect to (xa, xb) is [H −H; −H H]. Pure kernels: small Eigen
+// values in, a 3×3 block out.
+//
+// H has the eigenvalue k along d̂ and k (1 − l/|d|) twice across it. A compressed spring
+// (|d| < l) therefore has negative transverse eigenvalues — it buckles — and an implicit system
+// built from it can be indefinite. spring_hessian_b_projected clamps the transverse factor at 0,
+// which is the projection of H onto the positive semi-definite cone (the nearest PSD matrix in
+// the Frobenius norm, since H's eigenvectors are explicit); the 6×6 [H −H; −H H] = [1 −1; −1 1]
+// ⊗ H is then PSD too.
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/types.h"
+
+namespace weft::sim {
+
+using Mat3 = Eigen::Matrix3d;
+
+namespace detail {
+// k [d̂d̂ᵀ + c (I − d̂d̂ᵀ)] for a non-zero d.
+inline Mat3 spring_hessian_from_factor(const Vec3& d, double len, double k_N_m, double c) {
+  const Vec3 u = d / len;
+  const Mat3 uut = u * u.transpose();
+  return k_N_m * (uut + c * (Mat3::Identity() - uut));
+}
+}  // namespace detail
+
+// ∂²E/∂xb² at (xa, xb), N/m, symmetric 3×3. A zero-length spring has no direction (its true
+// Hessian is unbounded): returns 0, like spring_gradient_b returns a zero gradient there.
+inline Mat3 spring_hessian_b(const Vec3& xa, const Vec3& xb, double rest_m, double k_N_m) {
+  const Vec3 d = xb - xa;
+  const double len = d.norm();
+  if (len == 0.0) return Mat3::Zero();
+  return detail::spring_hessian_from_factor(d, len, k_N_m, 1.0 - rest_m / len);
+}
+
+// As spring_hessian_b with the transverse factor (1 − l/|d|) clamped at 0: equal to it for a
+// stretched spring, k d̂d̂ᵀ for a compressed one. Positive semi-definite, eigenvalues in [0, k].
+inline Mat3 spring_hessian_b_projected(const Vec3& xa, const Vec3& xb, double rest_m,
+                                       double k_N_m) {
+  const Vec3 d = xb - xa;
+  const double len = d.norm();
+  if (len == 0.0) return Mat3::Zero();
+  return detail::spring_hessian_from_factor(d, len, k_N_m, std::max(0.0, 1.0 - rest_m / len));
+}
+
+}  // namespace weft::sim

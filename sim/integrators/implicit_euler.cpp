@@ -1,0 +1,207 @@
+#include "sim/integrators/implicit_euler.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sim/energies/spring_hessian.h"
+
+namespace weft::sim {
+
+// The 3#V×3#V system (degree of freedom 3i + c is coordinate c of vertex i, which is how the
+// row-major #V×3 matrices map to vectors)
+//   A = M (1 + h α) + h² K,   K = Σ_springs [H −H; −H H],  H = spring_hessian_b_projected,
+// kept as its lower triangle (SparseSpdSolver's contract). Its pattern depends only on the
+// springs and the pins, so it is built and analysed once; each step writes the values through
+// `slots` — one entry of the compressed matrix's valuePtr per contribution, in the fixed order
+// of the constructor's loops — so refilling is one linear pass, without triplets or sorting.
+// A pinned vertex's rows and columns are the identity with a zero right-hand side (its DOFs are
+// eliminated: Δv = 0 there, and nothing couples it to the free vertices).
+struct ImplicitEuler::Impl {
+  MassSpringModel model;            // a copy: the integrator does not depend on its owner's address
+  Eigen::VectorXd mass_kg;          // #V
+  std::vector<char> pinned;         // #V, inv_mass == 0
+  std::vector<char> spring_active;  // per spring: both ends free (only those enter A)
+  SparseMatrix A;                   // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
+  std::vector<int> slots;           // valuePtr index of each contribution, in assembly order
+  std::unique_ptr<SparseSpdSolver> solver;
+  Matrix3X forces;  // #V×3 scratch, N
+  Matrix3X kv;      // #V×3 scratch, K v_n, N/s
+
+  Impl(const MassSpringModel& m, Eigen::VectorXd mass, const Eigen::VectorXd& inv_mass,
+       SparseBackend backend);
+  void build_pattern();
+  // Writes A's values for step h, damping α at positions x, and kv = K v.
+  void fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s);
+};
+
+namespace {
+
+struct Entry {
+  int row, col;
+};
+
+// The lower-triangle entries of the 3×3 block of vertex rows p, columns q (p ≥ q), in the order
+// fill() writes them: row-major over the block, skipping the upper part of a diagonal block.
+template <class F>
+void for_each_lower_entry(Index p, Index q, F&& visit) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      if (p != q || c <= r) visit(r, c);
+}
+
+}  // namespace
+
+ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
+                          const Eigen::VectorXd& inv_mass, SparseBackend backend)
+    : model(m), mass_kg(std::move(mass)), solver(make_sparse_spd_solver(backend)) {
+  const Index n = static_cast<Index>(mass_kg.size());
+  // Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
+  if (inv_mass.size() != n)
+    throw std::logic_error("ImplicitEuler: " + std::to_string(inv_mass.size()) +
+                           " inverse masses for " + std::to_string(n) + " masses");
+  pinned.resize(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) pinned[static_cast<std::size_t>(i)] = inv_mass[i] == 0.0;
+  for (const Spring& s : model.springs())
+    if (s.a < 0 || s.b < 0 || s.a >= n || s.b >= n || s.a == s.b)
+      throw std::logic_error("ImplicitEuler: spring (" + std::to_string(s.a) + ", " +
+                             std::to_string(s.b) + ") does not join two of the " +
+                             std::to_string(n) + " vertices");
+  forces = Matrix3X::Zero(n, 3);
+  kv = Matrix3X::Zero(n, 3);
+  build_pattern();
+  solver->analyze(A);
+}
+
+void ImplicitEuler::Impl::build_pattern() {
+  const Index n = static_cast<Index>(mass_kg.size());
+  std::vector<Entry> entries;  // contributions in fill() order; duplicates allowed
+  entries.reserve(3 * static_cast<std::size_t>(n) + 21 * model.springs().size());
+  for (int d = 0; d < 3 * n; ++d) entries.push_back({d, d});  // mass (or identity) diagonal
+  const auto add_block = [&](Index p, Index q) {              // requires p ≥ q
+    for_each_lower_entry(p, q, [&](int r, int c) { entries.push_back({3 * p + r, 3 * q + c}); });
+  };
+  spring_active.reserve(model.springs().size());
+  for (const Spring& s : model.springs()) {
+    const bool active =
+        !pinned[static_cast<std::size_t>(s.a)] && !pinned[static_cast<std::size_t>(s.b)];
+    spring_active.push_back(active);
+    // A spring with one pinned end still stiffens its free end: its diagonal block enters A,
+    // the coupling to the eliminated DOFs does not.
+    if (!pinned[static_cast<std::size_t>(s.a)]) add_block(s.a, s.a);
+    if (!pinned[static_cast<std::size_t>(s.b)]) add_block(s.b, s.b);
+    if (active) add_block(std::max(s.a, s.b), std::min(s.a, s.b));
+  }
+
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  triplets.reserve(entries.size());
+  for (const Entry& e : entries) triplets.emplace_back(e.row, e.col, 1.0);
+  A.resize(3 * n, 3 * n);
+  A.setFromTriplets(triplets.begin(), triplets.end());  // sums duplicates; compressed
+  A.makeCompressed();
+
+  // Slot of each contribution: binary search of its row within its column.
+  slots.resize(entries.size());
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const Entry& e = entries[k];
+    const int* begin = inner + outer[e.col];
+    const int* end = inner + outer[e.col + 1];
+    const int* it = std::lower_bound(begin, end, e.row);
+    slots[k] = static_cast<int>(it - inner);
+  }
+}
+
+// A = M (1 + h α) + h² K on the free DOFs, identity on the pinned ones; kv = K v (all springs,
+// so that a moving pin would be seen by its neighbours; pins have v = 0 here).
+void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s,
+                               double damping_1_s) {
+  double* values = A.valuePtr();
+  std::fill(values, values + A.nonZeros(), 0.0);
+  const Index n = static_cast<Index>(mass_kg.size());
+  std::size_t k = 0;
+  for (Index i = 0; i < n; ++i) {
+    const double diag =
+        pinned[static_cast<std::size_t>(i)] ? 1.0 : mass_kg[i] * (1.0 + h_s * damping_1_s);
+    for (int c = 0; c < 3; ++c) values[slots[k++]] += diag;
+  }
+  kv.setZero();
+  const double h2 = h_s * h_s;
+  const auto& springs = model.springs();
+  for (std::size_t s_index = 0; s_index < springs.size(); ++s_index) {
+    const Spring& s = springs[s_index];
+    const Vec3 xa = x.row(s.a).transpose(), xb = x.row(s.b).transpose();
+    const Mat3 H = spring_hessian_b_projected(xa, xb, s.rest_m, s.k_N_m);  // N/m
+    // K v: the spring's rows are [H −H; −H H] (v_a; v_b).
+    const Vec3 hdv = H * (v.row(s.b) - v.row(s.a)).transpose();
+    kv.row(s.a) -= hdv.transpose();
+    kv.row(s.b) += hdv.transpose();
+
+    const Mat3 hH = h2 * H;
+    const bool a_free = !pinned[static_cast<std::size_t>(s.a)];
+    const bool b_free = !pinned[static_cast<std::size_t>(s.b)];
+    if (a_free)
+      for_each_lower_entry(s.a, s.a, [&](int r, int c) { values[slots[k++]] += hH(r, c); });
+    if (b_free)
+      for_each_lower_entry(s.b, s.b, [&](int r, int c) { values[slots[k++]] += hH(r, c); });
+    if (spring_active[s_index]) {
+      // Block (max, min) of −H; H is symmetric, so the transpose needs no care.
+      for_each_lower_entry(std::max(s.a, s.b), std::min(s.a, s.b),
+                           [&](int r, int c) { values[slots[k++]] -= hH(r, c); });
+    }
+  }
+}
+
+ImplicitEuler::ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg,
+                             Eigen::VectorXd inv_mass, SparseBackend backend)
+    : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, backend)) {}
+
+ImplicitEuler::~ImplicitEuler() = default;
+
+// One Newton step of backward Euler (Baraff & Witkin 1998, with ∂f/∂x = −K, ∂f/∂v = −α M):
+//   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n + M g),   v_{n+1} = v_n + Δv.
+ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_s,
+                                       const Vec3& gravity_m_s2, double damping_1_s) {
+  const auto start = std::chrono::steady_clock::now();
+  Impl& im = *m_impl;
+  const Index n = static_cast<Index>(im.mass_kg.size());
+  if (x.rows() != n || v.rows() != n)
+    throw std::logic_error("ImplicitEuler::step: positions or velocities have " +
+                           std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
+                           std::to_string(n));
+
+  im.fill(x, v, h_s, damping_1_s);
+  im.forces.setZero();
+  im.model.add_forces(x, im.forces);  // springs and bending, N
+
+  Eigen::VectorXd rhs(3 * n);  // N·s
+  const Eigen::RowVector3d g = gravity_m_s2.transpose();
+  for (Index i = 0; i < n; ++i) {
+    Eigen::RowVector3d bi = Eigen::RowVector3d::Zero();
+    if (!im.pinned[static_cast<std::size_t>(i)])
+      bi = h_s *
+           (im.forces.row(i) - h_s * im.kv.row(i) + im.mass_kg[i] * (g - damping_1_s * v.row(i)));
+    rhs.segment<3>(3 * i) = bi.transpose();
+  }
+
+  ImplicitStepResult result;
+  if (!im.solver->factorize(im.A)) {
+    result.solved = false;
+  } else {
+    const Eigen::VectorXd dv = im.solver->solve(rhs);  // m/s
+    if (!dv.allFinite()) {
+      result.solved = false;  // NaN/inf in, or a factorization that should have failed
+    } else {
+      for (Index i = 0; i < n; ++i)
+        if (!im.pinned[static_cast<std::size_t>(i)]) v.row(i) += dv.segment<3>(3 * i).transpose();
+    }
+  }
+  result.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace weft::sim

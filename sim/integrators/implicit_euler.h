@@ -1,0 +1,37 @@
+#pragma once
+// Backward (implicit) Euler for the mass-spring model, one Newton step per time step
+// (Baraff & Witkin 1998): with K = −∂f/∂x of the springs (PSD-projected) and mass damping α,
+//   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n) + h M g,
+//   v_{n+1} = v_n + Δv,   x_{n+1} = x_n + h v_{n+1}.
+// Bending forces enter the right-hand side only (their stiffness is small: see docs/models.md).
+// Pinned vertices (inv_mass = 0) keep v = 0. The sparsity pattern of the system matrix is
+// fixed by the mesh and analysed once.
+
+#include <memory>
+
+#include "sim/linear/sparse_spd_solver.h"
+#include "sim/mass_spring.h"
+#include "sim/types.h"
+
+namespace weft::sim {
+
+struct ImplicitStepResult {
+  bool solved = true;      // false: the factorization failed; v is left unchanged
+  double solve_s = 0.0;    // wall time of assembly + factorization + solve
+};
+
+class ImplicitEuler {
+ public:
+  ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg, Eigen::VectorXd inv_mass,
+                SparseBackend backend);
+  ~ImplicitEuler();
+  // Replaces v (#V×3, m/s) by v_{n+1} for positions x = x_n; the caller sets x_n + h v_{n+1}.
+  [[nodiscard]] ImplicitStepResult step(const Matrix3X& x, Matrix3X& v, double h_s,
+                                        const Vec3& gravity_m_s2, double damping_1_s);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace weft::sim
