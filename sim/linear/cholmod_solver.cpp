@@ -220,10 +220,7 @@ class CholmodSolver final : public SparseSpdSolver {
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const override {
-    require(m_factorized, k_name, "solve called without a successful factorize");
-    require(b.size() == m_pattern.size(), k_name,
-            "solve: the right-hand side has " + std::to_string(b.size()) + " rows, the matrix " +
-                std::to_string(m_pattern.size()));
+    linear_detail::require_solvable(m_factorized, m_pattern, b, k_name);
     cholmod_dense rhs{};
     rhs.nrow = static_cast<size_t>(b.size());
     rhs.ncol = 1;

@@ -57,10 +57,7 @@ class EigenLdltSolver final : public SparseSpdSolver {
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const override {
-    require(m_factorized, k_name, "solve called without a successful factorize");
-    require(b.size() == m_pattern.size(), k_name,
-            "solve: the right-hand side has " + std::to_string(b.size()) + " rows, the matrix " +
-                std::to_string(m_pattern.size()));
+    linear_detail::require_solvable(m_factorized, m_pattern, b, k_name);
     return m_ldlt.solve(b);
   }
 

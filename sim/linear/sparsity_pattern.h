@@ -86,4 +86,14 @@ inline std::string pivot_message(Eigen::Index pivot, Eigen::Index n, double valu
   return text;
 }
 
+// The preconditions of solve(): a successful factorization, and a right-hand side of the
+// analysed size. Throws std::logic_error (a programming error) otherwise.
+inline void require_solvable(bool factorized, const SparsityPattern& pattern,
+                             const Eigen::VectorXd& b, const char* backend) {
+  require(factorized, backend, "solve called without a successful factorize");
+  require(b.size() == pattern.size(), backend,
+          "solve: the right-hand side has " + std::to_string(b.size()) + " rows, the matrix " +
+              std::to_string(pattern.size()));
+}
+
 }  // namespace weft::sim::linear_detail

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/sim/test_cloth.h"
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -19,24 +21,8 @@
 namespace weft::sim {
 namespace {
 
-Material fabric(double stretch_N_m) {
-  Material m;
-  m.density_kg_m2 = 0.2;
-  m.stretch_warp_N_m = stretch_N_m;
-  m.stretch_weft_N_m = 0.7 * stretch_N_m;
-  m.shear_N_m = 0.05 * stretch_N_m;
-  m.bend_warp_Nm = 1e-5;
-  m.bend_weft_Nm = 8e-6;
-  return m;
-}
-
-ClothMesh square(Index n, double size_m = 1.0) {
-  GridSpec spec;
-  spec.size_u_m = spec.size_v_m = size_m;
-  spec.nu = spec.nv = n;
-  spec.origin = Vec3(0, 0, 1);
-  return make_grid(spec);
-}
+using test_cloth::fabric;
+using test_cloth::square;
 
 // A cloth advanced by ImplicitEuler: v_{n+1} from the integrator, then x_{n+1} = x_n + h v_{n+1}.
 struct Cloth {
@@ -103,7 +89,7 @@ TEST_P(ImplicitEulerTest, FreeFallFollowsTheDiscreteRecurrenceExactly) {
   const Vec3 g(0.0, 0.0, -9.81);
   const double h = 0.01;
   for (double alpha : {0.0, 0.8}) {
-    Cloth cloth(square(9), fabric(500.0), {}, GetParam());
+    Cloth cloth(square(9, 1.0, Vec3(0, 0, 1)), fabric(500.0), {}, GetParam());
     double c = 0.0;  // v_n = c_n g
     for (int n = 1; n <= 60; ++n) {
       cloth.step(h, g, alpha);
@@ -138,7 +124,7 @@ TEST_P(ImplicitEulerTest, LinearOscillatorFollowsTheBackwardEulerRecurrence) {
   m.stretch_warp_N_m = m.stretch_weft_N_m = 1000.0;
   m.shear_N_m = 0.0;
   m.bend_warp_Nm = m.bend_weft_Nm = 0.0;
-  const ClothMesh mesh = square(2, 0.1);
+  const ClothMesh mesh = square(2, 0.1, Vec3(0, 0, 1));
   const std::vector<Index> pins{mesh.index(0, 0), mesh.index(0, 1)};
   const Index free_vertices[] = {mesh.index(1, 0), mesh.index(1, 1)};
   const Vec3 no_gravity = Vec3::Zero();
@@ -188,7 +174,7 @@ TEST_P(ImplicitEulerTest, LinearOscillatorFollowsTheBackwardEulerRecurrence) {
 // round-off. In the linear regime one Newton step is exact backward Euler, whose energy change
 // per step is −½|Δv|²_M − ½h²|v_{n+1}|²_K ≤ 0: it dissipates, it never injects energy.
 TEST_P(ImplicitEulerTest, StiffClothFarPastTheExplicitLimitLosesEnergyEveryStep) {
-  const ClothMesh mesh = square(16);
+  const ClothMesh mesh = square(16, 1.0, Vec3(0, 0, 1));
   const Material stiff = fabric(1e5);
   const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
   const double h = 1.0 / 24.0;
@@ -220,7 +206,7 @@ TEST_P(ImplicitEulerTest, StiffClothFarPastTheExplicitLimitLosesEnergyEveryStep)
 // large vertical Δv causes next to the pins, up to ~15 % strain at step 2) it stays finite,
 // comes to rest, and hangs with its edges nearly inextensible; the pins never move.
 TEST_P(ImplicitEulerTest, StiffHangingClothStaysFiniteAndComesToRestNearlyInextensible) {
-  const ClothMesh mesh = square(16);
+  const ClothMesh mesh = square(16, 1.0, Vec3(0, 0, 1));
   const Material stiff = fabric(1e5);
   const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
   const Vec3 g(0.0, 0.0, -9.81);
@@ -244,7 +230,7 @@ TEST_P(ImplicitEulerTest, StiffHangingClothStaysFiniteAndComesToRestNearlyInexte
 // Pins are eliminated from the system, whatever the neighbours do: a cloth thrown with random,
 // large velocities keeps its pinned vertices exactly in place with exactly zero velocity.
 TEST_P(ImplicitEulerTest, PinnedVerticesNeverMove) {
-  const ClothMesh mesh = square(12);
+  const ClothMesh mesh = square(12, 1.0, Vec3(0, 0, 1));
   const auto pins = resolve_pins({PinCorner{"u0v0"}, PinGrid{6, 6}, PinGrid{11, 3}}, mesh);
   Cloth cloth(mesh, fabric(2000.0), pins, GetParam());
   std::mt19937 rng(5);
@@ -265,7 +251,7 @@ TEST_P(ImplicitEulerTest, PinnedVerticesNeverMove) {
 // side or the other of the vertical plane through the pins (y = y_pin), so "the same" is up to
 // that mirror symmetry of the problem.
 TEST_P(ImplicitEulerTest, HangingClothComesToRestWithAndWithoutDamping) {
-  const ClothMesh mesh = square(12, 0.5);
+  const ClothMesh mesh = square(12, 0.5, Vec3(0, 0, 1));
   const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
   const double y_pin = mesh.rest_positions(pins[0], 1);
   const Vec3 g(0.0, 0.0, -9.81);
@@ -290,7 +276,7 @@ TEST_P(ImplicitEulerTest, HangingClothComesToRestWithAndWithoutDamping) {
 // The numerical-trouble tier: a system that cannot be factorized (here, from a non-finite
 // position) reports solved = false and leaves the velocities as they were.
 TEST_P(ImplicitEulerTest, FailedFactorizationLeavesTheVelocitiesUnchanged) {
-  Cloth cloth(square(5), fabric(500.0), {}, GetParam());
+  Cloth cloth(square(5, 1.0, Vec3(0, 0, 1)), fabric(500.0), {}, GetParam());
   cloth.v.setConstant(0.25);
   cloth.x(7, 1) = std::numeric_limits<double>::quiet_NaN();
   const Matrix3X before = cloth.v;

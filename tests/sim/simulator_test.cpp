@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/sim/test_cloth.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -11,24 +13,8 @@
 namespace weft::sim {
 namespace {
 
-Material fabric(double stretch_N_m) {
-  Material m;
-  m.density_kg_m2 = 0.2;
-  m.stretch_warp_N_m = stretch_N_m;
-  m.stretch_weft_N_m = 0.7 * stretch_N_m;
-  m.shear_N_m = 0.05 * stretch_N_m;
-  m.bend_warp_Nm = 1e-5;
-  m.bend_weft_Nm = 8e-6;
-  return m;
-}
-
-ClothMesh square(Index n, double size_m = 1.0, Vec3 origin = Vec3(0, 0, 2)) {
-  GridSpec spec;
-  spec.size_u_m = spec.size_v_m = size_m;
-  spec.nu = spec.nv = n;
-  spec.origin = origin;
-  return make_grid(spec);
-}
+using test_cloth::fabric;
+using test_cloth::square;
 
 double centre_of_mass_z(const Simulator& sim) {
   return sim.state().x.col(2).dot(sim.masses_kg()) / sim.masses_kg().sum();
