@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sim/constraints/carried_tension.h"
 #include "sim/integrators/implicit_euler.h"
 
 namespace weft::sim {
@@ -35,8 +36,12 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
                                             Eigen::VectorXd::Ones(n));  // all of them
   m_projector = make_projector(m_mesh, m_inv_mass, settings.projection, settings.sparse_backend);
-  if (settings.integrator == Integrator::implicit_euler)
-    m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass, settings.sparse_backend);
+  if (settings.integrator == Integrator::implicit_euler) {
+    std::vector<EdgeConstraint> tension_edges;
+    if (m_projector && settings.projection.carry_tension) tension_edges = m_projector->constraints();
+    m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass,
+                                                 settings.sparse_backend, std::move(tension_edges));
+  }
   m_state.x = m_mesh.rest_positions;
   m_state.v = Matrix3X::Zero(n, 3);
   m_forces = Matrix3X::Zero(n, 3);
@@ -68,7 +73,7 @@ void Simulator::step(double h_s) {
   m_x_start = m_state.x;
   if (!m_implicit) m_timers.time(Phase::forces, [&] { compute_forces(); });
   m_timers.time(Phase::integrate, [&] { integrate(h_s); });
-  const bool projected = m_timers.time(Phase::project, [&] { return project(); });
+  const bool projected = m_timers.time(Phase::project, [&] { return project(h_s); });
   const bool collided = m_timers.time(Phase::collide, [&] { return collide(); });
   // Velocity filter (seed 000): the velocity that carries x_n to the corrected x_{n+1}.
   if (projected || collided) m_state.v = (m_state.x - m_x_start) / h_s;
@@ -82,6 +87,7 @@ void Simulator::step(double h_s) {
 void Simulator::compute_forces() {
   m_forces.setZero();
   m_model.add_forces(m_state.x, m_forces);
+  if (m_projector) add_tension_forces(m_projector->constraints(), m_tension_k, m_state.x, m_forces);
   const Eigen::RowVector3d g = m_settings.gravity_m_s2.transpose();
   for (Index i = 0; i < m_forces.rows(); ++i)
     m_forces.row(i) += m_mass_kg[i] * (g - m_settings.air_damping_1_s * m_state.v.row(i));
@@ -92,7 +98,7 @@ void Simulator::compute_forces() {
 void Simulator::integrate(double h_s) {
   if (m_implicit) {
     const ImplicitStepResult r = m_implicit->step(m_state.x, m_state.v, h_s, m_settings.gravity_m_s2,
-                                                  m_settings.air_damping_1_s);
+                                                  m_settings.air_damping_1_s, m_tension_k);
     m_stats.solve_s += r.solve_s;
     if (!r.solved) ++m_stats.failed_implicit_solves;
   } else {
@@ -102,9 +108,11 @@ void Simulator::integrate(double h_s) {
   m_state.x += h_s * m_state.v;
 }
 
-bool Simulator::project() {
+bool Simulator::project(double h_s) {
   if (!m_projector) return false;
   const ProjectionResult r = m_projector->project(m_state.x);
+  if (m_settings.projection.carry_tension)
+    accumulate_tension(m_projector->constraints(), m_projector->multipliers(), h_s, m_tension_k);
   m_stats.projection_iterations += r.iterations;
   m_stats.max_projection_iterations = std::max(m_stats.max_projection_iterations, r.iterations);
   if (!r.converged) ++m_stats.unconverged_steps;
@@ -113,10 +121,16 @@ bool Simulator::project() {
   return true;
 }
 
+// Push-out, with Coulomb friction against the displacement since the start of the step.
 bool Simulator::collide() {
   if (m_settings.obstacles.empty()) return false;
-  return push_out_of_obstacles(m_settings.obstacles, m_settings.collision_thickness_m, m_inv_mass,
-                               m_state.x) > 0;
+  const std::vector<Obstacle>& obstacles = m_settings.obstacles;
+  const double thickness = m_settings.collision_thickness_m;
+  if (m_settings.collision_friction > 0.0) {
+    return push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_x_start,
+                                 m_settings.collision_friction, m_state.x) > 0;
+  }
+  return push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_state.x) > 0;
 }
 
 void Simulator::check_finite() const {

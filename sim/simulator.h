@@ -43,6 +43,10 @@ struct SimSettings {
   // Rigid obstacles (the "collide" phase) and how far the cloth keeps from their surfaces.
   std::vector<Obstacle> obstacles;
   double collision_thickness_m = 2e-3;
+  // Coulomb friction coefficient μ (dimensionless, ≥ 0) of the cloth against every obstacle,
+  // applied by the push-out from the step's start positions (sim/collision/obstacle.h). 0: the
+  // frictionless push-out; a cloth rests on a slope of angle θ when μ > tan θ.
+  double collision_friction = 0.0;
 };
 
 // Thrown when the simulation diverges; carries where and what.
@@ -96,7 +100,7 @@ class Simulator {
  private:
   void compute_forces();
   void integrate(double h_s);
-  bool project();
+  bool project(double h_s);
   bool collide();
   void check_finite() const;
 
@@ -108,10 +112,11 @@ class Simulator {
   Eigen::VectorXd m_inv_mass;      // #V, 0 for pinned vertices
   std::vector<EdgeConstraint> m_warp_weft_edges;  // for the strain diagnostic
   std::unique_ptr<ConstraintProjector> m_projector;
+  Eigen::VectorXd m_tension_k;  // per constraint, N/m: carried constraint force (carried_tension.h)
   std::unique_ptr<ImplicitEuler> m_implicit;
   State m_state;
   Matrix3X m_forces;               // #V×3 scratch, N
-  Matrix3X m_x_start;              // #V×3 positions at the start of the step
+  Matrix3X m_x_start;              // #V×3 start-of-step positions: velocity filter, friction
   double m_critical_step_s = 0.0;
   double m_time_step_s = 0.0;
   long m_steps = 0;

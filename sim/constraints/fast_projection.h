@@ -7,13 +7,14 @@
 //
 // The matrix J M⁻¹ Jᵀ (#constraints square) has a fixed sparsity pattern — edges sharing a
 // free vertex — analysed once; each iteration refills its values in place and refactorizes.
-// Robustness: a step that does not reduce ½‖C‖² is retried with Levenberg–Marquardt damping
-// (J M⁻¹ Jᵀ's diagonal scaled by 1 + λ, λ growing tenfold from 1e-4 and shrinking again after
-// a success): near a singular root — an edge chain pulled taut between two pins at exactly its
-// rest length, where J loses rank — undamped steps overshoot and stall; a factorization
-// that fails (redundant constraints make the matrix singular) is retried with a small diagonal
-// shift; when the cap is reached, the best iterate (smallest max strain) is kept and the result
-// says it did not converge.
+// Robustness: a full step that does not halve Σ C² is shortened to the exact minimiser of Σ C²
+// along it (C is quadratic, so that is a quartic in the step length: no extra factorization);
+// a factorization that fails (redundant constraints make the matrix singular) is retried with
+// a small diagonal shift; when the cap is reached or no step reduces Σ C², the best iterate
+// (smallest max strain) is kept and the result says it did not converge. Near a singular root
+// — a nearly flat sheet, a chain pulled taut between pins at its rest length — Newton-type
+// steps lose their quadratic convergence; the simulator avoids starting there by carrying the
+// constraint forces into the next prediction (carried_tension.h, multipliers()).
 
 #include <memory>
 #include <vector>
@@ -30,6 +31,7 @@ class FastProjection final : public ConstraintProjector {
 
   ProjectionResult project(Matrix3X& x) override;
   const std::vector<EdgeConstraint>& constraints() const override { return m_constraints; }
+  const Eigen::VectorXd& multipliers() const override { return m_multipliers; }
 
  private:
   // One entry of the lower triangle of J M⁻¹ Jᵀ: value += coefficient · d_e·d_f.
@@ -43,6 +45,7 @@ class FastProjection final : public ConstraintProjector {
   double evaluate(const Matrix3X& x);  // fills m_d, m_c; returns Σ C²
   void fill_matrix();
   bool factorize_with_fallback();
+  double line_search(const Matrix3X& step, double merit) const;  // α, or 0 if none helps
 
   std::vector<EdgeConstraint> m_constraints;
   Eigen::VectorXd m_inv_mass;
@@ -53,6 +56,7 @@ class FastProjection final : public ConstraintProjector {
   std::unique_ptr<SparseSpdSolver> m_solver;
   Matrix3X m_d;          // #C×3 edge vectors x_b − x_a at the current iterate
   Eigen::VectorXd m_c;   // #C constraint values
+  Eigen::VectorXd m_multipliers;  // #C Σ α μ of the last project(), kg·m (x moved by −M⁻¹Jᵀ Σαμ)
 };
 
 }  // namespace weft::sim

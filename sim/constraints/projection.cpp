@@ -38,6 +38,11 @@ double mean_edge_strain(const std::vector<EdgeConstraint>& constraints, const Ma
   return sum / static_cast<double>(constraints.size());
 }
 
+const Eigen::VectorXd& ConstraintProjector::multipliers() const {
+  static const Eigen::VectorXd none;
+  return none;
+}
+
 std::unique_ptr<ConstraintProjector> make_projector(const ClothMesh& mesh,
                                                     const Eigen::VectorXd& inv_mass,
                                                     const ProjectionSettings& settings,

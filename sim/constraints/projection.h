@@ -39,6 +39,9 @@ struct ProjectionSettings {
   double tolerance = 1e-3;   // fast projection: stop when max strain ≤ tolerance
   int max_iterations = 30;   // fast projection: iteration cap; pairwise: sweeps per step
   double max_stretch = 0.0;  // pairwise: Provot's limit, |strain| allowed before correcting
+  // Fast projection: carry each step's constraint force into the next step's prediction
+  // (carried_tension.h). Off only to measure what it buys.
+  bool carry_tension = true;
 };
 
 struct [[nodiscard]] ProjectionResult {
@@ -54,6 +57,10 @@ class ConstraintProjector {
   // Moves x (#V×3, m) onto the constraints, changing only vertices with inv_mass > 0.
   virtual ProjectionResult project(Matrix3X& x) = 0;
   virtual const std::vector<EdgeConstraint>& constraints() const = 0;
+  // Per constraint, the multipliers μ (kg·m) of the last project(): it moved x by −M⁻¹ Jᵀ μ,
+  // so −Jᵀ μ / h² is the constraint force of a step of h seconds. Empty when the method has
+  // no multipliers (pairwise projection).
+  virtual const Eigen::VectorXd& multipliers() const;
 };
 
 // nullptr for ProjectionMethod::none.

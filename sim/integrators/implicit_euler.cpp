@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/constraints/carried_tension.h"
 #include "sim/energies/spring_hessian.h"
 
 namespace weft::sim {
@@ -24,7 +25,7 @@ struct ImplicitEuler::Impl {
   MassSpringModel model;            // a copy: the integrator does not depend on its owner's address
   Eigen::VectorXd mass_kg;          // #V
   std::vector<char> pinned;         // #V, inv_mass == 0
-  std::vector<char> spring_active;  // per spring: both ends free (only those enter A)
+  std::vector<EdgeConstraint> tension_edges;  // carried constraint forces (see the header)
   SparseMatrix A;                   // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
   std::vector<int> slots;           // valuePtr index of each contribution, in assembly order
   std::unique_ptr<SparseSpdSolver> solver;
@@ -32,10 +33,15 @@ struct ImplicitEuler::Impl {
   Matrix3X kv;      // #V×3 scratch, K v_n, N/s
 
   Impl(const MassSpringModel& m, Eigen::VectorXd mass, const Eigen::VectorXd& inv_mass,
-       SparseBackend backend);
+       SparseBackend backend, std::vector<EdgeConstraint> tension);
   void build_pattern();
   // Writes A's values for step h, damping α at positions x, and kv = K v.
-  void fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s);
+  void fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s,
+            const Eigen::VectorXd& tension_k);
+  // Adds the pair (a, b) with stiffness block H: [H −H; −H H] to K v and h² of it to A, at the
+  // slots from k on (in build_pattern()'s order); returns the next slot.
+  std::size_t add_pair(Index a, Index b, const Mat3& H, const Matrix3X& v, double h2,
+                       std::size_t k);
 };
 
 namespace {
@@ -56,8 +62,12 @@ void for_each_lower_entry(Index p, Index q, F&& visit) {
 }  // namespace
 
 ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
-                          const Eigen::VectorXd& inv_mass, SparseBackend backend)
-    : model(m), mass_kg(std::move(mass)), solver(make_sparse_spd_solver(backend)) {
+                          const Eigen::VectorXd& inv_mass, SparseBackend backend,
+                          std::vector<EdgeConstraint> tension)
+    : model(m),
+      mass_kg(std::move(mass)),
+      tension_edges(std::move(tension)),
+      solver(make_sparse_spd_solver(backend)) {
   const Index n = static_cast<Index>(mass_kg.size());
   // Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
   if (inv_mass.size() != n)
@@ -65,11 +75,14 @@ ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
                            " inverse masses for " + std::to_string(n) + " masses");
   pinned.resize(static_cast<std::size_t>(n));
   for (Index i = 0; i < n; ++i) pinned[static_cast<std::size_t>(i)] = inv_mass[i] == 0.0;
-  for (const Spring& s : model.springs())
-    if (s.a < 0 || s.b < 0 || s.a >= n || s.b >= n || s.a == s.b)
-      throw std::logic_error("ImplicitEuler: spring (" + std::to_string(s.a) + ", " +
-                             std::to_string(s.b) + ") does not join two of the " +
+  const auto check_pair = [n](Index a, Index b) {
+    if (a < 0 || b < 0 || a >= n || b >= n || a == b)
+      throw std::logic_error("ImplicitEuler: pair (" + std::to_string(a) + ", " +
+                             std::to_string(b) + ") does not join two of the " +
                              std::to_string(n) + " vertices");
+  };
+  for (const Spring& s : model.springs()) check_pair(s.a, s.b);
+  for (const EdgeConstraint& e : tension_edges) check_pair(e.a, e.b);
   forces = Matrix3X::Zero(n, 3);
   kv = Matrix3X::Zero(n, 3);
   build_pattern();
@@ -84,17 +97,17 @@ void ImplicitEuler::Impl::build_pattern() {
   const auto add_block = [&](Index p, Index q) {              // requires p ≥ q
     for_each_lower_entry(p, q, [&](int r, int c) { entries.push_back({3 * p + r, 3 * q + c}); });
   };
-  spring_active.reserve(model.springs().size());
-  for (const Spring& s : model.springs()) {
-    const bool active =
-        !pinned[static_cast<std::size_t>(s.a)] && !pinned[static_cast<std::size_t>(s.b)];
-    spring_active.push_back(active);
-    // A spring with one pinned end still stiffens its free end: its diagonal block enters A,
-    // the coupling to the eliminated DOFs does not.
-    if (!pinned[static_cast<std::size_t>(s.a)]) add_block(s.a, s.a);
-    if (!pinned[static_cast<std::size_t>(s.b)]) add_block(s.b, s.b);
-    if (active) add_block(std::max(s.a, s.b), std::min(s.a, s.b));
-  }
+  // A pair with one pinned end still stiffens its free end: its diagonal block enters A, the
+  // coupling to the eliminated DOFs does not.
+  const auto add_pair_blocks = [&](Index a, Index b) {
+    const bool a_free = !pinned[static_cast<std::size_t>(a)];
+    const bool b_free = !pinned[static_cast<std::size_t>(b)];
+    if (a_free) add_block(a, a);
+    if (b_free) add_block(b, b);
+    if (a_free && b_free) add_block(std::max(a, b), std::min(a, b));
+  };
+  for (const Spring& s : model.springs()) add_pair_blocks(s.a, s.b);
+  for (const EdgeConstraint& e : tension_edges) add_pair_blocks(e.a, e.b);
 
   std::vector<Eigen::Triplet<double, int>> triplets;
   triplets.reserve(entries.size());
@@ -119,7 +132,7 @@ void ImplicitEuler::Impl::build_pattern() {
 // A = M (1 + h α) + h² K on the free DOFs, identity on the pinned ones; kv = K v (all springs,
 // so that a moving pin would be seen by its neighbours; pins have v = 0 here).
 void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s,
-                               double damping_1_s) {
+                               double damping_1_s, const Eigen::VectorXd& tension_k) {
   double* values = A.valuePtr();
   std::fill(values, values + A.nonZeros(), 0.0);
   const Index n = static_cast<Index>(mass_kg.size());
@@ -131,41 +144,52 @@ void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s,
   }
   kv.setZero();
   const double h2 = h_s * h_s;
-  const auto& springs = model.springs();
-  for (std::size_t s_index = 0; s_index < springs.size(); ++s_index) {
-    const Spring& s = springs[s_index];
+  for (const Spring& s : model.springs()) {
     const Vec3 xa = x.row(s.a).transpose(), xb = x.row(s.b).transpose();
-    const Mat3 H = spring_hessian_b_projected(xa, xb, s.rest_m, s.k_N_m);  // N/m
-    // K v: the spring's rows are [H −H; −H H] (v_a; v_b).
-    const Vec3 hdv = H * (v.row(s.b) - v.row(s.a)).transpose();
-    kv.row(s.a) -= hdv.transpose();
-    kv.row(s.b) += hdv.transpose();
-
-    const Mat3 hH = h2 * H;
-    const bool a_free = !pinned[static_cast<std::size_t>(s.a)];
-    const bool b_free = !pinned[static_cast<std::size_t>(s.b)];
-    if (a_free)
-      for_each_lower_entry(s.a, s.a, [&](int r, int c) { values[slots[k++]] += hH(r, c); });
-    if (b_free)
-      for_each_lower_entry(s.b, s.b, [&](int r, int c) { values[slots[k++]] += hH(r, c); });
-    if (spring_active[s_index]) {
-      // Block (max, min) of −H; H is symmetric, so the transpose needs no care.
-      for_each_lower_entry(std::max(s.a, s.b), std::min(s.a, s.b),
-                           [&](int r, int c) { values[slots[k++]] -= hH(r, c); });
-    }
+    k = add_pair(s.a, s.b, spring_hessian_b_projected(xa, xb, s.rest_m, s.k_N_m), v, h2, k);
+  }
+  // A carried tension k > 0 is a zero-rest-length spring: stiffness k I (PSD). Compression
+  // (k < 0) would make A indefinite: its force is kept, its stiffness dropped.
+  for (std::size_t e = 0; e < tension_edges.size(); ++e) {
+    const double stiffness = tension_k.size() > 0 ? std::max(0.0, tension_k[static_cast<Eigen::Index>(e)]) : 0.0;
+    k = add_pair(tension_edges[e].a, tension_edges[e].b, stiffness * Mat3::Identity(), v, h2, k);
   }
 }
 
+std::size_t ImplicitEuler::Impl::add_pair(Index a, Index b, const Mat3& H, const Matrix3X& v,
+                                          double h2, std::size_t k) {
+  // K v: the pair's rows are [H −H; −H H] (v_a; v_b).
+  const Vec3 hdv = H * (v.row(b) - v.row(a)).transpose();
+  kv.row(a) -= hdv.transpose();
+  kv.row(b) += hdv.transpose();
+
+  double* values = A.valuePtr();
+  const Mat3 hH = h2 * H;
+  const bool a_free = !pinned[static_cast<std::size_t>(a)];
+  const bool b_free = !pinned[static_cast<std::size_t>(b)];
+  if (a_free) for_each_lower_entry(a, a, [&](int r, int c) { values[slots[k++]] += hH(r, c); });
+  if (b_free) for_each_lower_entry(b, b, [&](int r, int c) { values[slots[k++]] += hH(r, c); });
+  if (a_free && b_free) {
+    // Block (max, min) of −H; H is symmetric, so the transpose needs no care.
+    for_each_lower_entry(std::max(a, b), std::min(a, b),
+                         [&](int r, int c) { values[slots[k++]] -= hH(r, c); });
+  }
+  return k;
+}
+
 ImplicitEuler::ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg,
-                             Eigen::VectorXd inv_mass, SparseBackend backend)
-    : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, backend)) {}
+                             Eigen::VectorXd inv_mass, SparseBackend backend,
+                             std::vector<EdgeConstraint> tension_edges)
+    : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, backend,
+                                    std::move(tension_edges))) {}
 
 ImplicitEuler::~ImplicitEuler() = default;
 
 // One Newton step of backward Euler (Baraff & Witkin 1998, with ∂f/∂x = −K, ∂f/∂v = −α M):
 //   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n + M g),   v_{n+1} = v_n + Δv.
 ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_s,
-                                       const Vec3& gravity_m_s2, double damping_1_s) {
+                                       const Vec3& gravity_m_s2, double damping_1_s,
+                                       const Eigen::VectorXd& tension_k) {
   const auto start = std::chrono::steady_clock::now();
   Impl& im = *m_impl;
   const Index n = static_cast<Index>(im.mass_kg.size());
@@ -174,9 +198,13 @@ ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_
                            std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
                            std::to_string(n));
 
-  im.fill(x, v, h_s, damping_1_s);
+  if (tension_k.size() != 0 && tension_k.size() != static_cast<Eigen::Index>(im.tension_edges.size()))
+    throw std::logic_error("ImplicitEuler::step: " + std::to_string(tension_k.size()) +
+                           " tensions for " + std::to_string(im.tension_edges.size()) + " edges");
+  im.fill(x, v, h_s, damping_1_s, tension_k);
   im.forces.setZero();
   im.model.add_forces(x, im.forces);  // springs and bending, N
+  add_tension_forces(im.tension_edges, tension_k, x, im.forces);
 
   Eigen::VectorXd rhs(3 * n);  // N·s
   const Eigen::RowVector3d g = gravity_m_s2.transpose();

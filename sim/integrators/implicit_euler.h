@@ -4,11 +4,14 @@
 //   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n) + h M g,
 //   v_{n+1} = v_n + Δv,   x_{n+1} = x_n + h v_{n+1}.
 // Bending forces enter the right-hand side only (their stiffness is small: see docs/models.md).
+// Optional tension edges carry the previous step's constraint forces (carried_tension.h): a
+// tension k > 0 adds the force −k (x_b − x_a) on b and the stiffness k I to K.
 // Pinned vertices (inv_mass = 0) keep v = 0. The sparsity pattern of the system matrix is
 // fixed by the mesh and analysed once.
 
 #include <memory>
 
+#include "sim/constraints/projection.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/mass_spring.h"
 #include "sim/types.h"
@@ -23,11 +26,13 @@ struct ImplicitStepResult {
 class ImplicitEuler {
  public:
   ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg, Eigen::VectorXd inv_mass,
-                SparseBackend backend);
+                SparseBackend backend, std::vector<EdgeConstraint> tension_edges = {});
   ~ImplicitEuler();
   // Replaces v (#V×3, m/s) by v_{n+1} for positions x = x_n; the caller sets x_n + h v_{n+1}.
+  // tension_k: one per tension edge (N/m), or empty for none.
   [[nodiscard]] ImplicitStepResult step(const Matrix3X& x, Matrix3X& v, double h_s,
-                                        const Vec3& gravity_m_s2, double damping_1_s);
+                                        const Vec3& gravity_m_s2, double damping_1_s,
+                                        const Eigen::VectorXd& tension_k = Eigen::VectorXd());
 
  private:
   struct Impl;
