@@ -3,6 +3,7 @@
 
 #include "app/scene.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "app/json_reader.h"
 #include "app/units.h"
@@ -157,20 +159,83 @@ sim::Obstacle read_obstacle(ObjectReader r) {
   return obstacle;
 }
 
+// "simulation.constraints": inextensibility after the unconstrained step
+// (sim::ProjectionSettings). A key the chosen method does not use is an error, not ignored.
+sim::ProjectionSettings read_constraints(ObjectReader r) {
+  using sim::ProjectionMethod;
+  const std::vector<std::pair<std::string, ProjectionMethod>> methods{
+      {"none", ProjectionMethod::none},
+      {"fast_projection", ProjectionMethod::fast_projection},
+      {"pairwise", ProjectionMethod::pairwise}};
+  sim::ProjectionSettings p;
+  p.method = r.enumeration<ProjectionMethod>("method", methods, p.method);
+  p.edges = r.enumeration<sim::ConstrainedEdges>(
+      "edges",
+      {{"warp_weft", sim::ConstrainedEdges::warp_weft},
+       {"triangle_edges", sim::ConstrainedEdges::triangle_edges}},
+      p.edges);
+  p.tolerance = r.number("tolerance", p.tolerance, Range::gt(0.0));
+  p.max_iterations = static_cast<int>(r.integer("max_iterations", p.max_iterations,
+                                                Range::closed(1, std::numeric_limits<int>::max())));
+  p.max_stretch = r.number("max_stretch", p.max_stretch, Range::ge(0.0));
+  r.finish();  // unknown keys first: a misspelt "method" gets its "did you mean"
+
+  std::string method_name;
+  for (const auto& m : methods)
+    if (m.second == p.method) method_name = m.first;
+  const auto used_only_by = [&](const std::string& key, const std::string& users) {
+    if (r.has(key)) {
+      r.fail(key, "expected only with method " + users +
+                      " (it has no effect otherwise), got method '" + method_name + "'");
+    }
+  };
+  if (p.method == ProjectionMethod::none) {
+    for (const char* key : {"edges", "tolerance", "max_iterations"})
+      used_only_by(key, "'fast_projection' or 'pairwise'");
+  }
+  if (p.method != ProjectionMethod::pairwise) used_only_by("max_stretch", "'pairwise'");
+  return p;
+}
+
+// "simulation.linear_solver": a sparse back-end this build has (sim::SparseBackend).
+sim::SparseBackend read_linear_solver(ObjectReader& r, sim::SparseBackend fallback) {
+  using sim::SparseBackend;
+  const std::string key = "linear_solver";
+  std::vector<std::pair<std::string, SparseBackend>> choices;
+  for (SparseBackend b : {SparseBackend::cholmod, SparseBackend::eigen_ldlt})
+    choices.emplace_back(sim::sparse_backend_name(b), b);
+  const SparseBackend backend = r.enumeration<SparseBackend>(key, choices, fallback);
+  const std::vector<SparseBackend> available = sim::available_sparse_backends();
+  if (std::find(available.begin(), available.end(), backend) == available.end()) {
+    std::string names;
+    for (SparseBackend b : available)
+      names += std::string(names.empty() ? "'" : ", '") + sim::sparse_backend_name(b) + "'";
+    r.fail(key, "expected a back-end this build has (" + names + "), got '" +
+                    sim::sparse_backend_name(backend) + "', which it was built without");
+  }
+  return backend;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s) {
   enum class Model { mass_spring };
   (void)r.enumeration<Model>("model", {{"mass_spring", Model::mass_spring}}, Model::mass_spring);
-  s.integrator = r.enumeration<sim::Integrator>(
-      "integrator", {{"symplectic_euler", sim::Integrator::symplectic_euler}}, s.integrator);
+  s.integrator =
+      r.enumeration<sim::Integrator>("integrator",
+                                     {{"symplectic_euler", sim::Integrator::symplectic_euler},
+                                      {"implicit_euler", sim::Integrator::implicit_euler}},
+                                     s.integrator);
+  s.sparse_backend = read_linear_solver(r, s.sparse_backend);
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));
   s.time_step_s = r.quantity_or_keyword("time_step", Quantity::time, "auto", Range::gt(0.0));
   s.time_step_safety = r.number("time_step_safety", s.time_step_safety, Range::gt(0.0).le(1.0));
   s.max_speed_m_s = r.quantity("max_speed", Quantity::speed, s.max_speed_m_s, Range::gt(0.0));
+  s.projection = read_constraints(r.object("constraints"));
   s.collision_thickness_m =
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
+  s.collision_friction = r.number("collision_friction", s.collision_friction, Range::ge(0.0));
   r.finish();
 }
 

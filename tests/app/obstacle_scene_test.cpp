@@ -178,6 +178,8 @@ TEST(ObstacleScene, SphereDrapeAssetParses) {
   const auto& ground = std::get<sim::PlaneObstacle>(s.sim.obstacles[1]);
   EXPECT_EQ(ground.normal, Eigen::Vector3d(0, 0, 1));
   EXPECT_EQ(ground.point_m.z(), s.render.ground_z_m);
+  // Friction holds the drape on the sphere (without it the sheet slides off, docs/scene.md).
+  EXPECT_EQ(s.sim.collision_friction, 0.5);
   // The ground plane is the rendered ground: only the sphere is drawn as an object.
   EXPECT_EQ(obstacle_render_objects(s.sim.obstacles, s.render).size(), 1u);
 }

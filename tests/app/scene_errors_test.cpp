@@ -246,8 +246,8 @@ TEST(SceneErrors, WrongEnumListsTheChoices) {
   s = valid_scene();
   s["simulation"]["integrator"] = "rk4";
   EXPECT_EQ(error_of(s),
-            "scene.json: simulation.integrator: expected one of 'symplectic_euler', got the string "
-            "'rk4'");
+            "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
+            "'implicit_euler', got the string 'rk4'");
   s = valid_scene();
   s["simulation"]["model"] = 1;
   EXPECT_EQ(error_of(s), "scene.json: simulation.model: expected one of 'mass_spring', got 1");

@@ -1,0 +1,223 @@
+// Solver keys in scene files: "simulation.integrator", "simulation.linear_solver",
+// "simulation.constraints" and "simulation.collision_friction" land in sim::SimSettings; every
+// mistake names its key path. And a parsed scene drives the simulator with them.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+#include "sim/pins.h"
+
+namespace weft::app {
+namespace {
+
+#define EXPECT_CONTAINS(message, part) \
+  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
+
+// A valid scene with every solver key set, to be changed one key at a time.
+Json solver_scene() {
+  return Json::parse(R"({
+    "description": "test scene with solver keys",
+    "cloth": {"size": ["40 cm", "40 cm"], "resolution": [9, 9],
+              "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}]},
+    "obstacles": [{"plane": {"point": [0, 0, 0], "normal": [0, 0, 1]}}],
+    "simulation": {
+      "integrator": "implicit_euler",
+      "linear_solver": "eigen_ldlt",
+      "constraints": {"method": "fast_projection", "edges": "triangle_edges",
+                      "tolerance": 1e-4, "max_iterations": 50},
+      "collision_friction": 0.45
+    }
+  })");
+}
+
+Scene parse(const Json& scene) {
+  return parse_scene(scene.dump(2), "scene.json");
+}
+
+std::string error_of(const Json& scene) {
+  try {
+    parse(scene);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SolverScene, EveryKeyLandsInSimSettings) {
+  const sim::SimSettings s = parse(solver_scene()).sim;
+  EXPECT_EQ(s.integrator, sim::Integrator::implicit_euler);
+  EXPECT_EQ(s.sparse_backend, sim::SparseBackend::eigen_ldlt);
+  EXPECT_EQ(s.projection.method, sim::ProjectionMethod::fast_projection);
+  EXPECT_EQ(s.projection.edges, sim::ConstrainedEdges::triangle_edges);
+  EXPECT_EQ(s.projection.tolerance, 1e-4);
+  EXPECT_EQ(s.projection.max_iterations, 50);
+  EXPECT_EQ(s.collision_friction, 0.45);
+}
+
+TEST(SolverScene, OmittedKeysTakeTheStructDefaults) {
+  Json j = solver_scene();
+  j.erase("simulation");
+  const sim::SimSettings s = parse(j).sim;
+  const sim::SimSettings defaults;
+  const sim::ProjectionSettings projection;
+  EXPECT_EQ(s.integrator, sim::Integrator::symplectic_euler);
+  EXPECT_EQ(s.sparse_backend, sim::default_sparse_backend());
+  EXPECT_EQ(s.projection.method, sim::ProjectionMethod::none);
+  EXPECT_EQ(s.projection.edges, projection.edges);
+  EXPECT_EQ(s.projection.tolerance, 1e-3);
+  EXPECT_EQ(s.projection.max_iterations, 30);
+  EXPECT_EQ(s.projection.max_stretch, projection.max_stretch);
+  EXPECT_EQ(s.collision_friction, 0.0);
+  EXPECT_EQ(s.collision_friction, defaults.collision_friction);
+  // A fast projection with only its method given keeps the other defaults.
+  j["simulation"] = {{"constraints", {{"method", "fast_projection"}}}};
+  const sim::ProjectionSettings p = parse(j).sim.projection;
+  EXPECT_EQ(p.method, sim::ProjectionMethod::fast_projection);
+  EXPECT_EQ(p.edges, sim::ConstrainedEdges::warp_weft);
+  EXPECT_EQ(p.tolerance, projection.tolerance);
+  EXPECT_EQ(p.max_iterations, projection.max_iterations);
+}
+
+TEST(SolverScene, EachChoiceParses) {
+  Json j = solver_scene();
+  j["simulation"]["integrator"] = "symplectic_euler";
+  EXPECT_EQ(parse(j).sim.integrator, sim::Integrator::symplectic_euler);
+  j["simulation"]["constraints"]["edges"] = "warp_weft";
+  EXPECT_EQ(parse(j).sim.projection.edges, sim::ConstrainedEdges::warp_weft);
+  j["simulation"]["constraints"] = {
+      {"method", "pairwise"}, {"max_iterations", 8}, {"max_stretch", 0.1}, {"tolerance", 0.1}};
+  const sim::ProjectionSettings p = parse(j).sim.projection;
+  EXPECT_EQ(p.method, sim::ProjectionMethod::pairwise);
+  EXPECT_EQ(p.max_iterations, 8);
+  EXPECT_EQ(p.max_stretch, 0.1);
+  EXPECT_EQ(p.tolerance, 0.1);
+  j["simulation"]["constraints"] = {{"method", "none"}};
+  EXPECT_EQ(parse(j).sim.projection.method, sim::ProjectionMethod::none);
+  j["simulation"]["collision_friction"] = 0;
+  EXPECT_EQ(parse(j).sim.collision_friction, 0.0);
+  for (const sim::SparseBackend backend : sim::available_sparse_backends()) {
+    j["simulation"]["linear_solver"] = sim::sparse_backend_name(backend);
+    EXPECT_EQ(parse(j).sim.sparse_backend, backend);
+  }
+}
+
+TEST(SolverScene, WrongEnumsListTheChoices) {
+  Json j = solver_scene();
+  j["simulation"]["integrator"] = "rk4";
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
+            "'implicit_euler', got the string 'rk4'");
+  j = solver_scene();
+  j["simulation"]["linear_solver"] = "umfpack";
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.linear_solver: expected one of 'cholmod', 'eigen_ldlt', got "
+            "the string 'umfpack'");
+  j = solver_scene();
+  j["simulation"]["constraints"]["method"] = "goldenthal";
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.method: expected one of 'none', "
+            "'fast_projection', 'pairwise', got the string 'goldenthal'");
+  j = solver_scene();
+  j["simulation"]["constraints"]["edges"] = "all";
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.edges: expected one of 'warp_weft', "
+            "'triangle_edges', got the string 'all'");
+}
+
+TEST(SolverScene, CholmodIsAnErrorOnlyWhenTheBuildLacksIt) {
+  Json j = solver_scene();
+  j["simulation"]["linear_solver"] = "cholmod";
+  const auto available = sim::available_sparse_backends();
+  if (std::find(available.begin(), available.end(), sim::SparseBackend::cholmod) !=
+      available.end()) {
+    EXPECT_EQ(parse(j).sim.sparse_backend, sim::SparseBackend::cholmod);
+  } else {
+    EXPECT_EQ(error_of(j),
+              "scene.json: simulation.linear_solver: expected a back-end this build has "
+              "('eigen_ldlt'), got 'cholmod', which it was built without");
+  }
+}
+
+TEST(SolverScene, OutOfRange) {
+  Json j = solver_scene();
+  j["simulation"]["constraints"]["tolerance"] = -1e-3;
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.tolerance: expected a number > 0, got -0.001");
+  j["simulation"]["constraints"]["tolerance"] = 0;
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.tolerance: expected a number > 0, got 0");
+  j = solver_scene();
+  j["simulation"]["constraints"]["max_iterations"] = 0;
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.max_iterations: expected an integer in [1, "
+            "2147483647], got 0");
+  j["simulation"]["constraints"]["max_iterations"] = 2.5;
+  EXPECT_CONTAINS(error_of(j),
+                  "scene.json: simulation.constraints.max_iterations: expected an integer");
+  j = solver_scene();
+  j["simulation"]["constraints"] = {{"method", "pairwise"}, {"max_stretch", -0.1}};
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.max_stretch: expected a number ≥ 0, got -0.1");
+  j = solver_scene();
+  j["simulation"]["collision_friction"] = -0.5;
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.collision_friction: expected a number ≥ 0, got -0.5");
+  j["simulation"]["collision_friction"] = "0.5 m";
+  EXPECT_CONTAINS(error_of(j), "scene.json: simulation.collision_friction: expected a number");
+}
+
+TEST(SolverScene, UnknownOrMisplacedKeysInConstraints) {
+  Json j = solver_scene();
+  j["simulation"]["constraints"]["tolerence"] = 1e-3;
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.tolerence: unknown key; did you mean "
+            "'tolerance'? (known keys here: method, edges, tolerance, max_iterations, "
+            "max_stretch)");
+  j = solver_scene();
+  j["simulation"]["constraints"] = {{"metod", "pairwise"}, {"max_stretch", 0.1}};
+  EXPECT_CONTAINS(error_of(j),
+                  "scene.json: simulation.constraints.metod: unknown key; did you mean 'method'?");
+  j = solver_scene();
+  j["simulation"]["constraints"] = "fast_projection";
+  EXPECT_CONTAINS(error_of(j),
+                  "scene.json: simulation.constraints: expected an object, got the string");
+  j = solver_scene();
+  j["simulation"]["constraint"] = j["simulation"]["constraints"];
+  j["simulation"].erase("constraints");
+  EXPECT_CONTAINS(error_of(j),
+                  "scene.json: simulation.constraint: unknown key; did you mean 'constraints'?");
+  // A key the method does not use is an error, not silently ignored.
+  j = solver_scene();
+  j["simulation"]["constraints"]["max_stretch"] = 0.05;
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.max_stretch: expected only with method "
+            "'pairwise' (it has no effect otherwise), got method 'fast_projection'");
+  j["simulation"]["constraints"] = {{"tolerance", 1e-3}};  // method defaults to 'none'
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.tolerance: expected only with method "
+            "'fast_projection' or 'pairwise' (it has no effect otherwise), got method 'none'");
+}
+
+// The parsed settings build a simulator that runs: implicit Euler, a projection through the
+// chosen back-end, friction against the plane.
+TEST(SolverScene, ParsedSettingsDriveTheSimulator) {
+  for (const char* method : {"fast_projection", "pairwise"}) {
+    Json j = solver_scene();
+    j["simulation"]["constraints"] = {{"method", method}, {"tolerance", 1e-2}};
+    const Scene scene = parse(j);
+    const sim::ClothMesh mesh = sim::make_grid(scene.grid);
+    sim::Simulator simulator(mesh, scene.material, sim::resolve_pins(scene.pins, mesh), scene.sim);
+    EXPECT_NO_THROW(simulator.advance(0.1)) << method;
+    const sim::StepStatistics stats = simulator.take_step_statistics();
+    EXPECT_GT(stats.steps, 0);
+    EXPECT_GT(stats.projection_iterations, 0) << method;
+    EXPECT_EQ(stats.failed_implicit_solves, 0) << method;
+  }
+}
+
+}  // namespace
+}  // namespace weft::app
