@@ -226,6 +226,13 @@ void read_simulation(ObjectReader r, sim::SimSettings& s) {
                                       {"implicit_euler", sim::Integrator::implicit_euler}},
                                      s.integrator);
   s.sparse_backend = read_linear_solver(r, s.sparse_backend);
+  s.implicit_solve = r.enumeration<sim::ImplicitSolve>(
+      "implicit_solver",
+      {{"direct", sim::ImplicitSolve::direct},
+       {"conjugate_gradient", sim::ImplicitSolve::conjugate_gradient}},
+      s.implicit_solve);
+  s.implicit_cg_tolerance =
+      r.number("cg_tolerance", s.implicit_cg_tolerance, Range::gt(0.0).lt(1.0));
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));

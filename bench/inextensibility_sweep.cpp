@@ -7,7 +7,8 @@
 // per frame (median of the frames), projection iterations per step, and the largest and mean
 // warp/weft strain over the frames after the first 0.5 s.
 //
-//   build/bench/inextensibility_sweep [--sizes 32,64,128] [--step 0.0083333] [--quick]
+//   build/bench/inextensibility_sweep [--sizes 32,64,128] [--step 0.0208333] [--backend NAME]
+//                                     [--cg TOLERANCE] [--quick]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -34,14 +35,20 @@ struct Method {
 
 struct Row {
   double ms_per_frame = 0.0;   // median over frames
-  double iterations_per_step = 0.0;
+  double iterations_per_step = 0.0, cg_per_step = 0.0;
   int max_iterations = 0;
   double max_strain = 0.0, mean_strain = 0.0;
   long unconverged = 0;
   bool diverged = false;
 };
 
-Row run(Index n, const Method& method, double step_s, SparseBackend backend) {
+struct Options {
+  double step_s = 1.0 / 48.0;
+  SparseBackend backend = default_sparse_backend();
+  double cg_tolerance = 0.0;  // > 0: implicit Euler by conjugate gradients to this residual
+};
+
+Row run(Index n, const Method& method, const Options& options) {
   GridSpec grid;
   grid.nu = grid.nv = n;
   grid.origin = Vec3(-0.5, 0.0, 1.6);
@@ -51,9 +58,13 @@ Row run(Index n, const Method& method, double step_s, SparseBackend backend) {
   wool.stretch_weft_N_m *= method.stretch_scale;
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
-  s.time_step_s = step_s;
+  s.time_step_s = options.step_s;
   s.air_damping_1_s = 1.0;
-  s.sparse_backend = backend;
+  s.sparse_backend = options.backend;
+  if (options.cg_tolerance > 0.0) {
+    s.implicit_solve = ImplicitSolve::conjugate_gradient;
+    s.implicit_cg_tolerance = options.cg_tolerance;
+  }
   s.projection.method = method.projection;
   s.projection.tolerance = method.tolerance;
   s.projection.max_iterations = method.iterations;
@@ -61,7 +72,7 @@ Row run(Index n, const Method& method, double step_s, SparseBackend backend) {
 
   Row row;
   std::vector<double> frame_ms;
-  long steps = 0, iterations = 0;
+  long steps = 0, iterations = 0, cg_iterations = 0;
   double strain_sum = 0.0;
   int strain_frames = 0;
   for (int frame = 1; frame <= 48; ++frame) {
@@ -76,6 +87,7 @@ Row run(Index n, const Method& method, double step_s, SparseBackend backend) {
     const StepStatistics st = sim.take_step_statistics();
     steps += st.steps;
     iterations += st.projection_iterations;
+    cg_iterations += st.cg_iterations;
     row.max_iterations = std::max(row.max_iterations, st.max_projection_iterations);
     row.unconverged += st.unconverged_steps;
     if (frame / 24.0 > 0.5) {
@@ -88,6 +100,7 @@ Row run(Index n, const Method& method, double step_s, SparseBackend backend) {
   std::nth_element(frame_ms.begin(), frame_ms.begin() + frame_ms.size() / 2, frame_ms.end());
   row.ms_per_frame = frame_ms[frame_ms.size() / 2];
   row.iterations_per_step = static_cast<double>(iterations) / static_cast<double>(steps);
+  row.cg_per_step = static_cast<double>(cg_iterations) / static_cast<double>(steps);
   row.mean_strain = strain_sum / strain_frames;
   return row;
 }
@@ -104,16 +117,16 @@ std::vector<int> parse_list(const char* text) {
 
 int main(int argc, char** argv) {
   std::vector<int> sizes{32, 64, 128};
-  double step_s = 1.0 / 120.0;
+  Options options;
   bool quick = false;
-  SparseBackend backend = default_sparse_backend();
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = parse_list(argv[++i]);
-    else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) step_s = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) backend = sparse_backend_from_name(argv[++i]);
+    else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) options.step_s = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) options.backend = sparse_backend_from_name(argv[++i]);
+    else if (!std::strcmp(argv[i], "--cg") && i + 1 < argc) options.cg_tolerance = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--quick")) quick = true;
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--quick]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick]\n", argv[0]);
       return 1;
     }
   }
@@ -128,20 +141,25 @@ int main(int argc, char** argv) {
       {"springs x100 implicit", ProjectionMethod::none, 0.0, 0, 100.0},
   };
   if (quick) methods = {methods[1], methods[3], methods[5]};
-  std::printf("two-corner hang, 1 m wool, 48 frames at 24 fps, implicit Euler h = %.4g s, %s\n", step_s,
-              sparse_backend_name(backend));
-  std::printf("%-6s %-26s %12s %10s %8s %11s %11s %11s\n", "size", "method", "ms/frame", "iter/step",
-              "max it", "max strain", "mean strain", "unconverged");
+  std::printf("two-corner hang, 1 m wool, 48 frames at 24 fps, implicit Euler h = %.4g s (%s), "
+              "projection %s; strain over frames after 0.5 s\n",
+              options.step_s,
+              options.cg_tolerance > 0.0 ? ("CG to " + std::to_string(options.cg_tolerance)).c_str()
+                                         : "direct",
+              sparse_backend_name(options.backend));
+  std::printf("%-6s %-26s %10s %9s %8s %7s %11s %11s %7s\n", "size", "method", "ms/frame",
+              "iter/step", "CG/step", "max it", "max strain", "mean strain", "unconv");
   for (int n : sizes) {
     for (const Method& m : methods) {
-      const Row r = run(n, m, step_s, backend);
+      const Row r = run(n, m, options);
+      const std::string size = std::to_string(n) + "²";
       if (r.diverged) {
-        std::printf("%-6s %-26s diverged\n", (std::to_string(n) + "²").c_str(), m.name.c_str());
+        std::printf("%-6s %-26s diverged\n", size.c_str(), m.name.c_str());
         continue;
       }
-      std::printf("%-6s %-26s %12.2f %10.2f %8d %10.4f%% %10.4f%% %11ld\n", (std::to_string(n) + "²").c_str(),
-                  m.name.c_str(), r.ms_per_frame, r.iterations_per_step, r.max_iterations,
-                  100 * r.max_strain, 100 * r.mean_strain, r.unconverged);
+      std::printf("%-6s %-26s %10.2f %9.2f %8.1f %7d %10.4f%% %10.4f%% %7ld\n", size.c_str(),
+                  m.name.c_str(), r.ms_per_frame, r.iterations_per_step, r.cg_per_step, r.max_iterations, 100 * r.max_strain, 100 * r.mean_strain,
+                  r.unconverged);
       std::fflush(stdout);
     }
   }

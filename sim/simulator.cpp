@@ -39,8 +39,12 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   if (settings.integrator == Integrator::implicit_euler) {
     std::vector<EdgeConstraint> tension_edges;
     if (m_projector && settings.projection.carry_tension) tension_edges = m_projector->constraints();
-    m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass,
-                                                 settings.sparse_backend, std::move(tension_edges));
+    ImplicitSolveSettings solve;
+    solve.method = settings.implicit_solve;
+    solve.backend = settings.sparse_backend;
+    solve.cg_tolerance = settings.implicit_cg_tolerance;
+    m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass, solve,
+                                                 std::move(tension_edges));
   }
   m_state.x = m_mesh.rest_positions;
   m_state.v = Matrix3X::Zero(n, 3);
@@ -101,6 +105,7 @@ void Simulator::integrate(double h_s) {
                                                   m_settings.air_damping_1_s, m_tension_k);
     m_stats.solve_s += r.solve_s;
     if (!r.solved) ++m_stats.failed_implicit_solves;
+    m_stats.cg_iterations += r.cg_iterations;
   } else {
     for (Index i = 0; i < m_state.x.rows(); ++i)
       m_state.v.row(i) += (h_s * m_inv_mass[i]) * m_forces.row(i);

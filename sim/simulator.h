@@ -11,14 +11,13 @@
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
+#include "sim/integrators/implicit_euler.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/mass_spring.h"
 #include "sim/material.h"
 #include "sim/state.h"
 
 namespace weft::sim {
-
-class ImplicitEuler;
 
 enum class Integrator { symplectic_euler, implicit_euler };
 
@@ -40,6 +39,10 @@ struct SimSettings {
   // method the warp/weft springs are replaced by constraints.
   ProjectionSettings projection;
   SparseBackend sparse_backend = default_sparse_backend();  // implicit Euler and fast projection
+  // Implicit Euler's linear solve: direct (sparse_backend) or conjugate gradients to a relative
+  // residual of implicit_cg_tolerance (see ImplicitSolveSettings).
+  ImplicitSolve implicit_solve = ImplicitSolve::direct;
+  double implicit_cg_tolerance = 1e-4;
   // Rigid obstacles (the "collide" phase) and how far the cloth keeps from their surfaces.
   std::vector<Obstacle> obstacles;
   double collision_thickness_m = 2e-3;
@@ -72,6 +75,7 @@ struct StepStatistics {
   double worst_projected_strain = 0.0;
   double solve_s = 0.0;               // linear solves (implicit Euler and fast projection)
   long failed_implicit_solves = 0;
+  long cg_iterations = 0;             // implicit Euler by conjugate gradients, summed over steps
 };
 
 class Simulator {

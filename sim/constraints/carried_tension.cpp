@@ -1,5 +1,7 @@
 #include "sim/constraints/carried_tension.h"
 
+#include <algorithm>
+
 namespace weft::sim {
 
 void add_tension_forces(const std::vector<EdgeConstraint>& edges, const Eigen::VectorXd& k,
@@ -19,7 +21,7 @@ void accumulate_tension(const std::vector<EdgeConstraint>& edges, const Eigen::V
   if (k.size() != mu.size()) k = Eigen::VectorXd::Zero(mu.size());
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto i = static_cast<Eigen::Index>(e);
-    k[i] += 2.0 * mu[i] / (edges[e].rest_m * h_s * h_s);
+    k[i] = std::max(0.0, k[i] + 2.0 * mu[i] / (edges[e].rest_m * h_s * h_s));
   }
 }
 

@@ -1,5 +1,6 @@
 #include "sim/integrators/implicit_euler.h"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -28,12 +29,17 @@ struct ImplicitEuler::Impl {
   std::vector<EdgeConstraint> tension_edges;  // carried constraint forces (see the header)
   SparseMatrix A;                   // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
   std::vector<int> slots;           // valuePtr index of each contribution, in assembly order
-  std::unique_ptr<SparseSpdSolver> solver;
+  ImplicitSolveSettings solve_settings;
+  std::unique_ptr<SparseSpdSolver> solver;  // direct
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> cg;
+  Eigen::VectorXd last_dv;                  // conjugate gradients' warm start
   Matrix3X forces;  // #V×3 scratch, N
   Matrix3X kv;      // #V×3 scratch, K v_n, N/s
 
   Impl(const MassSpringModel& m, Eigen::VectorXd mass, const Eigen::VectorXd& inv_mass,
-       SparseBackend backend, std::vector<EdgeConstraint> tension);
+       const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension);
+  // Δv = A⁻¹ rhs into dv; false when the solve failed.
+  bool solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv, ImplicitStepResult& result);
   void build_pattern();
   // Writes A's values for step h, damping α at positions x, and kv = K v.
   void fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s,
@@ -62,12 +68,12 @@ void for_each_lower_entry(Index p, Index q, F&& visit) {
 }  // namespace
 
 ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
-                          const Eigen::VectorXd& inv_mass, SparseBackend backend,
+                          const Eigen::VectorXd& inv_mass, const ImplicitSolveSettings& solve,
                           std::vector<EdgeConstraint> tension)
     : model(m),
       mass_kg(std::move(mass)),
       tension_edges(std::move(tension)),
-      solver(make_sparse_spd_solver(backend)) {
+      solve_settings(solve) {
   const Index n = static_cast<Index>(mass_kg.size());
   // Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
   if (inv_mass.size() != n)
@@ -86,7 +92,31 @@ ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
   forces = Matrix3X::Zero(n, 3);
   kv = Matrix3X::Zero(n, 3);
   build_pattern();
-  solver->analyze(A);
+  if (solve.method == ImplicitSolve::direct) {
+    solver = make_sparse_spd_solver(solve.backend);
+    solver->analyze(A);
+  } else {
+    cg.setTolerance(solve.cg_tolerance);
+    cg.setMaxIterations(solve.cg_max_iterations);
+    last_dv = Eigen::VectorXd::Zero(3 * n);
+  }
+}
+
+bool ImplicitEuler::Impl::solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv,
+                                       ImplicitStepResult& result) {
+  if (solver) {
+    if (!solver->factorize(A)) return false;
+    dv = solver->solve(rhs);
+    return dv.allFinite();  // NaN/inf in, or a factorization that should have failed
+  }
+  cg.compute(A);
+  dv = cg.solveWithGuess(rhs, last_dv);
+  result.cg_iterations = static_cast<int>(cg.iterations());
+  // Not converging within the cap still leaves a usable (smaller-residual) Δv; a breakdown
+  // (non-SPD A, non-finite input) does not.
+  if (cg.info() == Eigen::NumericalIssue || !dv.allFinite()) return false;
+  last_dv = dv;
+  return true;
 }
 
 void ImplicitEuler::Impl::build_pattern() {
@@ -178,9 +208,9 @@ std::size_t ImplicitEuler::Impl::add_pair(Index a, Index b, const Mat3& H, const
 }
 
 ImplicitEuler::ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg,
-                             Eigen::VectorXd inv_mass, SparseBackend backend,
+                             Eigen::VectorXd inv_mass, const ImplicitSolveSettings& solve,
                              std::vector<EdgeConstraint> tension_edges)
-    : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, backend,
+    : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, solve,
                                     std::move(tension_edges))) {}
 
 ImplicitEuler::~ImplicitEuler() = default;
@@ -217,16 +247,11 @@ ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_
   }
 
   ImplicitStepResult result;
-  if (!im.solver->factorize(im.A)) {
-    result.solved = false;
-  } else {
-    const Eigen::VectorXd dv = im.solver->solve(rhs);  // m/s
-    if (!dv.allFinite()) {
-      result.solved = false;  // NaN/inf in, or a factorization that should have failed
-    } else {
-      for (Index i = 0; i < n; ++i)
-        if (!im.pinned[static_cast<std::size_t>(i)]) v.row(i) += dv.segment<3>(3 * i).transpose();
-    }
+  Eigen::VectorXd dv;  // m/s
+  result.solved = im.solve_system(rhs, dv, result);
+  if (result.solved) {
+    for (Index i = 0; i < n; ++i)
+      if (!im.pinned[static_cast<std::size_t>(i)]) v.row(i) += dv.segment<3>(3 * i).transpose();
   }
   result.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

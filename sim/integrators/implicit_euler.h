@@ -19,14 +19,28 @@
 namespace weft::sim {
 
 struct ImplicitStepResult {
-  bool solved = true;      // false: the factorization failed; v is left unchanged
+  bool solved = true;      // false: the factorization failed (or CG broke down); v unchanged
   double solve_s = 0.0;    // wall time of assembly + factorization + solve
+  int cg_iterations = 0;   // conjugate gradients only
+};
+
+// How the linear system of each step is solved: a sparse direct factorization (SparseBackend),
+// or conjugate gradients with a Jacobi preconditioner, warm-started from the previous step's
+// Δv and stopped at a relative residual ‖r‖/‖b‖ ≤ tolerance (inexact Newton: cheaper per step
+// on large meshes; the step's accuracy is then that of the residual).
+enum class ImplicitSolve { direct, conjugate_gradient };
+
+struct ImplicitSolveSettings {
+  ImplicitSolve method = ImplicitSolve::direct;
+  SparseBackend backend = default_sparse_backend();  // direct
+  double cg_tolerance = 1e-4;                        // conjugate gradients: relative residual
+  int cg_max_iterations = 200;
 };
 
 class ImplicitEuler {
  public:
   ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg, Eigen::VectorXd inv_mass,
-                SparseBackend backend, std::vector<EdgeConstraint> tension_edges = {});
+                const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension_edges = {});
   ~ImplicitEuler();
   // Replaces v (#V×3, m/s) by v_{n+1} for positions x = x_n; the caller sets x_n + h v_{n+1}.
   // tension_k: one per tension edge (N/m), or empty for none.

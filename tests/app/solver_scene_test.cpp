@@ -27,6 +27,8 @@ Json solver_scene() {
     "simulation": {
       "integrator": "implicit_euler",
       "linear_solver": "eigen_ldlt",
+      "implicit_solver": "conjugate_gradient",
+      "cg_tolerance": 1e-3,
       "constraints": {"method": "fast_projection", "edges": "triangle_edges",
                       "tolerance": 1e-4, "max_iterations": 50},
       "collision_friction": 0.45
@@ -51,6 +53,8 @@ TEST(SolverScene, EveryKeyLandsInSimSettings) {
   const sim::SimSettings s = parse(solver_scene()).sim;
   EXPECT_EQ(s.integrator, sim::Integrator::implicit_euler);
   EXPECT_EQ(s.sparse_backend, sim::SparseBackend::eigen_ldlt);
+  EXPECT_EQ(s.implicit_solve, sim::ImplicitSolve::conjugate_gradient);
+  EXPECT_EQ(s.implicit_cg_tolerance, 1e-3);
   EXPECT_EQ(s.projection.method, sim::ProjectionMethod::fast_projection);
   EXPECT_EQ(s.projection.edges, sim::ConstrainedEdges::triangle_edges);
   EXPECT_EQ(s.projection.tolerance, 1e-4);
@@ -66,10 +70,12 @@ TEST(SolverScene, OmittedKeysTakeTheStructDefaults) {
   const sim::ProjectionSettings projection;
   EXPECT_EQ(s.integrator, sim::Integrator::symplectic_euler);
   EXPECT_EQ(s.sparse_backend, sim::default_sparse_backend());
+  EXPECT_EQ(s.implicit_solve, defaults.implicit_solve);
+  EXPECT_EQ(s.implicit_cg_tolerance, defaults.implicit_cg_tolerance);
   EXPECT_EQ(s.projection.method, sim::ProjectionMethod::none);
   EXPECT_EQ(s.projection.edges, projection.edges);
   EXPECT_EQ(s.projection.tolerance, 1e-3);
-  EXPECT_EQ(s.projection.max_iterations, 30);
+  EXPECT_EQ(s.projection.max_iterations, 100);
   EXPECT_EQ(s.projection.max_stretch, projection.max_stretch);
   EXPECT_EQ(s.collision_friction, 0.0);
   EXPECT_EQ(s.collision_friction, defaults.collision_friction);
@@ -162,6 +168,12 @@ TEST(SolverScene, OutOfRange) {
   j["simulation"]["constraints"] = {{"method", "pairwise"}, {"max_stretch", -0.1}};
   EXPECT_EQ(error_of(j),
             "scene.json: simulation.constraints.max_stretch: expected a number ≥ 0, got -0.1");
+  j = solver_scene();
+  j["simulation"]["cg_tolerance"] = 1.0;
+  EXPECT_EQ(error_of(j), "scene.json: simulation.cg_tolerance: expected a number in (0, 1), got 1.0");
+  j["simulation"]["implicit_solver"] = "cg";
+  EXPECT_CONTAINS(error_of(j), "scene.json: simulation.implicit_solver:");
+  EXPECT_CONTAINS(error_of(j), "conjugate_gradient");
   j = solver_scene();
   j["simulation"]["collision_friction"] = -0.5;
   EXPECT_EQ(error_of(j),

@@ -40,13 +40,14 @@ struct Cloth {
     return inv;
   }
 
-  Cloth(ClothMesh m, const Material& material, std::vector<Index> pins, SparseBackend backend)
+  Cloth(ClothMesh m, const Material& material, std::vector<Index> pins,
+        const ImplicitSolveSettings& solve)
       : mesh(std::move(m)),
         model(mesh, material),
         pinned(std::move(pins)),
         mass_kg(material.density_kg_m2 * mesh.vertex_area_m2),
         inv_mass(inverse_masses(mass_kg, pinned)),
-        integrator(model, mass_kg, inv_mass, backend),
+        integrator(model, mass_kg, inv_mass, solve),
         x(mesh.rest_positions),
         v(Matrix3X::Zero(mesh.vertex_count(), 3)) {}
 
@@ -80,7 +81,7 @@ struct Cloth {
   double max_speed() const { return v.rowwise().norm().maxCoeff(); }
 };
 
-class ImplicitEulerTest : public testing::TestWithParam<SparseBackend> {};
+class ImplicitEulerTest : public testing::TestWithParam<ImplicitSolveSettings> {};
 
 // With no spring stretched, K annihilates the uniform Δv and the system is M(1 + hα) Δv =
 // h M (g − α v): v_{n+1} = (v_n + h g)/(1 + hα) for every vertex. With α = 0, v_n = n h g and
@@ -286,12 +287,30 @@ TEST_P(ImplicitEulerTest, FailedFactorizationLeavesTheVelocitiesUnchanged) {
   EXPECT_EQ(cloth.v, before);
 }
 
-std::string backend_test_name(const testing::TestParamInfo<SparseBackend>& info) {
-  return sparse_backend_name(info.param);
+// Every direct back-end, and conjugate gradients converged to round-off (so that the same
+// recurrences and equilibria hold).
+std::vector<ImplicitSolveSettings> solves() {
+  std::vector<ImplicitSolveSettings> out;
+  for (SparseBackend b : available_sparse_backends()) {
+    ImplicitSolveSettings direct;
+    direct.backend = b;
+    out.push_back(direct);
+  }
+  ImplicitSolveSettings cg;
+  cg.method = ImplicitSolve::conjugate_gradient;
+  cg.cg_tolerance = 1e-13;
+  cg.cg_max_iterations = 5000;
+  out.push_back(cg);
+  return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(ImplicitEuler, ImplicitEulerTest,
-                         testing::ValuesIn(available_sparse_backends()), backend_test_name);
+std::string solve_test_name(const testing::TestParamInfo<ImplicitSolveSettings>& info) {
+  return info.param.method == ImplicitSolve::direct ? sparse_backend_name(info.param.backend)
+                                                    : "conjugate_gradient";
+}
+
+INSTANTIATE_TEST_SUITE_P(ImplicitEuler, ImplicitEulerTest, testing::ValuesIn(solves()),
+                         solve_test_name);
 
 }  // namespace
 }  // namespace weft::sim
