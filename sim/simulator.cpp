@@ -77,8 +77,29 @@ void Simulator::step(double h_s) {
   m_x_start = m_state.x;
   if (!m_implicit) m_timers.time(Phase::forces, [&] { compute_forces(); });
   m_timers.time(Phase::integrate, [&] { integrate(h_s); });
-  const bool projected = m_timers.time(Phase::project, [&] { return project(h_s); });
-  const bool collided = m_timers.time(Phase::collide, [&] { return collide(); });
+  // With a projection, push-out and projection alternate (block Gauss–Seidel over contacts and
+  // constraints), ending with a projection so that the step meets the tolerance; vertices may
+  // end up to the residual of the last push-out inside the collision thickness. A single
+  // push-out after the projection undid it where the cloth lies on an obstacle (measured on
+  // the inextensible sphere drape: 30 % strain). Friction acts in the first push-out only:
+  // later ones would drag contact vertices back toward their start positions.
+  bool collided = m_timers.time(Phase::collide, [&] { return collide(true); });
+  bool projected = false;
+  if (m_projector) {
+    ProjectionResult total;
+    for (int round = 0; round <= kContactRounds; ++round) {
+      const ProjectionResult r = m_timers.time(Phase::project, [&] { return project(h_s); });
+      total.iterations += r.iterations;
+      total.solve_s += r.solve_s;
+      total.converged = r.converged;
+      total.max_strain = r.max_strain;
+      if (round == kContactRounds || !m_timers.time(Phase::collide, [&] { return collide(false); }))
+        break;
+      collided = true;
+    }
+    record_projection(total);
+    projected = true;
+  }
   // Velocity filter (seed 000): the velocity that carries x_n to the corrected x_{n+1}.
   if (projected || collided) m_state.v = (m_state.x - m_x_start) / h_s;
   m_state.time_s += h_s;
@@ -113,25 +134,27 @@ void Simulator::integrate(double h_s) {
   m_state.x += h_s * m_state.v;
 }
 
-bool Simulator::project(double h_s) {
-  if (!m_projector) return false;
+ProjectionResult Simulator::project(double h_s) {
   const ProjectionResult r = m_projector->project(m_state.x);
   if (m_settings.projection.carry_tension)
     accumulate_tension(m_projector->constraints(), m_projector->multipliers(), h_s, m_tension_k);
+  return r;
+}
+
+void Simulator::record_projection(const ProjectionResult& r) {
   m_stats.projection_iterations += r.iterations;
   m_stats.max_projection_iterations = std::max(m_stats.max_projection_iterations, r.iterations);
   if (!r.converged) ++m_stats.unconverged_steps;
   m_stats.worst_projected_strain = std::max(m_stats.worst_projected_strain, r.max_strain);
   m_stats.solve_s += r.solve_s;
-  return true;
 }
 
 // Push-out, with Coulomb friction against the displacement since the start of the step.
-bool Simulator::collide() {
+bool Simulator::collide(bool with_friction) {
   if (m_settings.obstacles.empty()) return false;
   const std::vector<Obstacle>& obstacles = m_settings.obstacles;
   const double thickness = m_settings.collision_thickness_m;
-  if (m_settings.collision_friction > 0.0) {
+  if (with_friction && m_settings.collision_friction > 0.0) {
     return push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_x_start,
                                  m_settings.collision_friction, m_state.x) > 0;
   }

@@ -104,8 +104,10 @@ class Simulator {
  private:
   void compute_forces();
   void integrate(double h_s);
-  bool project(double h_s);
-  bool collide();
+  ProjectionResult project(double h_s);  // one projection; carries its tension
+  void record_projection(const ProjectionResult& r);  // a step's projections, summed
+  bool collide(bool with_friction);
+  static constexpr int kContactRounds = 2;  // push-outs between projections, per step
   void check_finite() const;
 
   ClothMesh m_mesh;
