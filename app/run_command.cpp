@@ -80,6 +80,10 @@ int run_scene(const RunOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene.source + ": cloth.material: " + e.what());
   }
+  for (std::size_t k = 0; k < scene.pin_paths.size(); ++k) {
+    if (scene.pin_paths[k].moves())
+      simulator->set_pin_path(sim::resolve_pins({scene.pins[k]}, simulator->mesh()), scene.pin_paths[k]);
+  }
   render::RasterRenderer renderer(render::make_osmesa_context(scene.render.width, scene.render.height));
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);

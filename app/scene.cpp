@@ -15,6 +15,7 @@
 
 #include "app/json_reader.h"
 #include "app/units.h"
+#include "sim/material_presets.h"
 
 // Defined in the .cpp that app/embed_default_scene.cmake generates from assets/scenes/default.json.
 const char* weft_default_scene_json();
@@ -39,8 +40,12 @@ Eigen::Vector3d read_axis(ObjectReader& r, const std::string& key,
   return axis / length;
 }
 
+// "cloth.material": an optional "preset" (sim/material_presets.h) sets every value; each key
+// given besides it overrides that one value.
 sim::Material read_material(ObjectReader r) {
-  sim::Material m;
+  std::vector<std::pair<std::string, sim::Material>> presets;
+  for (const sim::MaterialPreset& p : sim::material_presets()) presets.emplace_back(p.name, p.material);
+  sim::Material m = r.enumeration<sim::Material>("preset", presets, sim::Material{});
   const Range positive = Range::gt(0.0);
   m.density_kg_m2 = r.quantity("density", Quantity::areal_density, m.density_kg_m2, positive);
   m.stretch_warp_N_m =
@@ -54,8 +59,27 @@ sim::Material read_material(ObjectReader r) {
   return m;
 }
 
-// One pin object: exactly one of "corner", "vertex", "grid", "region".
-sim::PinSpec read_pin(ObjectReader r) {
+// A pin's optional "path": keyframes {"time", "offset"} that move it (sim::PinPath).
+sim::PinPath read_pin_path(ObjectReader& pin) {
+  if (!pin.has("path")) return {};
+  std::vector<ObjectReader> frames = pin.objects("path");
+  if (frames.empty()) pin.fail("path", "expected at least one keyframe, got an empty list");
+  std::vector<sim::PinKeyframe> keyframes;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    ObjectReader& f = frames[k];
+    sim::PinKeyframe frame;
+    frame.time_s = f.quantity("time", Quantity::time, required);
+    frame.offset_m = f.quantity_vec3("offset", Quantity::length, required);
+    if (k > 0 && !(frame.time_s > keyframes.back().time_s))
+      f.fail("time", "expected a time after the previous keyframe's, keyframes in order");
+    f.finish();
+    keyframes.push_back(frame);
+  }
+  return sim::PinPath(std::move(keyframes));
+}
+
+// One pin object: exactly one of "corner", "vertex", "grid", "region", and an optional "path".
+sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
   const std::vector<std::string> selectors{"corner", "vertex", "grid", "region"};
   std::vector<std::string> given;
   for (const auto& s : selectors)
@@ -85,6 +109,7 @@ sim::PinSpec read_pin(ObjectReader r) {
     region.finish();
     pin = sim::PinRegion{u[0], u[1], v[0], v[1]};
   }
+  path = read_pin_path(r);
   r.finish();
   return pin;
 }
@@ -125,7 +150,11 @@ void read_cloth(ObjectReader r, Scene& scene) {
     r.fail("weft_axis", std::string("expected a unit vector orthogonal to warp_axis, got ") + got);
   }
   scene.material = read_material(r.object("material"));
-  for (ObjectReader& pin : r.objects("pins")) scene.pins.push_back(read_pin(pin));
+  for (ObjectReader& pin : r.objects("pins")) {
+    sim::PinPath path;
+    scene.pins.push_back(read_pin(pin, path));
+    scene.pin_paths.push_back(std::move(path));
+  }
   r.finish();
   check_pins(scene.pins, g, r.file(), r.path_of("pins"));
 }
@@ -220,11 +249,10 @@ sim::SparseBackend read_linear_solver(ObjectReader& r, sim::SparseBackend fallba
 void read_simulation(ObjectReader r, sim::SimSettings& s) {
   enum class Model { mass_spring };
   (void)r.enumeration<Model>("model", {{"mass_spring", Model::mass_spring}}, Model::mass_spring);
-  s.integrator =
-      r.enumeration<sim::Integrator>("integrator",
-                                     {{"symplectic_euler", sim::Integrator::symplectic_euler},
-                                      {"implicit_euler", sim::Integrator::implicit_euler}},
-                                     s.integrator);
+  std::vector<std::pair<std::string, sim::Integrator>> integrators;
+  for (sim::Integrator i : sim::all_integrators)
+    integrators.emplace_back(sim::integrator_name(i), i);
+  s.integrator = r.enumeration<sim::Integrator>("integrator", integrators, s.integrator);
   s.sparse_backend = read_linear_solver(r, s.sparse_backend);
   s.implicit_solve = r.enumeration<sim::ImplicitSolve>(
       "implicit_solver",

@@ -9,6 +9,7 @@
 #include "render/raster.h"
 #include "sim/grid.h"
 #include "sim/material.h"
+#include "sim/pin_motion.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
 
@@ -29,6 +30,7 @@ struct Scene {
   sim::GridSpec grid;
   sim::Material material;
   std::vector<sim::PinSpec> pins;
+  std::vector<sim::PinPath> pin_paths;  // one per pin; empty: the pin stays put
   sim::SimSettings sim;
 
   double fps = 24.0;  // output frames per second of simulated time

@@ -1,5 +1,6 @@
 #include "sim/simulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -45,12 +46,23 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
     solve.cg_tolerance = settings.implicit_cg_tolerance;
     m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass, solve,
                                                  std::move(tension_edges));
+  } else {
+    ExplicitSystem system;
+    system.internal_forces = [this](const Matrix3X& x, Matrix3X& f) {
+      m_timers.time(Phase::forces, [&] { add_internal_forces(x, f); });
+    };
+    system.mass_kg = m_mass_kg;
+    system.inv_mass = m_inv_mass;
+    system.gravity_m_s2 = settings.gravity_m_s2;
+    system.damping_1_s = settings.air_damping_1_s;
+    m_explicit = std::make_unique<ExplicitStepper>(settings.integrator, std::move(system));
   }
   m_state.x = m_mesh.rest_positions;
   m_state.v = Matrix3X::Zero(n, 3);
-  m_forces = Matrix3X::Zero(n, 3);
 
-  // Symplectic Euler is stable for h < 2/ω_max; ω_max² ≤ max_i bound_i / m_i (Gershgorin).
+  // Symplectic Euler, velocity Verlet and central difference are stable for h < 2/ω_max (RK4
+  // for h < 2√2/ω_max, explicit Euler never without damping); ω_max² ≤ max_i bound_i / m_i
+  // (Gershgorin).
   const Eigen::VectorXd bound = m_model.stiffness_row_bound(n);
   double omega2 = 0.0;
   for (Index i = 0; i < n; ++i)
@@ -73,10 +85,35 @@ void Simulator::advance(double dt_s) {
   m_state.time_s = t_end;  // no drift from summing substeps
 }
 
+void Simulator::set_pin_path(const std::vector<Index>& vertices, const PinPath& path) {
+  for (Index v : vertices) {
+    if (std::find(m_pinned.begin(), m_pinned.end(), v) == m_pinned.end())
+      throw std::invalid_argument("vertex " + std::to_string(v) + " is not pinned: only pins move");
+  }
+  if (!path.moves()) return;
+  m_pin_paths.push_back(path);
+  for (Index v : vertices) m_moving_pins.push_back({v, m_pin_paths.size() - 1});
+}
+
+// Every integrator leaves a pinned vertex's velocity as it is (zero acceleration), so the
+// velocity that reaches the path's position at t + h carries it there; it is then set exactly.
+void Simulator::move_pins(double h_s) {
+  for (const MovingPin& p : m_moving_pins) {
+    const Eigen::RowVector3d target =
+        m_mesh.rest_positions.row(p.vertex) +
+        m_pin_paths[p.path].offset_at(m_state.time_s + h_s).transpose();
+    m_state.v.row(p.vertex) = (target - m_state.x.row(p.vertex)) / h_s;
+  }
+}
+
 void Simulator::step(double h_s) {
   m_x_start = m_state.x;
-  if (!m_implicit) m_timers.time(Phase::forces, [&] { compute_forces(); });
-  m_timers.time(Phase::integrate, [&] { integrate(h_s); });
+  move_pins(h_s);
+  integrate(h_s);
+  for (const MovingPin& p : m_moving_pins) {
+    m_state.x.row(p.vertex) = m_mesh.rest_positions.row(p.vertex) +
+                              m_pin_paths[p.path].offset_at(m_state.time_s + h_s).transpose();
+  }
   // With a projection, push-out and projection alternate (block Gauss–Seidel over contacts and
   // constraints), ending with a projection so that the step meets the tolerance; vertices may
   // end up to the residual of the last push-out inside the collision thickness. A single
@@ -108,30 +145,30 @@ void Simulator::step(double h_s) {
   m_timers.time(Phase::check, [&] { check_finite(); });
 }
 
-// Internal, gravity and mass-proportional air damping (seed 002 eq. 27: f = −α M v).
-void Simulator::compute_forces() {
-  m_forces.setZero();
-  m_model.add_forces(m_state.x, m_forces);
-  if (m_projector) add_tension_forces(m_projector->constraints(), m_tension_k, m_state.x, m_forces);
-  const Eigen::RowVector3d g = m_settings.gravity_m_s2.transpose();
-  for (Index i = 0; i < m_forces.rows(); ++i)
-    m_forces.row(i) += m_mass_kg[i] * (g - m_settings.air_damping_1_s * m_state.v.row(i));
+// Internal forces; gravity and mass-proportional air damping (seed 002 eq. 27: f = −α M v)
+// are added by the explicit stepper.
+void Simulator::add_internal_forces(const Matrix3X& x, Matrix3X& f) const {
+  m_model.add_forces(x, f);
+  if (m_projector) add_tension_forces(m_projector->constraints(), m_tension_k, x, f);
 }
 
-// The unconstrained step. Symplectic Euler: v ← v + h M⁻¹ f(x, v); implicit Euler: v from
-// one Newton step of backward Euler. Then x ← x + h v. Pinned vertices keep v = 0.
+// The unconstrained step. Explicit integrators (sim/integrators/explicit_steppers.h) advance x
+// and v with forces evaluated through add_internal_forces, timed as the "forces" phase (their
+// vector updates are not timed: a few per cent of a step). Implicit Euler: v from one Newton
+// step of backward Euler, then x ← x + h v. Pinned vertices keep v = 0.
 void Simulator::integrate(double h_s) {
-  if (m_implicit) {
+  if (m_explicit) {
+    m_explicit->step(m_state.x, m_state.v, h_s);
+    return;
+  }
+  m_timers.time(Phase::integrate, [&] {
     const ImplicitStepResult r = m_implicit->step(m_state.x, m_state.v, h_s, m_settings.gravity_m_s2,
                                                   m_settings.air_damping_1_s, m_tension_k);
     m_stats.solve_s += r.solve_s;
     if (!r.solved) ++m_stats.failed_implicit_solves;
     m_stats.cg_iterations += r.cg_iterations;
-  } else {
-    for (Index i = 0; i < m_state.x.rows(); ++i)
-      m_state.v.row(i) += (h_s * m_inv_mass[i]) * m_forces.row(i);
-  }
-  m_state.x += h_s * m_state.v;
+    m_state.x += h_s * m_state.v;
+  });
 }
 
 ProjectionResult Simulator::project(double h_s) {

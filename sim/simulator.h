@@ -11,24 +11,28 @@
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
+#include "sim/integrators/explicit_steppers.h"
 #include "sim/integrators/implicit_euler.h"
+#include "sim/integrators/integrator.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/mass_spring.h"
 #include "sim/material.h"
+#include "sim/pin_motion.h"
 #include "sim/state.h"
 
 namespace weft::sim {
-
-enum class Integrator { symplectic_euler, implicit_euler };
 
 struct SimSettings {
   Integrator integrator = Integrator::symplectic_euler;
   Vec3 gravity_m_s2{0.0, 0.0, -9.81};
   double air_damping_1_s = 0.5;        // mass-proportional damping α: f = −α m v (seed 002 eq. 27)
-  // Empty: automatic. Symplectic Euler: time_step_safety × the critical step estimated from a
-  // Gershgorin bound on the largest eigenvalue of M⁻¹K (an upper bound, so 1.0 is still stable
-  // at rest; measured: the default scene is stable up to 1.2 and explodes at 1.5). Implicit
-  // Euler, unconditionally stable: implicit_default_step_s.
+  // Empty: automatic. Every explicit integrator: time_step_safety × the critical step 2/ω_max,
+  // with ω_max² estimated from a Gershgorin bound on the largest eigenvalue of M⁻¹K (an upper
+  // bound, so 1.0 is still stable at rest; measured: the default scene with symplectic Euler is
+  // stable up to 1.2 and explodes at 1.5). 2/ω is the limit of symplectic Euler, velocity Verlet
+  // and central difference; RK4's is 2√2/ω (not used: the same step keeps a margin); explicit
+  // Euler has none on an undamped oscillator. Implicit Euler, unconditionally stable:
+  // implicit_default_step_s.
   std::optional<double> time_step_s;
   double time_step_safety = 0.8;
   double implicit_default_step_s = 1.0 / 120.0;
@@ -86,6 +90,9 @@ class Simulator {
 
   // Advances by exactly dt_s, in equal substeps of at most time_step(). Throws DivergenceError.
   void advance(double dt_s);
+  // Moves these pinned vertices along the path (offsets from their rest positions, at the
+  // simulated time). Throws std::invalid_argument naming a vertex that is not pinned.
+  void set_pin_path(const std::vector<Index>& vertices, const PinPath& path);
   // One step of h seconds: forces → integrate → project → collide → check.
   void step(double h_s);
 
@@ -102,8 +109,11 @@ class Simulator {
   StepStatistics take_step_statistics();
 
  private:
-  void compute_forces();
+  // Springs, bending and carried constraint tension at x, added to f (N): the explicit
+  // steppers' internal forces (gravity and air damping are theirs).
+  void add_internal_forces(const Matrix3X& x, Matrix3X& f) const;
   void integrate(double h_s);
+  void move_pins(double h_s);  // sets moving pins' velocities to reach their path at t + h
   ProjectionResult project(double h_s);  // one projection; carries its tension
   void record_projection(const ProjectionResult& r);  // a step's projections, summed
   bool collide(bool with_friction);
@@ -114,14 +124,20 @@ class Simulator {
   SimSettings m_settings;
   MassSpringModel m_model;
   std::vector<Index> m_pinned;
+  struct MovingPin {
+    Index vertex;
+    std::size_t path;  // index into m_pin_paths
+  };
+  std::vector<MovingPin> m_moving_pins;
+  std::vector<PinPath> m_pin_paths;
   Eigen::VectorXd m_mass_kg;       // #V lumped masses
   Eigen::VectorXd m_inv_mass;      // #V, 0 for pinned vertices
   std::vector<EdgeConstraint> m_warp_weft_edges;  // for the strain diagnostic
   std::unique_ptr<ConstraintProjector> m_projector;
   Eigen::VectorXd m_tension_k;  // per constraint, N/m: carried constraint force (carried_tension.h)
-  std::unique_ptr<ImplicitEuler> m_implicit;
+  std::unique_ptr<ImplicitEuler> m_implicit;   // implicit_euler
+  std::unique_ptr<ExplicitStepper> m_explicit;  // every other integrator
   State m_state;
-  Matrix3X m_forces;               // #V×3 scratch, N
   Matrix3X m_x_start;              // #V×3 start-of-step positions: velocity filter, friction
   double m_critical_step_s = 0.0;
   double m_time_step_s = 0.0;

@@ -244,10 +244,11 @@ TEST(SceneErrors, WrongEnumListsTheChoices) {
   EXPECT_EQ(error_of(s),
             "scene.json: render.shading: expected one of 'lit', 'normals', got the string 'flat'");
   s = valid_scene();
-  s["simulation"]["integrator"] = "rk4";
+  s["simulation"]["integrator"] = "rk9";
   EXPECT_EQ(error_of(s),
             "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
-            "'implicit_euler', got the string 'rk4'");
+            "'implicit_euler', 'explicit_euler', 'rk4', 'velocity_verlet', 'central_difference', "
+            "got the string 'rk9'");
   s = valid_scene();
   s["simulation"]["model"] = 1;
   EXPECT_EQ(error_of(s), "scene.json: simulation.model: expected one of 'mass_spring', got 1");

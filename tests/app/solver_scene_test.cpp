@@ -113,10 +113,11 @@ TEST(SolverScene, EachChoiceParses) {
 
 TEST(SolverScene, WrongEnumsListTheChoices) {
   Json j = solver_scene();
-  j["simulation"]["integrator"] = "rk4";
+  j["simulation"]["integrator"] = "rk9";
   EXPECT_EQ(error_of(j),
             "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
-            "'implicit_euler', got the string 'rk4'");
+            "'implicit_euler', 'explicit_euler', 'rk4', 'velocity_verlet', 'central_difference', "
+            "got the string 'rk9'");
   j = solver_scene();
   j["simulation"]["linear_solver"] = "umfpack";
   EXPECT_EQ(error_of(j),

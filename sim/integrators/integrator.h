@@ -1,0 +1,45 @@
+#pragma once
+// The time integrators a simulation can use, and their names in scene files
+// (simulation.integrator; docs/models.md § Integrator has the update formulas).
+
+#include <array>
+#include <stdexcept>
+#include <string>
+
+namespace weft::sim {
+
+enum class Integrator {
+  symplectic_euler,    // v ← v + h a(x, v), x ← x + h v            (explicit, order 1)
+  implicit_euler,      // one Newton step of backward Euler         (implicit_euler.h)
+  explicit_euler,      // x ← x + h v, v ← v + h a(x, v), both from the old state (order 1)
+  rk4,                 // classic 4-stage Runge–Kutta on (x, v)     (order 4)
+  velocity_verlet,     // kick–drift–kick                           (order 2)
+  central_difference,  // seed 002 eqs. 20–22, staggered velocities (order 2)
+};
+
+inline constexpr std::array<Integrator, 6> all_integrators{
+    Integrator::symplectic_euler, Integrator::implicit_euler,
+    Integrator::explicit_euler,   Integrator::rk4,
+    Integrator::velocity_verlet,  Integrator::central_difference};
+
+// The scene-file name of an integrator.
+inline const char* integrator_name(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::symplectic_euler:
+      return "symplectic_euler";
+    case Integrator::implicit_euler:
+      return "implicit_euler";
+    case Integrator::explicit_euler:
+      return "explicit_euler";
+    case Integrator::rk4:
+      return "rk4";
+    case Integrator::velocity_verlet:
+      return "velocity_verlet";
+    case Integrator::central_difference:
+      return "central_difference";
+  }
+  throw std::logic_error("integrator_name: unknown integrator " +
+                         std::to_string(static_cast<int>(integrator)));
+}
+
+}  // namespace weft::sim

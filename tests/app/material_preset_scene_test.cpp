@@ -1,0 +1,93 @@
+// "cloth.material.preset" in scene files: a preset sets every material value, each material key
+// given besides it overrides that one value, and an unknown name lists the known ones.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+#include "sim/material_presets.h"
+
+namespace weft::app {
+namespace {
+
+#define EXPECT_CONTAINS(message, part) \
+  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
+
+Json scene_with_material(const Json& material) {
+  Json scene = Json::parse(R"({
+    "description": "test scene with a material preset",
+    "cloth": {"size": ["20 cm", "20 cm"], "resolution": [5, 5]}
+  })");
+  scene["cloth"]["material"] = material;
+  return scene;
+}
+
+sim::Material material_of(const Json& material) {
+  return parse_scene(scene_with_material(material).dump(2), "scene.json").material;
+}
+
+std::string error_of(const Json& material) {
+  try {
+    material_of(material);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+void expect_same(const sim::Material& a, const sim::Material& b) {
+  EXPECT_EQ(a.density_kg_m2, b.density_kg_m2);
+  EXPECT_EQ(a.stretch_warp_N_m, b.stretch_warp_N_m);
+  EXPECT_EQ(a.stretch_weft_N_m, b.stretch_weft_N_m);
+  EXPECT_EQ(a.shear_N_m, b.shear_N_m);
+  EXPECT_EQ(a.bend_warp_Nm, b.bend_warp_Nm);
+  EXPECT_EQ(a.bend_weft_Nm, b.bend_weft_Nm);
+}
+
+TEST(MaterialPresetScene, EveryPresetSetsEveryValue) {
+  for (const sim::MaterialPreset& p : sim::material_presets()) {
+    SCOPED_TRACE(p.name);
+    expect_same(material_of({{"preset", p.name}}), p.material);
+  }
+}
+
+TEST(MaterialPresetScene, WithoutAPresetTheDefaultIsKangYuWool) {
+  expect_same(material_of(Json::object()), sim::material_preset("wool_kang_yu").material);
+}
+
+TEST(MaterialPresetScene, AGivenKeyOverridesThatValueOnly) {
+  const sim::Material denim = sim::material_preset("denim").material;
+  const sim::Material m = material_of({{"preset", "denim"}, {"bend_weft", "0.5 gf*cm"}});
+  EXPECT_NEAR(m.bend_weft_Nm, 0.5 * 9.80665e-5, 1e-15);
+  sim::Material expected = denim;
+  expected.bend_weft_Nm = m.bend_weft_Nm;
+  expect_same(m, expected);
+  // Wherever the key stands in the object.
+  const sim::Material light =
+      material_of({{"density", "0.03 gf/cm^2"}, {"preset", "silk_habotai"}});
+  EXPECT_NEAR(light.density_kg_m2, 0.3, 1e-12);
+  sim::Material silk = sim::material_preset("silk_habotai").material;
+  silk.density_kg_m2 = light.density_kg_m2;
+  expect_same(light, silk);
+}
+
+TEST(MaterialPresetScene, AnUnknownPresetListsTheKnownNames) {
+  const std::string e = error_of({{"preset", "wool"}});
+  EXPECT_CONTAINS(e, "scene.json: cloth.material.preset");
+  EXPECT_CONTAINS(e, "'wool'");
+  for (const std::string& name : sim::material_preset_names()) EXPECT_CONTAINS(e, "'" + name + "'");
+}
+
+TEST(MaterialPresetScene, APresetMustBeAString) {
+  EXPECT_CONTAINS(error_of({{"preset", 3}}), "cloth.material.preset");
+}
+
+TEST(MaterialPresetScene, OverridesAreStillCheckedAndMisspeltKeysStillFail) {
+  EXPECT_CONTAINS(error_of({{"preset", "denim"}, {"shear", "-1 gf/cm"}}), "cloth.material.shear");
+  EXPECT_CONTAINS(error_of({{"presets", "denim"}}), "did you mean 'preset'");
+}
+
+}  // namespace
+}  // namespace weft::app
