@@ -8,12 +8,10 @@
 #include "app/json_reader.h"
 #include "app/scene.h"
 #include "sim/material_presets.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
-
-#define EXPECT_CONTAINS(message, part) \
-  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
 
 Json scene_with_material(const Json& material) {
   Json scene = Json::parse(R"({
@@ -29,12 +27,7 @@ sim::Material material_of(const Json& material) {
 }
 
 std::string error_of(const Json& material) {
-  try {
-    material_of(material);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::scene_error_of(scene_with_material(material));
 }
 
 void expect_same(const sim::Material& a, const sim::Material& b) {

@@ -10,12 +10,10 @@
 #include "app/json_reader.h"
 #include "app/obstacle_meshes.h"
 #include "app/scene.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
-
-#define EXPECT_CONTAINS(message, part) \
-  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
 
 // A valid scene with a sphere above the ground plane, to be broken one key at a time.
 Json scene_with_obstacles() {
@@ -31,18 +29,8 @@ Json scene_with_obstacles() {
   })");
 }
 
-Scene parse(const Json& scene) {
-  return parse_scene(scene.dump(2), "scene.json");
-}
-
-std::string error_of(const Json& scene) {
-  try {
-    parse(scene);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+Scene parse(const Json& scene) { return test::parse_json_scene(scene); }
+std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
 
 TEST(ObstacleScene, SpheresAndPlanesLandInSIUnits) {
   const Scene s = parse(scene_with_obstacles());

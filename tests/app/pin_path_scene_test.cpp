@@ -6,6 +6,7 @@
 
 #include "app/json_reader.h"
 #include "app/scene.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
@@ -19,14 +20,7 @@ Json scene_with_pins(const Json& pins) {
   return j;
 }
 
-std::string error_of(const Json& scene) {
-  try {
-    parse_scene(scene.dump(2), "scene.json");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
 
 TEST(PinPathScene, KeyframesLandInThePinsPath) {
   const Json pins = Json::parse(R"([

@@ -8,6 +8,7 @@
 
 #include "app/json_reader.h"
 #include "app/scene.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
@@ -28,21 +29,8 @@ Json valid_scene() {
   })");
 }
 
-std::string error_of_text(const std::string& text) {
-  try {
-    parse_scene(text, "scene.json");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-std::string error_of(const Json& scene) {
-  return error_of_text(scene.dump(2));
-}
-
-#define EXPECT_CONTAINS(message, part) \
-  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
+std::string error_of_text(const std::string& text) { return test::scene_error_of_text(text); }
+std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
 
 TEST(SceneErrors, TheValidSceneIsValid) {
   EXPECT_EQ(error_of(valid_scene()), "no error");

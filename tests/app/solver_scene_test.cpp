@@ -10,12 +10,10 @@
 #include "app/json_reader.h"
 #include "app/scene.h"
 #include "sim/pins.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
-
-#define EXPECT_CONTAINS(message, part) \
-  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
 
 // A valid scene with every solver key set, to be changed one key at a time.
 Json solver_scene() {
@@ -36,18 +34,8 @@ Json solver_scene() {
   })");
 }
 
-Scene parse(const Json& scene) {
-  return parse_scene(scene.dump(2), "scene.json");
-}
-
-std::string error_of(const Json& scene) {
-  try {
-    parse(scene);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+Scene parse(const Json& scene) { return test::parse_json_scene(scene); }
+std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
 
 TEST(SolverScene, EveryKeyLandsInSimSettings) {
   const sim::SimSettings s = parse(solver_scene()).sim;

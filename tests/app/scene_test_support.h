@@ -1,0 +1,34 @@
+#pragma once
+// Shared by the scene-file tests: parse a JSON scene as "scene.json", or get its error.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+
+#define EXPECT_CONTAINS(message, part) \
+  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
+
+namespace weft::app::test {
+
+inline Scene parse_json_scene(const Json& scene) {
+  return parse_scene(scene.dump(2), "scene.json");
+}
+
+// The SceneError message of the text read as "scene.json", or "no error".
+inline std::string scene_error_of_text(const std::string& text) {
+  try {
+    parse_scene(text, "scene.json");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+inline std::string scene_error_of(const Json& scene) {
+  return scene_error_of_text(scene.dump(2));
+}
+
+}  // namespace weft::app::test
