@@ -113,8 +113,11 @@ int run_scene(const RunOptions& options) {
       simulator->advance(frame * frame_dt - simulator->state().time_s);
     } catch (const sim::DivergenceError& e) {
       progress.finish();
-      std::fprintf(stderr, "weft: error: frame %d: %s\nweft: kept frames 1..%d and stats.csv in %s\n",
-                   frame, e.what(), frame - 1, dir.c_str());
+      std::fprintf(stderr, "weft: error: frame %d: %s\n", frame, e.what());
+      if (frame > 1)
+        std::fprintf(stderr, "weft: kept frames 1..%d and stats.csv in %s\n", frame - 1, dir.c_str());
+      else
+        std::fprintf(stderr, "weft: no frame was finished; stats.csv is in %s\n", dir.c_str());
       return exit_diverged;
     }
     row.sim_ms = ms_since(start);

@@ -155,7 +155,7 @@ void Simulator::add_internal_forces(const Matrix3X& x, Matrix3X& f) const {
 // The unconstrained step. Explicit integrators (sim/integrators/explicit_steppers.h) advance x
 // and v with forces evaluated through add_internal_forces, timed as the "forces" phase (their
 // vector updates are not timed: a few per cent of a step). Implicit Euler: v from one Newton
-// step of backward Euler, then x ← x + h v. Pinned vertices keep v = 0.
+// step of backward Euler, then x ← x + h v. Pinned vertices keep their v (0, or a moving pin's path velocity).
 void Simulator::integrate(double h_s) {
   if (m_explicit) {
     m_explicit->step(m_state.x, m_state.v, h_s);

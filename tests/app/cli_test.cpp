@@ -162,11 +162,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"BadShadingOption", "--shading glossy", tiny_scene(), "--shading: glossy not in {lit,normals}"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
-// A time step far beyond the critical one explodes: the run stops with exit code 3, names
-// the frame, step, time and quantity, and keeps the frames it wrote before.
+// A time step beyond the critical one (1.6×) explodes after some frames (1 ms each here): the
+// run stops with exit code 3, names the frame, step, time and quantity, and keeps the frames it
+// wrote before.
 TEST_F(Cli, DivergingRunStopsAndKeepsItsFrames) {
-  std::string text = tiny_scene("", ",\n  \"simulation\": {\"time_step\": \"4 ms\"}");
+  std::string text = tiny_scene("", ",\n  \"simulation\": {\"time_step\": \"0.4 ms\"}");
   text.replace(text.find("\"frames\": 4"), 11, "\"frames\": 40");
+  text.replace(text.find("\"fps\": 24"), 9, "\"fps\": 1000");
   const fs::path scene = write_scene("explode.json", text);
   const fs::path out = m_dir / "out";
   const Result r = run_weft("run " + scene.string() + " --out " + out.string());
@@ -175,6 +177,16 @@ TEST_F(Cli, DivergingRunStopsAndKeepsItsFrames) {
   EXPECT_NE(r.output.find("(t = "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("vertex"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out / "stats.csv"));
+  // The frames it says it kept are the ones on disk, and no more.
+  const std::size_t kept = r.output.find("kept frames 1..");
+  ASSERT_NE(kept, std::string::npos) << r.output;
+  const int last = std::stoi(r.output.substr(kept + 15));
+  ASSERT_GE(last, 1) << r.output;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.png", last);
+  EXPECT_TRUE(fs::exists(out / name)) << name;
+  std::snprintf(name, sizeof name, "frame_%04d.png", last + 1);
+  EXPECT_FALSE(fs::exists(out / name)) << name;
 }
 
 }  // namespace
