@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
   std::string shading;
   run_cmd->add_option("--shading", shading, "lit, or normals: the normal as colour (overrides render.shading)")
       ->check(CLI::IsMember({"lit", "normals"}));
+  run_cmd->add_flag("--explain", run.explain,
+                    "Print the terms and phases the simulation runs, and each phase's share of its time");
 
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);

@@ -106,6 +106,9 @@ class Simulator {
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
   const PhaseTimers& timers() const { return m_timers; }
+  // One line per phase of a step (integrate, forces, project, collide, pins): which terms and
+  // methods this simulation runs, with their sizes — only what the scene needs is assembled.
+  std::vector<std::string> explain() const;
   StepStatistics take_step_statistics();
 
  private:

@@ -49,6 +49,9 @@ class Cli : public ::testing::Test {
   fs::path m_dir;
 };
 
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
+
 // A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels.
 std::string tiny_scene(const std::string& cloth_extra = "", const std::string& top_extra = "") {
   return R"({
@@ -161,6 +164,34 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"BadFramesOption", "--frames 0", tiny_scene(), "--frames: expected an integer in 1..100000"},
         BadInput{"BadShadingOption", "--shading glossy", tiny_scene(), "--shading: glossy not in {lit,normals}"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
+
+// --explain lists only what the scene needs — the tiny scene has no constraints and no
+// obstacles; with them, the projection and collision phases appear with their sizes — and
+// ends with each phase's share of the time.
+TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
+  const fs::path plain = write_scene("plain.json", tiny_scene());
+  const Result r = run_weft("run " + plain.string() + " --explain --out " + (m_dir / "a").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "integrate: symplectic_euler, h = ");
+  EXPECT_CONTAINS(r.output, "144 warp/weft springs, 128 shear springs");  // 9×9: 2·9·8, 2·8·8
+  EXPECT_CONTAINS(r.output, "project: off (no constraints)");
+  EXPECT_CONTAINS(r.output, "collide: off (no obstacles)");
+  EXPECT_CONTAINS(r.output, "pins: 2 fixed, 0 moving vertices");
+  EXPECT_CONTAINS(r.output, "weft: time per phase: forces ");
+
+  const fs::path rich = write_scene(
+      "rich.json",
+      tiny_scene("", ",\n  \"obstacles\": [{\"plane\": {\"point\": [0, 0, 0], \"normal\": [0, 0, 1]}}],\n"
+                     "  \"simulation\": {\"integrator\": \"implicit_euler\", \"constraints\": "
+                     "{\"method\": \"fast_projection\"}}"));
+  const Result q = run_weft("run " + rich.string() + " --explain --out " + (m_dir / "b").string());
+  EXPECT_EQ(q.exit_code, 0) << q.output;
+  EXPECT_CONTAINS(q.output, "integrate: implicit_euler, h = 8.33333 ms, sparse direct solve");
+  EXPECT_EQ(q.output.find("warp/weft springs"), std::string::npos) << q.output;  // constraints instead
+  EXPECT_CONTAINS(q.output, "project: fast_projection on 144 warp/weft edges");  // the pins share none
+  EXPECT_CONTAINS(q.output, "collide: 1 obstacles");
+  EXPECT_CONTAINS(q.output, "project ");
+}
 
 // A time step beyond the critical one (1.6×) explodes after some frames (1 ms each here): the
 // run stops with exit code 3, names the frame, step, time and quantity, and keeps the frames it

@@ -1,0 +1,74 @@
+// Simulator::explain(): which terms and phases a scene's simulation actually runs.
+#include <sstream>
+
+#include "sim/simulator.h"
+
+namespace weft::sim {
+namespace {
+
+const char* projection_name(ProjectionMethod method) {
+  switch (method) {
+    case ProjectionMethod::none: return "none";
+    case ProjectionMethod::fast_projection: return "fast_projection";
+    case ProjectionMethod::pairwise: return "pairwise";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::vector<std::string> Simulator::explain() const {
+  std::vector<std::string> lines;
+  std::ostringstream line;
+  const auto emit = [&] {
+    lines.push_back(line.str());
+    line.str("");
+  };
+
+  line << "integrate: " << integrator_name(m_settings.integrator) << ", h = " << 1e3 * m_time_step_s
+       << " ms";
+  if (m_implicit) {
+    if (m_settings.implicit_solve == ImplicitSolve::direct)
+      line << ", sparse direct solve (" << sparse_backend_name(m_settings.sparse_backend) << ")";
+    else
+      line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance;
+  }
+  emit();
+
+  long warp_weft = 0, shear = 0;
+  for (const Spring& s : m_model.springs()) (s.kind == SpringKind::shear ? shear : warp_weft) += 1;
+  line << "forces: gravity, air damping " << m_settings.air_damping_1_s << " 1/s, ";
+  if (warp_weft > 0) line << warp_weft << " warp/weft springs, ";
+  line << shear << " shear springs, " << m_model.bends().size() << " bending stencils";
+  if (m_projector && m_settings.projection.carry_tension)
+    line << ", carried constraint tension on " << m_projector->constraints().size() << " edges";
+  emit();
+
+  if (m_projector) {
+    const ProjectionSettings& p = m_settings.projection;
+    line << "project: " << projection_name(p.method) << " on " << m_projector->constraints().size()
+         << (p.edges == ConstrainedEdges::warp_weft ? " warp/weft" : " triangle") << " edges, ";
+    if (p.method == ProjectionMethod::fast_projection)
+      line << "tolerance " << p.tolerance << ", at most " << p.max_iterations << " iterations";
+    else
+      line << p.max_iterations << " sweeps, max stretch " << p.max_stretch;
+  } else {
+    line << "project: off (no constraints)";
+  }
+  emit();
+
+  if (m_settings.obstacles.empty()) {
+    line << "collide: off (no obstacles)";
+  } else {
+    line << "collide: " << m_settings.obstacles.size() << " obstacles, thickness "
+         << 1e3 * m_settings.collision_thickness_m << " mm, friction " << m_settings.collision_friction;
+  }
+  emit();
+
+  line << "pins: " << m_pinned.size() - m_moving_pins.size() << " fixed, " << m_moving_pins.size()
+       << " moving vertices";
+  emit();
+  return lines;
+}
+
+}  // namespace weft::sim
