@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include "tests/sim/test_cloth.h"
 
 #include <cmath>
@@ -82,6 +84,18 @@ struct Cloth {
 };
 
 class ImplicitEulerTest : public testing::TestWithParam<ImplicitSolveSettings> {};
+
+}  // namespace
+
+// How GoogleTest names a parameter in its output (instead of a byte dump).
+void PrintTo(const ImplicitSolveSettings& solve, std::ostream* out) {
+  if (solve.method == ImplicitSolve::direct)
+    *out << "direct " << sparse_backend_name(solve.backend);
+  else
+    *out << "conjugate gradients to " << solve.cg_tolerance;
+}
+
+namespace {
 
 // With no spring stretched, K annihilates the uniform Δv and the system is M(1 + hα) Δv =
 // h M (g − α v): v_{n+1} = (v_n + h g)/(1 + hα) for every vertex. With α = 0, v_n = n h g and
