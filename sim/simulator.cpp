@@ -39,7 +39,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_projector = make_projector(m_mesh, m_inv_mass, settings.projection, settings.sparse_backend);
   if (settings.integrator == Integrator::implicit_euler) {
     std::vector<EdgeConstraint> tension_edges;
-    if (m_projector && settings.projection.carry_tension) tension_edges = m_projector->constraints();
+    if (carries_tension()) tension_edges = m_projector->constraints();
     ImplicitSolveSettings solve;
     solve.method = settings.implicit_solve;
     solve.backend = settings.sparse_backend;
@@ -98,22 +98,27 @@ void Simulator::set_pin_path(const std::vector<Index>& vertices, const PinPath& 
 // Every integrator leaves a pinned vertex's velocity as it is (zero acceleration), so the
 // velocity that reaches the path's position at t + h carries it there; it is then set exactly.
 void Simulator::move_pins(double h_s) {
-  for (const MovingPin& p : m_moving_pins) {
-    const Eigen::RowVector3d target =
-        m_mesh.rest_positions.row(p.vertex) +
-        m_pin_paths[p.path].offset_at(m_state.time_s + h_s).transpose();
-    m_state.v.row(p.vertex) = (target - m_state.x.row(p.vertex)) / h_s;
-  }
+  for (const MovingPin& p : m_moving_pins)
+    m_state.v.row(p.vertex) = (pin_position(p, m_state.time_s + h_s) - m_state.x.row(p.vertex)) / h_s;
+}
+
+Eigen::RowVector3d Simulator::pin_position(const MovingPin& pin, double time_s) const {
+  return m_mesh.rest_positions.row(pin.vertex) + m_pin_paths[pin.path].offset_at(time_s).transpose();
+}
+
+// Fast projection's multipliers give the constraint force to carry (carried_tension.h);
+// pairwise projection has none.
+bool Simulator::carries_tension() const {
+  return m_projector && m_settings.projection.carry_tension &&
+         m_settings.projection.method == ProjectionMethod::fast_projection;
 }
 
 void Simulator::step(double h_s) {
   m_x_start = m_state.x;
   move_pins(h_s);
   integrate(h_s);
-  for (const MovingPin& p : m_moving_pins) {
-    m_state.x.row(p.vertex) = m_mesh.rest_positions.row(p.vertex) +
-                              m_pin_paths[p.path].offset_at(m_state.time_s + h_s).transpose();
-  }
+  for (const MovingPin& p : m_moving_pins)
+    m_state.x.row(p.vertex) = pin_position(p, m_state.time_s + h_s);  // exactly, not x + h v
   // With a projection, push-out and projection alternate (block Gauss–Seidel over contacts and
   // constraints), ending with a projection so that the step meets the tolerance; vertices may
   // end up to the residual of the last push-out inside the collision thickness. A single
@@ -149,13 +154,14 @@ void Simulator::step(double h_s) {
 // are added by the explicit stepper.
 void Simulator::add_internal_forces(const Matrix3X& x, Matrix3X& f) const {
   m_model.add_forces(x, f);
-  if (m_projector) add_tension_forces(m_projector->constraints(), m_tension_k, x, f);
+  if (carries_tension()) add_tension_forces(m_projector->constraints(), m_tension_k, x, f);
 }
 
 // The unconstrained step. Explicit integrators (sim/integrators/explicit_steppers.h) advance x
 // and v with forces evaluated through add_internal_forces, timed as the "forces" phase (their
 // vector updates are not timed: a few per cent of a step). Implicit Euler: v from one Newton
-// step of backward Euler, then x ← x + h v. Pinned vertices keep their v (0, or a moving pin's path velocity).
+// step of backward Euler, then x ← x + h v. Pinned vertices keep their v (0, or the velocity
+// move_pins() gave a moving pin).
 void Simulator::integrate(double h_s) {
   if (m_explicit) {
     m_explicit->step(m_state.x, m_state.v, h_s);
@@ -173,7 +179,7 @@ void Simulator::integrate(double h_s) {
 
 ProjectionResult Simulator::project(double h_s) {
   const ProjectionResult r = m_projector->project(m_state.x);
-  if (m_settings.projection.carry_tension)
+  if (carries_tension())
     accumulate_tension(m_projector->constraints(), m_projector->multipliers(), h_s, m_tension_k);
   return r;
 }

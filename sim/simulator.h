@@ -117,6 +117,7 @@ class Simulator {
   void add_internal_forces(const Matrix3X& x, Matrix3X& f) const;
   void integrate(double h_s);
   void move_pins(double h_s);  // sets moving pins' velocities to reach their path at t + h
+  bool carries_tension() const;
   ProjectionResult project(double h_s);  // one projection; carries its tension
   void record_projection(const ProjectionResult& r);  // a step's projections, summed
   bool collide(bool with_friction);
@@ -133,6 +134,7 @@ class Simulator {
   };
   std::vector<MovingPin> m_moving_pins;
   std::vector<PinPath> m_pin_paths;
+  Eigen::RowVector3d pin_position(const MovingPin& pin, double time_s) const;
   Eigen::VectorXd m_mass_kg;       // #V lumped masses
   Eigen::VectorXd m_inv_mass;      // #V, 0 for pinned vertices
   std::vector<EdgeConstraint> m_warp_weft_edges;  // for the strain diagnostic

@@ -40,7 +40,7 @@ std::vector<std::string> Simulator::explain() const {
   line << "forces: gravity, air damping " << m_settings.air_damping_1_s << " 1/s, ";
   if (warp_weft > 0) line << warp_weft << " warp/weft springs, ";
   line << shear << " shear springs, " << m_model.bends().size() << " bending stencils";
-  if (m_projector && m_settings.projection.carry_tension)
+  if (carries_tension())
     line << ", carried constraint tension on " << m_projector->constraints().size() << " edges";
   emit();
 

@@ -155,6 +155,7 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
   double merit = evaluate(x);
   result.max_strain = max_edge_strain(m_constraints, x);
   Matrix3X best = x;
+  Eigen::VectorXd best_multipliers = m_multipliers;  // the correction that led to `best`
   double best_strain = result.max_strain;
   Matrix3X step(x.rows(), 3);
 
@@ -186,11 +187,13 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
     if (result.max_strain < best_strain) {
       best_strain = result.max_strain;
       best = x;
+      best_multipliers = m_multipliers;
     }
   }
   result.converged = result.max_strain <= m_settings.tolerance;
   if (!result.converged && best_strain < result.max_strain) {
     x = best;
+    m_multipliers = best_multipliers;  // multipliers() must describe the x returned
     result.max_strain = best_strain;
   }
   return result;

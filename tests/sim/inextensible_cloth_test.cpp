@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -185,6 +186,27 @@ TEST(InextensibleCloth, LiftedPinsCarryTheSheetUpByTheirOffset) {
   EXPECT_NEAR(shift.y(), 0.0, 1e-3);
   EXPECT_LE(lifted.diagnostics().max_strain, h.tolerance);
   EXPECT_THROW(lifted.set_pin_path({0}, up), std::invalid_argument);  // vertex 0 is not pinned
+}
+
+// Only fast projection has multipliers, so only it carries its constraint force into the next
+// step (carried_tension.h); pairwise projection runs without, and says so.
+TEST(InextensibleCloth, OnlyFastProjectionCarriesTension) {
+  const auto explains_carried_tension = [](ProjectionMethod method) {
+    Hang h;
+    h.n = 8;
+    const ClothMesh mesh = hang_mesh(h);
+    SimSettings s;
+    s.integrator = Integrator::implicit_euler;
+    s.projection.method = method;
+    Simulator sim(mesh, Material{}, resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), s);
+    sim.advance(0.1);
+    for (const std::string& line : sim.explain())
+      if (line.find("carried constraint tension") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(explains_carried_tension(ProjectionMethod::fast_projection));
+  EXPECT_FALSE(explains_carried_tension(ProjectionMethod::pairwise));
+  EXPECT_FALSE(explains_carried_tension(ProjectionMethod::none));
 }
 
 // Locking (seed 000 §3): constraining every edge of a triangle mesh leaves almost no degrees of
