@@ -70,12 +70,14 @@ sim::PinPath read_pin_path(ObjectReader& pin) {
     sim::PinKeyframe frame;
     frame.time_s = f.quantity("time", Quantity::time, required);
     frame.offset_m = f.quantity_vec3("offset", Quantity::length, required);
-    if (k > 0 && !(frame.time_s > keyframes.back().time_s))
-      f.fail("time", "expected a time after the previous keyframe's, keyframes in order");
     f.finish();
     keyframes.push_back(frame);
   }
-  return sim::PinPath(std::move(keyframes));
+  try {
+    return sim::PinPath(std::move(keyframes));  // checks the order of the times
+  } catch (const std::invalid_argument& e) {
+    pin.fail("path", e.what());
+  }
 }
 
 // One pin object: exactly one of "corner", "vertex", "grid", "region", and an optional "path".

@@ -44,8 +44,7 @@ TEST(PinPathScene, MistakesNameTheKeyframe) {
   pins = Json::parse(R"([{"corner": "u0v1", "path": [{"time": "1 s", "offset": [0, 0, 0]},
                                                       {"time": "1 s", "offset": [0, 0, 1]}]}])");
   EXPECT_EQ(error_of(scene_with_pins(pins)),
-            "scene.json: cloth.pins[0].path[1].time: expected a time after the previous "
-            "keyframe's, keyframes in order");
+            "scene.json: cloth.pins[0].path: keyframe 1: time 1 s is not after keyframe 0's 1 s");
   pins = Json::parse(R"([{"corner": "u0v1", "path": [{"time": "1 s"}]}])");
   EXPECT_NE(error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].offset"), std::string::npos)
       << error_of(scene_with_pins(pins));
