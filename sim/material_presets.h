@@ -1,6 +1,7 @@
 #pragma once
 // Named fabrics: a name → Material lookup for scene files ("cloth.material.preset") and tests.
-// Each preset says where its numbers come from; docs/scene.md lists them with their sources.
+// Each preset says where its numbers come from, and which of them are not from that source;
+// docs/scene.md lists them with their sources.
 
 #include <string>
 #include <vector>
@@ -12,7 +13,10 @@ namespace weft::sim {
 struct MaterialPreset {
   std::string name;    // e.g. "wool_kang_yu"
   Material material;   // SI units
-  std::string source;  // where the numbers come from; "representative" when not a measurement
+  std::string source;  // the publication (and table) the numbers come from
+  // The Material fields that are NOT from `source` but representative values chosen by weft
+  // (e.g. "bend_warp, bend_weft"); empty when every field is published. `source` says why.
+  std::string representative_fields;
 };
 
 // All presets, in a fixed order (the first is sim::Material's default).

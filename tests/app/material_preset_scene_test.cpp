@@ -59,9 +59,9 @@ TEST(MaterialPresetScene, AGivenKeyOverridesThatValueOnly) {
   expect_same(m, expected);
   // Wherever the key stands in the object.
   const sim::Material light =
-      material_of({{"density", "0.03 gf/cm^2"}, {"preset", "silk_habotai"}});
+      material_of({{"density", "0.03 gf/cm^2"}, {"preset", "silk_mulberry"}});
   EXPECT_NEAR(light.density_kg_m2, 0.3, 1e-12);
-  sim::Material silk = sim::material_preset("silk_habotai").material;
+  sim::Material silk = sim::material_preset("silk_mulberry").material;
   silk.density_kg_m2 = light.density_kg_m2;
   expect_same(light, silk);
 }

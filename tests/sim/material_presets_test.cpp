@@ -1,9 +1,12 @@
-// Material presets: the lookup, its error, Kang & Yu's wool as sim::Material's default, and every
-// preset usable by the mass-spring model.
+// Material presets: the lookup, its error, Kang & Yu's wool as sim::Material's default, each
+// preset's numbers against the published figures in their own units, and every preset usable by
+// the mass-spring model.
 #include "sim/material_presets.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -29,6 +32,86 @@ TEST(MaterialPresets, KangYuWoolIsTheDefaultMaterialInSIUnits) {
   EXPECT_NEAR(wool.shear_N_m, 40.99, 0.01);
   EXPECT_NEAR(wool.bend_warp_Nm, 8.1395e-6, 1e-10);
   EXPECT_NEAR(wool.bend_weft_Nm, 6.1782e-6, 1e-10);
+}
+
+// Luible (2008), Annex G, typed from the transcription cited in sim/material_presets.cpp, in its
+// units: weight g/m², tensile rigidity warp and weft N/m, shear rigidity N/m (per unit shear
+// strain). The presets must give these back after their conversion to SI.
+struct AnnexGFabric {
+  const char* preset;
+  const char* fabric;  // Luible's fabric number, as the source string must name it
+  double weight_g_m2, tensile_warp_N_m, tensile_weft_N_m, shear_N_m;
+};
+constexpr AnnexGFabric annex_g[] = {
+    {"cotton_shirting", "fabric 02", 120.0, 2000.0, 3000.0, 20.0},
+    {"silk_mulberry", "fabric 07", 15.0, 6000.0, 4500.0, 10.0},
+    {"denim", "fabric 01", 380.0, 1800.0, 3000.0, 102.0},
+};
+
+TEST(MaterialPresets, LuibleFabricsGiveBackAnnexGInItsUnits) {
+  for (const AnnexGFabric& f : annex_g) {
+    SCOPED_TRACE(f.preset);
+    const MaterialPreset& p = material_preset(f.preset);
+    EXPECT_NEAR(p.material.density_kg_m2 * 1e3, f.weight_g_m2, 1e-9 * f.weight_g_m2);
+    EXPECT_NEAR(p.material.stretch_warp_N_m, f.tensile_warp_N_m, 1e-9 * f.tensile_warp_N_m);
+    EXPECT_NEAR(p.material.stretch_weft_N_m, f.tensile_weft_N_m, 1e-9 * f.tensile_weft_N_m);
+    EXPECT_NEAR(p.material.shear_N_m, f.shear_N_m, 1e-9 * f.shear_N_m);
+    EXPECT_NE(p.source.find("Luible 2008"), std::string::npos) << p.source;
+    EXPECT_NE(p.source.find("Annex G"), std::string::npos) << p.source;
+    EXPECT_NE(p.source.find(f.fabric), std::string::npos) << p.source;
+  }
+}
+
+// Peirce's cantilever bending length c = (B/W)^{1/3}, in cm for B in gf·cm and W in gf/cm², with
+// standard gravity g0 = 9.80665 m/s² (1 gf·cm = 9.80665e-5 N·m; 1 gf/cm² weighs 1 g/cm² = 10 kg/m²).
+double bending_length_cm(double bend_Nm, double density_kg_m2) {
+  return std::cbrt((bend_Nm / 9.80665e-5) / (density_kg_m2 / 10.0));
+}
+
+// The Luible presets' bending rigidities are no measurement (none was found): each preset says so,
+// and they are B = W c³ for the stated representative bending lengths.
+TEST(MaterialPresets, RepresentativeBendingIsFlaggedAndHasTheStatedBendingLength) {
+  struct Lengths {
+    const char* preset;
+    double warp_cm, weft_cm;
+  };
+  for (const Lengths& l : {Lengths{"cotton_shirting", 1.8, 1.6}, Lengths{"silk_mulberry", 1.25, 1.2},
+                           Lengths{"denim", 3.35, 2.8}}) {
+    SCOPED_TRACE(l.preset);
+    const MaterialPreset& p = material_preset(l.preset);
+    EXPECT_EQ(p.representative_fields, "bend_warp, bend_weft");
+    EXPECT_NE(p.source.find("representative"), std::string::npos) << p.source;
+    EXPECT_NEAR(bending_length_cm(p.material.bend_warp_Nm, p.material.density_kg_m2), l.warp_cm,
+                1e-9);
+    EXPECT_NEAR(bending_length_cm(p.material.bend_weft_Nm, p.material.density_kg_m2), l.weft_cm,
+                1e-9);
+  }
+  // Kang & Yu's wool is measured throughout; its bending length is the one cantilever_test uses.
+  const MaterialPreset& wool = material_preset("wool_kang_yu");
+  EXPECT_TRUE(wool.representative_fields.empty());
+  EXPECT_NEAR(bending_length_cm(wool.material.bend_warp_Nm, wool.material.density_kg_m2), 1.635,
+              1e-3);
+}
+
+// Physical sanity of the data: the light silk is lighter and shears more easily than the
+// shirting, which is lighter and shears more easily than the denim (Annex G); the representative
+// bending rigidities keep the same order. Woven cloth resists stretch far more than shear.
+TEST(MaterialPresets, SilkCottonDenimAreOrderedByWeightShearAndBending) {
+  const Material& silk = material_preset("silk_mulberry").material;
+  const Material& cotton = material_preset("cotton_shirting").material;
+  const Material& denim = material_preset("denim").material;
+  EXPECT_LT(silk.density_kg_m2, cotton.density_kg_m2);
+  EXPECT_LT(cotton.density_kg_m2, denim.density_kg_m2);
+  EXPECT_LT(silk.shear_N_m, cotton.shear_N_m);
+  EXPECT_LT(cotton.shear_N_m, denim.shear_N_m);
+  for (auto bend : {&Material::bend_warp_Nm, &Material::bend_weft_Nm}) {
+    EXPECT_LT(silk.*bend, cotton.*bend);
+    EXPECT_LT(cotton.*bend, denim.*bend);
+  }
+  for (const MaterialPreset& p : material_presets()) {
+    const Material& m = p.material;
+    EXPECT_GT(std::min(m.stretch_warp_N_m, m.stretch_weft_N_m), 10.0 * m.shear_N_m) << p.name;
+  }
 }
 
 TEST(MaterialPresets, NamesAreUniqueAndEachPresetStatesItsSource) {
