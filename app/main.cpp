@@ -4,6 +4,8 @@
 
 #include "app/run_command.h"
 #include "app/scene.h"
+#include "app/stability_command.h"
+#include "app/sweep_command.h"
 #include "app/version.h"
 
 namespace {
@@ -38,6 +40,41 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--explain", run.explain,
                     "Print the terms and phases the simulation runs, and each phase's share of its time");
 
+  StabilityOptions stability;
+  stability.command_line = run.command_line;
+  std::string stability_out;
+  std::vector<std::string> stability_integrators;
+  CLI::App* stability_cmd = app.add_subcommand(
+      "stability", "Sweep time step x stiffness for each integrator; write stability.png/.csv");
+  stability_cmd->add_option("--out", stability_out, "Output folder (default: out/stability)");
+  stability_cmd->add_option("--size", stability.size, "Vertices per side of the 1 m cloth (default 12)");
+  stability_cmd->add_option("--integrators", stability_integrators, "Comma-separated integrators (default: all)")
+      ->delimiter(',');
+  stability_cmd->add_option("--stiffness-scales", stability.stiffness_scales,
+                            "Comma-separated factors on every rigidity (default 0.1,0.3,1,3,10,30,100)")
+      ->delimiter(',');
+  stability_cmd->add_option("--steps-per-row", stability.steps_per_row,
+                            "Time steps h per heatmap row, log spaced (default 24)");
+
+  SweepOptions sweep;
+  sweep.command_line = run.command_line;
+  std::string sweep_scene, sweep_out;
+  int sweep_frames = 0, sweep_reference = 0;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep", "Run a scene over a grid of settings; write sweep.csv and sweep.png (error vs wall time)");
+  sweep_cmd->add_option("scene", sweep_scene, "Scene file; the built-in default scene if omitted");
+  sweep_cmd->add_option("--set", sweep.set,
+                        "KEY=V1,V2,...: scene key (dotted path, e.g. cloth.resolution) and the values to "
+                        "try (JSON, or plain text such as 1 ms); repeat for a grid of every combination")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sweep_cmd->add_option("--out", sweep_out, "Output folder (default: out/sweep-<scene name>)");
+  sweep_cmd->add_option("--frames", sweep_frames, "Frames to simulate in every run (overrides output.frames)");
+  sweep_cmd->add_option("--reference", sweep_reference,
+                        "Run number (row of sweep.csv) the errors are measured against (default: the "
+                        "finished run with the largest wall time, taken as the most accurate)");
+
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);
     return exit_bad_input;
@@ -58,6 +95,19 @@ int main(int argc, char** argv) {
       if (!size.empty()) run.size = size;
       if (!shading.empty()) run.normals_shading = shading == "normals";
       return run_scene(run);
+    }
+    if (sweep_cmd->parsed()) {
+      if (!sweep_scene.empty()) sweep.scene = sweep_scene;
+      if (!sweep_out.empty()) sweep.out = sweep_out;
+      if (sweep_cmd->count("--frames")) sweep.frames = sweep_frames;
+      if (sweep_cmd->count("--reference")) sweep.reference = sweep_reference;
+      return run_sweep(sweep);
+    }
+    if (stability_cmd->parsed()) {
+      if (!stability_out.empty()) stability.out = stability_out;
+      if (stability_cmd->count("--integrators"))
+        stability.integrators = parse_integrator_list(stability_integrators, "--integrators");
+      return run_stability(stability);
     }
   } catch (const SceneError& e) {
     std::fprintf(stderr, "weft: error: %s\n", e.what());

@@ -1,0 +1,50 @@
+#pragma once
+// `--set KEY=V1,V2,…`: a scene key (a dotted path such as "cloth.resolution" or
+// "simulation.time_step") and the values to try for it, and a scene with one value patched in.
+// The patched scene goes through parse_scene(), so every check and message of the scene format
+// applies; an error then names the --set option as well as the key.
+
+#include <string>
+#include <vector>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+
+namespace weft::app {
+
+struct SettingValues {
+  std::string key;                  // dotted key path, e.g. "simulation.constraints.tolerance"
+  std::vector<std::string> values;  // as typed, e.g. {"[8,8]", "[12,12]"} or {"1 ms", "auto"}
+};
+
+// Parses "KEY=V1,V2,…". Values are split at commas outside brackets, braces and double quotes
+// ("cloth.resolution=[8,8],[12,12]" has two values). Throws SceneError naming "--set".
+SettingValues parse_set_option(const std::string& text);
+
+// A value as JSON: the value itself when it parses as JSON (numbers, arrays, objects, true,
+// "quoted strings"), else the text as a JSON string (so 1 ms or auto need no quotes).
+Json setting_json(const std::string& value);
+
+// One choice of a value for each key.
+struct Setting {
+  std::string key;
+  std::string value;
+};
+
+// `document` with each setting written at its dotted key path; missing objects on the way are
+// created. Throws SceneError naming the --set option when a part of the path is not an object.
+Json patch_document(Json document, const std::vector<Setting>& settings);
+
+// The scene `base` (its text, source and name) with the settings applied, re-read through
+// parse_scene(). An invalid key or value throws SceneError reading
+// "--set KEY=VALUE: FILE: KEY: what was expected …".
+Scene patched_scene(const Scene& base, const std::vector<Setting>& settings);
+
+// Every combination of one value per option (the Cartesian product), the last option varying
+// fastest. Throws SceneError when a key is given twice.
+std::vector<std::vector<Setting>> setting_grid(const std::vector<SettingValues>& options);
+
+// "key=value key2=value2", for labels and progress lines.
+std::string describe(const std::vector<Setting>& settings);
+
+}  // namespace weft::app

@@ -1,0 +1,299 @@
+// weft sweep: simulate each combination of --set values, compare each final frame with the
+// reference run's (app/sweep_metrics.h) and report the speed/accuracy trade.
+
+#include "app/sweep_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include "app/run_command.h"
+#include "app/scene.h"
+#include "app/scene_patch.h"
+#include "app/sweep_metrics.h"
+#include "app/sweep_plot.h"
+#include "app/version.h"
+#include "render/image.h"
+#include "sim/pins.h"
+#include "sim/simulator.h"
+
+namespace weft::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Silhouette masks are kSilhouetteCells × kSilhouetteCells cells over the pair's joint window.
+constexpr int kSilhouetteCells = 256;
+
+struct SweepRun {
+  std::vector<Setting> settings;
+  Scene scene;
+  // Results.
+  double wall_s = 0.0;         // simulation (advance) wall time, set-up excluded
+  long steps = 0;
+  double time_step_s = 0.0;    // the step the simulator used
+  bool diverged = false;
+  std::string failure;         // the divergence message
+  sim::ClothMesh mesh;         // its rest shape and material coordinates
+  sim::Matrix3X x;             // #V×3 positions at the last frame, metres
+  double max_strain = 0.0;     // largest warp/weft strain at any frame end
+  // Errors against the reference.
+  double rms_error_m = 0.0;
+  double silhouette_difference = 0.0;
+  bool pareto = false;
+};
+
+// The simulator `weft run` would build for the scene (pins resolved, pin paths set).
+std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
+  sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
+  try {
+    auto simulator = std::make_unique<sim::Simulator>(std::move(mesh), scene.material,
+                                                      std::move(pinned), scene.sim);
+    for (std::size_t k = 0; k < scene.pin_paths.size(); ++k) {
+      if (scene.pin_paths[k].moves())
+        simulator->set_pin_path(sim::resolve_pins({scene.pins[k]}, simulator->mesh()),
+                                scene.pin_paths[k]);
+    }
+    return simulator;
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.source + ": cloth.material: " + e.what());
+  }
+}
+
+// Simulates to the scene's last frame, frame by frame as `weft run` does; timing only advance().
+void simulate(SweepRun& run) {
+  const std::unique_ptr<sim::Simulator> owner = make_simulator(run.scene);
+  sim::Simulator& simulator = *owner;
+  run.time_step_s = simulator.time_step();
+  const double frame_dt_s = 1.0 / run.scene.fps;
+  std::chrono::steady_clock::duration busy{};
+  for (int frame = 1; frame <= run.scene.frames && !run.diverged; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      simulator.advance(frame * frame_dt_s - simulator.state().time_s);
+    } catch (const sim::DivergenceError& e) {
+      run.diverged = true;
+      run.failure = e.what();
+    }
+    busy += std::chrono::steady_clock::now() - start;
+    if (!run.diverged) run.max_strain = std::max(run.max_strain, simulator.diagnostics().max_strain);
+  }
+  run.wall_s = std::chrono::duration<double>(busy).count();
+  run.steps = simulator.steps_taken();
+  run.mesh = simulator.mesh();
+  run.x = simulator.state().x;
+}
+
+void compare_with_reference(std::vector<SweepRun>& runs, std::size_t reference) {
+  const SweepRun& ref = runs[reference];
+  const render::Camera& camera = ref.scene.render.camera;
+  const OrthoView view = ortho_view(camera.target - camera.eye, camera.up);
+  const auto ref_triangles = ref.mesh.triangles();
+  for (SweepRun& run : runs) {
+    if (run.diverged) continue;
+    run.rms_error_m = rms_distance_m(ref.mesh, ref.x, run.mesh, run.x);
+    const Window window = joint_window(view, ref.x, run.x);
+    run.silhouette_difference =
+        silhouette_difference(silhouette(ref_triangles, ref.x, view, window, kSilhouetteCells),
+                              silhouette(run.mesh.triangles(), run.x, view, window, kSilhouetteCells));
+  }
+  std::vector<double> time_s, error_m;
+  std::vector<bool> finished;
+  for (const SweepRun& run : runs) {
+    time_s.push_back(run.wall_s);
+    error_m.push_back(run.rms_error_m);
+    finished.push_back(!run.diverged);
+  }
+  const std::vector<bool> optimal = pareto_optimal(time_s, error_m, finished);
+  for (std::size_t k = 0; k < runs.size(); ++k) runs[k].pareto = optimal[k];
+}
+
+// The finished run with the largest wall time, or the user's choice (1-based).
+std::size_t choose_reference(const std::vector<SweepRun>& runs, std::optional<int> chosen) {
+  if (chosen) {
+    const SweepRun& run = runs[static_cast<std::size_t>(*chosen - 1)];
+    if (run.diverged)
+      throw SceneError("--reference " + std::to_string(*chosen) + ": that run diverged (" +
+                       run.failure + "); choose a run that finished");
+    return static_cast<std::size_t>(*chosen - 1);
+  }
+  std::size_t best = runs.size();
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (!runs[k].diverged && (best == runs.size() || runs[k].wall_s > runs[best].wall_s)) best = k;
+  }
+  return best;
+}
+
+// A key's name in labels: its last part ("resolution") when no other key ends the same way.
+std::vector<std::string> short_keys(const std::vector<SettingValues>& options) {
+  std::vector<std::string> names;
+  for (const SettingValues& o : options) names.push_back(o.key.substr(o.key.rfind('.') + 1));
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (std::count(names.begin(), names.end(), names[k]) > 1) names[k] = options[k].key;
+  }
+  return names;
+}
+
+std::string label(const SweepRun& run, const std::vector<std::string>& keys) {
+  std::string text;
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    text += (k ? " " : "") + keys[k] + "=" + run.settings[k].value;
+  return text;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string number(const char* format, double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+void write_csv(const fs::path& path, const std::vector<SettingValues>& options,
+               const std::vector<SweepRun>& runs, std::size_t reference) {
+  std::ofstream out(path);
+  out << "run";
+  for (const SettingValues& o : options) out << "," << csv_field(o.key);
+  out << ",wall_time_s,steps,time_step_s,rms_error_m,max_strain,silhouette_difference,diverged,"
+         "pareto,reference\n";
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const SweepRun& r = runs[k];
+    out << k + 1;
+    for (const Setting& s : r.settings) out << "," << csv_field(s.value);
+    out << "," << number("%.6g", r.wall_s) << "," << r.steps << "," << number("%.6g", r.time_step_s);
+    if (r.diverged) {
+      out << ",,,";  // no errors for a run without a last frame
+    } else {
+      out << "," << number("%.6g", r.rms_error_m) << "," << number("%.6g", r.max_strain) << ","
+          << number("%.6g", r.silhouette_difference);
+    }
+    out << "," << r.diverged << "," << r.pareto << "," << (k == reference) << "\n";
+  }
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+// The table on stdout, columns padded to their widest cell.
+void print_table(const std::vector<SettingValues>& options, const std::vector<SweepRun>& runs,
+                 std::size_t reference) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> header{"run"};
+  for (const SettingValues& o : options) header.push_back(o.key);
+  for (const char* h : {"wall s", "steps", "rms error m", "max strain", "silhouette", "note"})
+    header.push_back(h);
+  rows.push_back(header);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const SweepRun& r = runs[k];
+    std::vector<std::string> row{std::to_string(k + 1)};
+    for (const Setting& s : r.settings) row.push_back(s.value);
+    row.push_back(number("%.3g", r.wall_s));
+    row.push_back(std::to_string(r.steps));
+    row.push_back(r.diverged ? "-" : number("%.3g", r.rms_error_m));
+    row.push_back(r.diverged ? "-" : number("%.3g %%", 100.0 * r.max_strain));
+    row.push_back(r.diverged ? "-" : number("%.3f", r.silhouette_difference));
+    row.push_back(r.diverged ? "diverged" : k == reference ? "reference, Pareto" : r.pareto ? "Pareto" : "");
+    rows.push_back(row);
+  }
+  std::vector<std::size_t> width(header.size(), 0);
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c)
+      line += row[c] + std::string(c + 1 < row.size() ? width[c] - row[c].size() + 2 : 0, ' ');
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    std::printf("%s\n", line.c_str());
+  }
+}
+
+}  // namespace
+
+int run_sweep(const SweepOptions& options) {
+  const Scene base = options.scene ? load_scene(*options.scene) : default_scene();
+  if (options.set.empty())
+    throw SceneError("--set: expected at least one KEY=V1,V2,... to sweep over");
+  std::vector<SettingValues> values;
+  for (const std::string& text : options.set) values.push_back(parse_set_option(text));
+  if (options.frames && (*options.frames < 1 || *options.frames > 100000))
+    throw SceneError("--frames: expected an integer in 1..100000, got " + std::to_string(*options.frames));
+
+  // Every combination is read (and so checked) before any is simulated.
+  std::vector<SweepRun> runs;
+  for (std::vector<Setting>& settings : setting_grid(values)) {
+    SweepRun run;
+    run.scene = patched_scene(base, settings);
+    if (options.frames) run.scene.frames = *options.frames;
+    run.settings = std::move(settings);
+    runs.push_back(std::move(run));
+  }
+  if (options.reference && (*options.reference < 1 || *options.reference > static_cast<int>(runs.size())))
+    throw SceneError("--reference: expected a run number in 1.." + std::to_string(runs.size()) +
+                     ", got " + std::to_string(*options.reference));
+
+  const std::vector<std::string> keys = short_keys(values);
+  std::fprintf(stderr, "weft sweep: %s, %zu runs of %d frames each\n", base.source.c_str(),
+               runs.size(), runs.front().scene.frames);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    SweepRun& run = runs[k];
+    simulate(run);
+    std::fprintf(stderr, "weft sweep: run %zu/%zu %s: %.3g s, %ld steps of %.3g ms%s%s\n", k + 1,
+                 runs.size(), label(run, keys).c_str(), run.wall_s,
+                 run.steps, 1e3 * run.time_step_s, run.diverged ? ", diverged: " : "",
+                 run.failure.c_str());
+  }
+
+  const std::size_t reference = choose_reference(runs, options.reference);
+  if (reference < runs.size()) compare_with_reference(runs, reference);
+
+  const fs::path dir = options.out.value_or(fs::path("out") / ("sweep-" + base.name));
+  fs::create_directories(dir);
+  write_csv(dir / "sweep.csv", values, runs, reference);
+  std::vector<PlotRun> plot_runs;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const SweepRun& r = runs[k];
+    plot_runs.push_back({r.wall_s, r.rms_error_m, label(r, keys), r.pareto, k == reference, r.diverged});
+  }
+  render::write_png(sweep_plot(plot_runs, "weft sweep: " + base.name + ", error vs time"),
+                    dir / "sweep.png");
+  {
+    std::ofstream scene_copy(dir / "scene.json");
+    scene_copy << base.text;
+    std::ofstream run_txt(dir / "run.txt");
+    run_txt << "weft " << version() << "\ncommand: " << options.command_line
+            << "\nscene: " << base.source << "\n";
+    if (!scene_copy || !run_txt) throw std::runtime_error(dir.string() + ": cannot write");
+  }
+
+  print_table(values, runs, reference);
+  if (reference == runs.size()) {
+    std::printf("weft sweep: every run diverged; nothing to compare (see %s)\n",
+                (dir / "sweep.csv").c_str());
+    return exit_diverged;
+  }
+  std::printf("weft sweep: errors against run %zu (%s), %s\n", reference + 1,
+              label(runs[reference], keys).c_str(),
+              options.reference ? "chosen with --reference" : "the slowest run that finished");
+  std::printf("weft sweep: Pareto-optimal settings, fastest first:\n");
+  std::vector<std::size_t> front;
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (runs[k].pareto) front.push_back(k);
+  std::sort(front.begin(), front.end(),
+            [&](std::size_t a, std::size_t b) { return runs[a].wall_s < runs[b].wall_s; });
+  for (std::size_t k : front) {
+    std::printf("  run %zu: %s (%.3g s, RMS error %.3g m)\n", k + 1, describe(runs[k].settings).c_str(),
+                runs[k].wall_s, runs[k].rms_error_m);
+  }
+  std::printf("weft sweep: wrote %s and %s\n", (dir / "sweep.csv").c_str(), (dir / "sweep.png").c_str());
+  return exit_ok;
+}
+
+}  // namespace weft::app

@@ -1,0 +1,29 @@
+#pragma once
+// `weft sweep`: runs a scene over a grid of settings and measures the speed/accuracy trade —
+// wall time against the error from the most accurate run — as sweep.csv, sweep.png and a table
+// with the Pareto-optimal settings.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace weft::app {
+
+struct SweepOptions {
+  std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
+  std::vector<std::string> set;                // each "KEY=V1,V2,…" (app/scene_patch.h)
+  std::optional<std::filesystem::path> out;    // default: out/sweep-<scene name>
+  std::optional<int> frames;                   // overrides output.frames in every run
+  // 1-based row of the run the others are compared with; default: the finished run with the
+  // largest wall time (taken as the most accurate).
+  std::optional<int> reference;
+  std::string command_line;                    // recorded in run.txt
+};
+
+// Runs the sweep; returns an ExitCode (app/run_command.h): exit_ok, or exit_diverged when no
+// run finished. Bad input (a --set key or value, --frames, --reference) throws SceneError
+// before anything is simulated or written.
+int run_sweep(const SweepOptions& options);
+
+}  // namespace weft::app
