@@ -52,9 +52,11 @@ sim::Material read_material(ObjectReader r) {
       r.quantity("stretch_warp", Quantity::force_per_length, m.stretch_warp_N_m, positive);
   m.stretch_weft_N_m =
       r.quantity("stretch_weft", Quantity::force_per_length, m.stretch_weft_N_m, positive);
-  m.shear_N_m = r.quantity("shear", Quantity::force_per_length, m.shear_N_m, positive);
-  m.bend_warp_Nm = r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, positive);
-  m.bend_weft_Nm = r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, positive);
+  // Zero shear or bending rigidity is allowed: the term is then not built at all.
+  const Range non_negative = Range::ge(0.0);
+  m.shear_N_m = r.quantity("shear", Quantity::force_per_length, m.shear_N_m, non_negative);
+  m.bend_warp_Nm = r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, non_negative);
+  m.bend_weft_Nm = r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, non_negative);
   r.finish();
   return m;
 }
@@ -249,8 +251,9 @@ sim::SparseBackend read_linear_solver(ObjectReader& r, sim::SparseBackend fallba
 
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s) {
-  enum class Model { mass_spring };
-  (void)r.enumeration<Model>("model", {{"mass_spring", Model::mass_spring}}, Model::mass_spring);
+  std::vector<std::pair<std::string, sim::ClothModel>> models;
+  for (sim::ClothModel m : sim::all_cloth_models) models.emplace_back(sim::cloth_model_name(m), m);
+  s.model = r.enumeration<sim::ClothModel>("model", models, s.model);
   std::vector<std::pair<std::string, sim::Integrator>> integrators;
   for (sim::Integrator i : sim::all_integrators)
     integrators.emplace_back(sim::integrator_name(i), i);

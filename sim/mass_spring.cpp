@@ -50,19 +50,25 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
 
   const double d = std::hypot(hu, hv);
   const double k_shear = G * d * d / (2.0 * hu * hv);
-  for (const auto& q : mesh.quads) {
-    m_springs.push_back({q[0], q[2], d, k_shear, SpringKind::shear});
-    m_springs.push_back({q[1], q[3], d, k_shear, SpringKind::shear});
+  if (k_shear > 0.0) {
+    for (const auto& q : mesh.quads) {
+      m_springs.push_back({q[0], q[2], d, k_shear, SpringKind::shear});
+      m_springs.push_back({q[1], q[3], d, k_shear, SpringKind::shear});
+    }
   }
 
-  for (Index j = 0; j < nv; ++j)
-    for (Index i = 1; i + 1 < nu; ++i)
-      m_bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
-                         m.bend_warp_Nm * tributary_width(j, nv, hv) / hu, hu});
-  for (Index j = 1; j + 1 < nv; ++j)
-    for (Index i = 0; i < nu; ++i)
-      m_bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
-                         m.bend_weft_Nm * tributary_width(i, nu, hu) / hv, hv});
+  if (m.bend_warp_Nm > 0.0) {
+    for (Index j = 0; j < nv; ++j)
+      for (Index i = 1; i + 1 < nu; ++i)
+        m_bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
+                           m.bend_warp_Nm * tributary_width(j, nv, hv) / hu, hu});
+  }
+  if (m.bend_weft_Nm > 0.0) {
+    for (Index j = 1; j + 1 < nv; ++j)
+      for (Index i = 0; i < nu; ++i)
+        m_bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
+                           m.bend_weft_Nm * tributary_width(i, nu, hu) / hv, hv});
+  }
   // Rest angles from the rest shape (zero for a flat grid, kept general).
   for (auto& b : m_bends) {
     const Vec3 x0 = row(mesh.rest_positions, b.v0), x1 = row(mesh.rest_positions, b.v1);

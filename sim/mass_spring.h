@@ -39,7 +39,10 @@ class MassSpringModel {
   // Without structural springs (structural_springs = false) the warp and weft edges are left
   // to an inextensibility constraint solver (seed 000: constraints on warp/weft, soft shear
   // springs, bending).
+  // Springs or stencils whose stiffness would be zero (zero shear or bending rigidity) are left
+  // out. The default-constructed model is empty (a continuum model's, sim/cloth_model.h).
   MassSpringModel(const ClothMesh& mesh, const Material& material, bool structural_springs = true);
+  MassSpringModel() = default;
 
   // f += −∇E(x), forces in N.
   void add_forces(const Matrix3X& x, Matrix3X& f) const;

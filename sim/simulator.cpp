@@ -28,7 +28,12 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
                      const SimSettings& settings)
     : m_mesh(std::move(mesh)),
       m_settings(settings),
-      m_model(m_mesh, material, settings.projection.method == ProjectionMethod::none),
+      m_model(settings.model == ClothModel::mass_spring
+                  ? MassSpringModel(m_mesh, material,
+                                    settings.projection.method == ProjectionMethod::none)
+                  : MassSpringModel()),
+      m_terms(make_force_terms(m_mesh, material, settings.model,
+                               settings.projection.method == ProjectionMethod::none)),
       m_pinned(std::move(pinned)) {
   const Index n = m_mesh.vertex_count();
   m_mass_kg = material.density_kg_m2 * m_mesh.vertex_area_m2;
@@ -45,7 +50,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
     solve.backend = settings.sparse_backend;
     solve.cg_tolerance = settings.implicit_cg_tolerance;
     m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass, solve,
-                                                 std::move(tension_edges));
+                                                 std::move(tension_edges), m_terms);
   } else {
     ExplicitSystem system;
     system.internal_forces = [this](const Matrix3X& x, Matrix3X& f) {
@@ -63,7 +68,8 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   // Symplectic Euler, velocity Verlet and central difference are stable for h < 2/ω_max (RK4
   // for h < 2√2/ω_max, explicit Euler never without damping); ω_max² ≤ max_i bound_i / m_i
   // (Gershgorin).
-  const Eigen::VectorXd bound = m_model.stiffness_row_bound(n);
+  Eigen::VectorXd bound = m_model.stiffness_row_bound(n);
+  for (const auto& term : m_terms) term->add_stiffness_row_bound(bound);
   double omega2 = 0.0;
   for (Index i = 0; i < n; ++i)
     if (m_inv_mass[i] > 0.0) omega2 = std::max(omega2, bound[i] * m_inv_mass[i]);
@@ -154,6 +160,7 @@ void Simulator::step(double h_s) {
 // are added by the explicit stepper.
 void Simulator::add_internal_forces(const Matrix3X& x, Matrix3X& f) const {
   m_model.add_forces(x, f);
+  for (const auto& term : m_terms) term->add_forces(x, f);
   if (carries_tension()) add_tension_forces(m_projector->constraints(), m_tension_k, x, f);
 }
 
@@ -237,6 +244,7 @@ Diagnostics Simulator::diagnostics() const {
     d.gravity_energy_J -= m_mass_kg[i] * m_state.x.row(i).dot(m_settings.gravity_m_s2.transpose());
   }
   d.elastic_energy_J = m_model.energy(m_state.x);
+  for (const auto& term : m_terms) d.elastic_energy_J += term->energy(m_state.x);
   d.max_strain = max_edge_strain(m_warp_weft_edges, m_state.x);
   d.mean_strain = mean_edge_strain(m_warp_weft_edges, m_state.x);
   return d;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/cloth_model.h"
 #include "sim/collision/obstacle.h"
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
@@ -23,6 +24,7 @@
 namespace weft::sim {
 
 struct SimSettings {
+  ClothModel model = ClothModel::mass_spring;  // the forces (sim/cloth_model.h)
   Integrator integrator = Integrator::symplectic_euler;
   Vec3 gravity_m_s2{0.0, 0.0, -9.81};
   double air_damping_1_s = 0.5;        // mass-proportional damping α: f = −α m v (seed 002 eq. 27)
@@ -98,7 +100,8 @@ class Simulator {
 
   const State& state() const { return m_state; }
   const ClothMesh& mesh() const { return m_mesh; }
-  const MassSpringModel& model() const { return m_model; }
+  const MassSpringModel& model() const { return m_model; }  // empty for continuum models
+  const ForceTerms& force_terms() const { return m_terms; }  // continuum models' terms
   const Eigen::VectorXd& masses_kg() const { return m_mass_kg; }
   const std::vector<Index>& pinned() const { return m_pinned; }
   double time_step() const { return m_time_step_s; }
@@ -127,6 +130,7 @@ class Simulator {
   ClothMesh m_mesh;
   SimSettings m_settings;
   MassSpringModel m_model;
+  ForceTerms m_terms;
   std::vector<Index> m_pinned;
   struct MovingPin {
     Index vertex;

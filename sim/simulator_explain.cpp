@@ -8,9 +8,12 @@ namespace {
 
 const char* projection_name(ProjectionMethod method) {
   switch (method) {
-    case ProjectionMethod::none: return "none";
-    case ProjectionMethod::fast_projection: return "fast_projection";
-    case ProjectionMethod::pairwise: return "pairwise";
+    case ProjectionMethod::none:
+      return "none";
+    case ProjectionMethod::fast_projection:
+      return "fast_projection";
+    case ProjectionMethod::pairwise:
+      return "pairwise";
   }
   return "?";
 }
@@ -35,11 +38,17 @@ std::vector<std::string> Simulator::explain() const {
   }
   emit();
 
-  long warp_weft = 0, shear = 0;
-  for (const Spring& s : m_model.springs()) (s.kind == SpringKind::shear ? shear : warp_weft) += 1;
-  line << "forces: gravity, air damping " << m_settings.air_damping_1_s << " 1/s, ";
-  if (warp_weft > 0) line << warp_weft << " warp/weft springs, ";
-  line << shear << " shear springs, " << m_model.bends().size() << " bending stencils";
+  line << "forces (" << cloth_model_name(m_settings.model) << "): gravity, air damping "
+       << m_settings.air_damping_1_s << " 1/s";
+  if (m_settings.model == ClothModel::mass_spring) {
+    long warp_weft = 0, shear = 0;
+    for (const Spring& s : m_model.springs())
+      (s.kind == SpringKind::shear ? shear : warp_weft) += 1;
+    if (warp_weft > 0) line << ", " << warp_weft << " warp/weft springs";
+    if (shear > 0) line << ", " << shear << " shear springs";
+    if (!m_model.bends().empty()) line << ", " << m_model.bends().size() << " bending stencils";
+  }
+  for (const auto& term : m_terms) line << ", " << term->describe();
   if (carries_tension())
     line << ", carried constraint tension on " << m_projector->constraints().size() << " edges";
   emit();
@@ -61,7 +70,8 @@ std::vector<std::string> Simulator::explain() const {
     line << "collide: off (no obstacles)";
   } else {
     line << "collide: " << m_settings.obstacles.size() << " obstacles, thickness "
-         << 1e3 * m_settings.collision_thickness_m << " mm, friction " << m_settings.collision_friction;
+         << 1e3 * m_settings.collision_thickness_m << " mm, friction "
+         << m_settings.collision_friction;
   }
   emit();
 

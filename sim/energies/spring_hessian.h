@@ -21,8 +21,6 @@
 
 namespace weft::sim {
 
-using Mat3 = Eigen::Matrix3d;
-
 namespace detail {
 // k [d̂d̂ᵀ + c (I − d̂d̂ᵀ)] for a non-zero d.
 inline Mat3 spring_hessian_from_factor(const Vec3& d, double len, double k_N_m, double c) {

@@ -23,21 +23,22 @@ namespace weft::sim {
 // A pinned vertex's rows and columns are the identity with a zero right-hand side (its DOFs are
 // eliminated: Δv = 0 there, and nothing couples it to the free vertices).
 struct ImplicitEuler::Impl {
-  MassSpringModel model;            // a copy: the integrator does not depend on its owner's address
-  Eigen::VectorXd mass_kg;          // #V
-  std::vector<char> pinned;         // #V, inv_mass == 0
+  MassSpringModel model;     // a copy: the integrator does not depend on its owner's address
+  Eigen::VectorXd mass_kg;   // #V
+  std::vector<char> pinned;  // #V, inv_mass == 0
   std::vector<EdgeConstraint> tension_edges;  // carried constraint forces (see the header)
-  SparseMatrix A;                   // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
-  std::vector<int> slots;           // valuePtr index of each contribution, in assembly order
+  ForceTerms terms;                           // continuum elements (shared, immutable)
+  SparseMatrix A;                             // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
+  std::vector<int> slots;  // valuePtr index of each contribution, in assembly order
   ImplicitSolveSettings solve_settings;
   std::unique_ptr<SparseSpdSolver> solver;  // direct
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> cg;
-  Eigen::VectorXd last_dv;                  // conjugate gradients' warm start
-  Matrix3X forces;  // #V×3 scratch, N
-  Matrix3X kv;      // #V×3 scratch, K v_n, N/s
+  Eigen::VectorXd last_dv;  // conjugate gradients' warm start
+  Matrix3X forces;          // #V×3 scratch, N
+  Matrix3X kv;              // #V×3 scratch, K v_n, N/s
 
   Impl(const MassSpringModel& m, Eigen::VectorXd mass, const Eigen::VectorXd& inv_mass,
-       const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension);
+       const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension, ForceTerms t);
   // Δv = A⁻¹ rhs into dv; false when the solve failed.
   bool solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv, ImplicitStepResult& result);
   void build_pattern();
@@ -48,6 +49,9 @@ struct ImplicitEuler::Impl {
   // slots from k on (in build_pattern()'s order); returns the next slot.
   std::size_t add_pair(Index a, Index b, const Mat3& H, const Matrix3X& v, double h2,
                        std::size_t k);
+  // The same for an element of a force term with stencil `vertices` and stiffness K.
+  std::size_t add_element(const Index* vertices, int size, const ElementMatrix& K,
+                          const Matrix3X& v, double h2, std::size_t k);
 };
 
 namespace {
@@ -65,14 +69,30 @@ void for_each_lower_entry(Index p, Index q, F&& visit) {
       if (p != q || c <= r) visit(r, c);
 }
 
+// The blocks (a, b) of an element's stiffness that land in the lower triangle, in the order
+// build_pattern() and fill() both use: stencil positions a, b with vertex[a] ≥ vertex[b],
+// both free.
+template <class F>
+void for_each_element_block(const Index* vertices, int size, const std::vector<char>& pinned,
+                            F&& visit) {
+  for (int a = 0; a < size; ++a)
+    for (int b = 0; b < size; ++b) {
+      const Index p = vertices[a], q = vertices[b];
+      if ((p > q || a == b) && !pinned[static_cast<std::size_t>(p)] &&
+          !pinned[static_cast<std::size_t>(q)])
+        visit(a, b, p, q);
+    }
+}
+
 }  // namespace
 
 ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
                           const Eigen::VectorXd& inv_mass, const ImplicitSolveSettings& solve,
-                          std::vector<EdgeConstraint> tension)
+                          std::vector<EdgeConstraint> tension, ForceTerms t)
     : model(m),
       mass_kg(std::move(mass)),
       tension_edges(std::move(tension)),
+      terms(std::move(t)),
       solve_settings(solve) {
   const Index n = static_cast<Index>(mass_kg.size());
   // Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
@@ -84,11 +104,21 @@ ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
   const auto check_pair = [n](Index a, Index b) {
     if (a < 0 || b < 0 || a >= n || b >= n || a == b)
       throw std::logic_error("ImplicitEuler: pair (" + std::to_string(a) + ", " +
-                             std::to_string(b) + ") does not join two of the " +
-                             std::to_string(n) + " vertices");
+                             std::to_string(b) + ") does not join two of the " + std::to_string(n) +
+                             " vertices");
   };
   for (const Spring& s : model.springs()) check_pair(s.a, s.b);
   for (const EdgeConstraint& e : tension_edges) check_pair(e.a, e.b);
+  Index stencil[kMaxStencil];
+  for (const auto& term : terms)
+    for (std::size_t e = 0; e < term->element_count(); ++e) {
+      term->stencil(e, stencil);
+      for (int k = 0; k < term->stencil_size(e); ++k)
+        if (stencil[k] < 0 || stencil[k] >= n)
+          throw std::logic_error("ImplicitEuler: " + term->describe() + ": element " +
+                                 std::to_string(e) + " names vertex " + std::to_string(stencil[k]) +
+                                 " of " + std::to_string(n));
+    }
   forces = Matrix3X::Zero(n, 3);
   kv = Matrix3X::Zero(n, 3);
   build_pattern();
@@ -138,6 +168,15 @@ void ImplicitEuler::Impl::build_pattern() {
   };
   for (const Spring& s : model.springs()) add_pair_blocks(s.a, s.b);
   for (const EdgeConstraint& e : tension_edges) add_pair_blocks(e.a, e.b);
+  Index stencil[kMaxStencil];
+  for (const auto& term : terms) {
+    if (!term->has_stiffness()) continue;
+    for (std::size_t e = 0; e < term->element_count(); ++e) {
+      term->stencil(e, stencil);
+      for_each_element_block(stencil, term->stencil_size(e), pinned,
+                             [&](int, int, Index p, Index q) { add_block(p, q); });
+    }
+  }
 
   std::vector<Eigen::Triplet<double, int>> triplets;
   triplets.reserve(entries.size());
@@ -161,8 +200,8 @@ void ImplicitEuler::Impl::build_pattern() {
 
 // A = M (1 + h α) + h² K on the free DOFs, identity on the pinned ones; kv = K v (all springs,
 // so that a moving pin would be seen by its neighbours; pins have v = 0 here).
-void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s,
-                               double damping_1_s, const Eigen::VectorXd& tension_k) {
+void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s,
+                               const Eigen::VectorXd& tension_k) {
   double* values = A.valuePtr();
   std::fill(values, values + A.nonZeros(), 0.0);
   const Index n = static_cast<Index>(mass_kg.size());
@@ -181,9 +220,35 @@ void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s,
   // A carried tension k > 0 is a zero-rest-length spring: stiffness k I (PSD). Compression
   // (k < 0) would make A indefinite: its force is kept, its stiffness dropped.
   for (std::size_t e = 0; e < tension_edges.size(); ++e) {
-    const double stiffness = tension_k.size() > 0 ? std::max(0.0, tension_k[static_cast<Eigen::Index>(e)]) : 0.0;
+    const double stiffness =
+        tension_k.size() > 0 ? std::max(0.0, tension_k[static_cast<Eigen::Index>(e)]) : 0.0;
     k = add_pair(tension_edges[e].a, tension_edges[e].b, stiffness * Mat3::Identity(), v, h2, k);
   }
+  ElementMatrix K;
+  Index stencil[kMaxStencil];
+  for (const auto& term : terms) {
+    if (!term->has_stiffness()) continue;
+    for (std::size_t e = 0; e < term->element_count(); ++e) {
+      term->stencil(e, stencil);
+      term->element_stiffness(x, e, K, /*project_psd=*/true);
+      k = add_element(stencil, term->stencil_size(e), K, v, h2, k);
+    }
+  }
+}
+
+std::size_t ImplicitEuler::Impl::add_element(const Index* vertices, int size,
+                                             const ElementMatrix& K, const Matrix3X& v, double h2,
+                                             std::size_t k) {
+  for (int a = 0; a < size; ++a)  // K v over the stencil
+    for (int b = 0; b < size; ++b)
+      kv.row(vertices[a]) +=
+          (K.block<3, 3>(3 * a, 3 * b) * v.row(vertices[b]).transpose()).transpose();
+  double* values = A.valuePtr();
+  for_each_element_block(vertices, size, pinned, [&](int a, int b, Index p, Index q) {
+    for_each_lower_entry(p, q,
+                         [&](int r, int c) { values[slots[k++]] += h2 * K(3 * a + r, 3 * b + c); });
+  });
+  return k;
 }
 
 std::size_t ImplicitEuler::Impl::add_pair(Index a, Index b, const Mat3& H, const Matrix3X& v,
@@ -209,9 +274,9 @@ std::size_t ImplicitEuler::Impl::add_pair(Index a, Index b, const Mat3& H, const
 
 ImplicitEuler::ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg,
                              Eigen::VectorXd inv_mass, const ImplicitSolveSettings& solve,
-                             std::vector<EdgeConstraint> tension_edges)
+                             std::vector<EdgeConstraint> tension_edges, ForceTerms terms)
     : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, solve,
-                                    std::move(tension_edges))) {}
+                                    std::move(tension_edges), std::move(terms))) {}
 
 ImplicitEuler::~ImplicitEuler() = default;
 
@@ -228,12 +293,14 @@ ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_
                            std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
                            std::to_string(n));
 
-  if (tension_k.size() != 0 && tension_k.size() != static_cast<Eigen::Index>(im.tension_edges.size()))
+  if (tension_k.size() != 0 &&
+      tension_k.size() != static_cast<Eigen::Index>(im.tension_edges.size()))
     throw std::logic_error("ImplicitEuler::step: " + std::to_string(tension_k.size()) +
                            " tensions for " + std::to_string(im.tension_edges.size()) + " edges");
   im.fill(x, v, h_s, damping_1_s, tension_k);
   im.forces.setZero();
   im.model.add_forces(x, im.forces);  // springs and bending, N
+  for (const auto& term : im.terms) term->add_forces(x, im.forces);
   add_tension_forces(im.tension_edges, tension_k, x, im.forces);
 
   Eigen::VectorXd rhs(3 * n);  // N·s

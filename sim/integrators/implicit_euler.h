@@ -1,9 +1,11 @@
 #pragma once
-// Backward (implicit) Euler for the mass-spring model, one Newton step per time step
-// (Baraff & Witkin 1998): with K = −∂f/∂x of the springs (PSD-projected) and mass damping α,
+// Backward (implicit) Euler, one Newton step per time step (Baraff & Witkin 1998): with
+// K = −∂f/∂x of the springs and of the continuum force terms (sim/force_term.h; both
+// PSD-projected) and mass damping α,
 //   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n) + h M g,
 //   v_{n+1} = v_n + Δv,   x_{n+1} = x_n + h v_{n+1}.
-// Bending forces enter the right-hand side only (their stiffness is small: see docs/models.md).
+// The mass-spring model's angular bending enters the right-hand side only (its stiffness is
+// small: see docs/models.md); a force term without stiffness likewise.
 // Optional tension edges carry the previous step's constraint forces (carried_tension.h): a
 // tension k > 0 adds the force −k (x_b − x_a) on b and the stiffness k I to K.
 // Pinned vertices (inv_mass = 0) keep v = 0. The sparsity pattern of the system matrix is
@@ -12,6 +14,7 @@
 #include <memory>
 
 #include "sim/constraints/projection.h"
+#include "sim/force_term.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/mass_spring.h"
 #include "sim/types.h"
@@ -40,7 +43,8 @@ struct ImplicitSolveSettings {
 class ImplicitEuler {
  public:
   ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg, Eigen::VectorXd inv_mass,
-                const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension_edges = {});
+                const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension_edges = {},
+                ForceTerms terms = {});
   ~ImplicitEuler();
   // Replaces v (#V×3, m/s) by v_{n+1} for positions x = x_n; the caller sets x_n + h v_{n+1}.
   // tension_k: one per tension edge (N/m), or empty for none.

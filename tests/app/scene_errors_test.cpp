@@ -239,7 +239,7 @@ TEST(SceneErrors, WrongEnumListsTheChoices) {
             "got the string 'rk9'");
   s = valid_scene();
   s["simulation"]["model"] = 1;
-  EXPECT_EQ(error_of(s), "scene.json: simulation.model: expected one of 'mass_spring', got 1");
+  EXPECT_EQ(error_of(s), "scene.json: simulation.model: expected one of 'mass_spring', 'baraff_witkin', 'rft3', 'rft6', got 1");
 }
 
 TEST(SceneErrors, PinsOutsideTheMesh) {

@@ -56,7 +56,7 @@ double areal_weight(const Material& m, const SimSettings& s) {
 // enter the beam theory, and a narrow strip keeps the test fast), overhanging by `overhang_m` in
 // `segments` free cells beyond the clamp, solved to static equilibrium by damped implicit Euler.
 Bent hang_strip(const Material& material, StripAlong along, double overhang_m, Index segments,
-                double width_m = 0.01) {
+                ClothModel model = ClothModel::mass_spring, double width_m = 0.01) {
   const double h = overhang_m / (static_cast<double>(segments) + 0.5);  // clamp edge mid-cell
   const Index n_long = segments + 2;
   // Across, cells at most 3× longer than along: the shear springs would otherwise exceed the
@@ -92,6 +92,7 @@ Bent hang_strip(const Material& material, StripAlong along, double overhang_m, I
   std::sort(clamped.begin(), clamped.end());
 
   SimSettings settings;
+  settings.model = model;
   settings.integrator = Integrator::implicit_euler;
   // Bending is explicit in implicit Euler: stay below its critical step, 2/ω with
   // ω² ≤ 16 B / (ρ h⁴) (the Gershgorin bound of docs/models.md for a bending stencil).
@@ -147,25 +148,30 @@ TEST(Cantilever, KangYuWoolBendingLengths) {
 }
 
 // (a) Small deflection: δ = w O⁴ / (8 B) at λ = 0.5 (O = 1.30 cm, δ = 0.81 mm).
-TEST(Cantilever, SmallDeflectionTipDropMatchesBeamTheory) {
+// Both cloth models: the mass-spring angular springs and the Baraff–Witkin hinges.
+class CantileverModel : public ::testing::TestWithParam<ClothModel> {};
+
+TEST_P(CantileverModel, SmallDeflectionTipDropMatchesBeamTheory) {
   const double O = overhang_for(0.5, kWool, StripAlong::warp);
-  const Bent b = hang_strip(kWool, StripAlong::warp, O, 16);
+  const Bent b = hang_strip(kWool, StripAlong::warp, O, 16, GetParam());
   const double linear =
       areal_weight(kWool, SimSettings{}) * std::pow(O, 4) / (8.0 * kWool.bend_warp_Nm);
   std::printf(
-      "cantilever lambda 0.5: overhang %.4f cm, tip drop %.5f cm, beam theory %.5f cm (%+.2f %%)\n",
-      O * 100.0, b.drop_m * 100.0, linear * 100.0, 100.0 * (b.drop_m / linear - 1.0));
+      "%s cantilever lambda 0.5: overhang %.4f cm, tip drop %.5f cm, beam theory %.5f cm (%+.2f "
+      "%%)\n",
+      cloth_model_name(GetParam()), O * 100.0, b.drop_m * 100.0, linear * 100.0,
+      100.0 * (b.drop_m / linear - 1.0));
   EXPECT_NEAR(b.drop_m / linear, 1.0, 0.02);
 }
 
 // (b) The tip drop at λ = 0.5 converges as the strip is refined: monotone, the last two within 1 %.
-TEST(Cantilever, TipDropConvergesUnderRefinement) {
+TEST_P(CantileverModel, TipDropConvergesUnderRefinement) {
   const double O = overhang_for(0.5, kWool, StripAlong::warp);
   std::vector<double> drop;
   for (Index segments : {4, 8, 16})
-    drop.push_back(hang_strip(kWool, StripAlong::warp, O, segments).drop_m);
-  std::printf("cantilever lambda 0.5 tip drop at 4, 8, 16 segments: %.5f, %.5f, %.5f cm\n",
-              drop[0] * 100.0, drop[1] * 100.0, drop[2] * 100.0);
+    drop.push_back(hang_strip(kWool, StripAlong::warp, O, segments, GetParam()).drop_m);
+  std::printf("%s cantilever lambda 0.5 tip drop at 4, 8, 16 segments: %.5f, %.5f, %.5f cm\n",
+              cloth_model_name(GetParam()), drop[0] * 100.0, drop[1] * 100.0, drop[2] * 100.0);
   const bool increasing = drop[0] < drop[1] && drop[1] < drop[2];
   const bool decreasing = drop[0] > drop[1] && drop[1] > drop[2];
   EXPECT_TRUE(increasing || decreasing) << drop[0] << ", " << drop[1] << ", " << drop[2] << " m";
@@ -176,16 +182,23 @@ TEST(Cantilever, TipDropConvergesUnderRefinement) {
 // (c) Peirce: at an overhang O = 2c the chord from the clamp edge to the tip makes 41.5° with the
 // horizontal. Checked as the chord angle at O = 2c, within ±2.1°: by the elastica (above) the
 // angle is 39.28° at 0.97·2c and 43.63° at 1.03·2c, so ±2.1° is within 3 % in O.
-TEST(Cantilever, PeirceOverhangIsTwiceTheBendingLength) {
+TEST_P(CantileverModel, PeirceOverhangIsTwiceTheBendingLength) {
   for (StripAlong along : {StripAlong::warp, StripAlong::weft}) {
     const double c = bending_length(kWool, along);
-    const Bent b = hang_strip(kWool, along, 2.0 * c, 16);
+    const Bent b = hang_strip(kWool, along, 2.0 * c, 16, GetParam());
     std::printf(
-        "Peirce %s: c %.4f cm, overhang 2c, tip drop %.4f cm, chord angle %.2f deg (41.5)\n",
-        along == StripAlong::warp ? "warp" : "weft", c * 100.0, b.drop_m * 100.0, b.chord_deg());
+        "%s Peirce %s: c %.4f cm, overhang 2c, tip drop %.4f cm, chord angle %.2f deg (41.5)\n",
+        cloth_model_name(GetParam()), along == StripAlong::warp ? "warp" : "weft", c * 100.0,
+        b.drop_m * 100.0, b.chord_deg());
     EXPECT_NEAR(b.chord_deg(), 41.5, 2.1) << (along == StripAlong::warp ? "warp" : "weft");
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Models, CantileverModel,
+                         ::testing::Values(ClothModel::mass_spring, ClothModel::baraff_witkin),
+                         [](const ::testing::TestParamInfo<ClothModel>& model_info) {
+                           return std::string(cloth_model_name(model_info.param));
+                         });
 
 }  // namespace
 }  // namespace weft::sim

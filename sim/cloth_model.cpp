@@ -1,0 +1,55 @@
+#include "sim/cloth_model.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "sim/continuum/bw_membrane.h"
+#include "sim/continuum/hinge_bending.h"
+#include "sim/rft/rft.h"
+
+namespace weft::sim {
+
+const char* cloth_model_name(ClothModel model) {
+  switch (model) {
+    case ClothModel::mass_spring:
+      return "mass_spring";
+    case ClothModel::baraff_witkin:
+      return "baraff_witkin";
+    case ClothModel::rft3:
+      return "rft3";
+    case ClothModel::rft6:
+      return "rft6";
+  }
+  throw std::logic_error("cloth_model_name: unknown model " +
+                         std::to_string(static_cast<int>(model)));
+}
+
+ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
+                            bool with_stretch) {
+  ForceTerms terms;
+  if (model == ClothModel::mass_spring) return terms;
+  const bool bends = material.bend_warp_Nm > 0.0 || material.bend_weft_Nm > 0.0;
+  switch (model) {
+    case ClothModel::baraff_witkin:
+      if (with_stretch || material.shear_N_m > 0.0)
+        terms.push_back(std::make_shared<BwMembrane>(mesh, material, with_stretch));
+      if (bends) terms.push_back(std::make_shared<HingeBending>(mesh, material));
+      break;
+    case ClothModel::rft3:
+    case ClothModel::rft6: {
+      Material membrane = material;  // stretch left to constraints: shear only
+      if (!with_stretch) membrane.stretch_warp_N_m = membrane.stretch_weft_N_m = 0.0;
+      if (with_stretch || material.shear_N_m > 0.0)
+        terms.push_back(make_rft_membrane(
+            mesh, membrane,
+            model == ClothModel::rft3 ? RftMembrane::three_node : RftMembrane::six_node));
+      if (bends) terms.push_back(make_rft_bending(mesh, material));
+      break;
+    }
+    case ClothModel::mass_spring:
+      break;
+  }
+  return terms;
+}
+
+}  // namespace weft::sim
