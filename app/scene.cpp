@@ -249,6 +249,29 @@ sim::SparseBackend read_linear_solver(ObjectReader& r, sim::SparseBackend fallba
   return backend;
 }
 
+// "simulation.aerodynamics": air drag and wind (sim::AeroSettings); present means enabled.
+sim::AeroSettings read_aerodynamics(ObjectReader r) {
+  sim::AeroSettings a;
+  a.enabled = true;
+  a.drag_coefficient = r.number("drag_coefficient", a.drag_coefficient, Range::ge(0.0));
+  a.air_density_kg_m3 = r.number("air_density", a.air_density_kg_m3, Range::gt(0.0));
+  if (r.has("wind")) {
+    ObjectReader wind = r.object("wind");
+    a.wind.velocity_m_s = wind.quantity_vec3("velocity", Quantity::speed, required);
+    if (wind.has("gust")) {
+      ObjectReader gust = wind.object("gust");
+      a.wind.gust.amplitude = gust.number("amplitude", required, Range::ge(0.0));
+      a.wind.gust.period_s = gust.quantity("period", Quantity::time, required, Range::gt(0.0));
+      a.wind.gust.wavelength_m =
+          gust.quantity("wavelength", Quantity::length, a.wind.gust.wavelength_m, Range::ge(0.0));
+      gust.finish();
+    }
+    wind.finish();
+  }
+  r.finish();
+  return a;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s) {
   std::vector<std::pair<std::string, sim::ClothModel>> models;
@@ -276,6 +299,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s) {
   s.collision_thickness_m =
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
   s.collision_friction = r.number("collision_friction", s.collision_friction, Range::ge(0.0));
+  if (r.has("aerodynamics")) s.aero = read_aerodynamics(r.object("aerodynamics"));
   r.finish();
 }
 

@@ -258,11 +258,16 @@ std::vector<Integrator> parse_integrator_list(const std::vector<std::string>& na
   if (names.empty()) throw SceneError(option + ": expected at least one integrator");
   std::vector<Integrator> result;
   for (const std::string& name : names) {
-    const auto it = std::find_if(sim::all_integrators.begin(), sim::all_integrators.end(),
+    const std::vector<Integrator> known = sim::physical_time_integrators();
+    const auto it = std::find_if(known.begin(), known.end(),
                                  [&](Integrator i) { return name == sim::integrator_name(i); });
-    if (it == sim::all_integrators.end()) {
+    if (name == sim::integrator_name(Integrator::dynamic_relaxation)) {
+      throw SceneError(option + ": 'dynamic_relaxation' iterates toward the static equilibrium "
+                       "in pseudo-time with masses scaled to be stable: it has no critical step");
+    }
+    if (it == known.end()) {
       std::string choices;
-      for (Integrator i : sim::all_integrators)
+      for (Integrator i : known)
         choices += std::string(choices.empty() ? "'" : ", '") + sim::integrator_name(i) + "'";
       throw SceneError(option + ": unknown integrator '" + name + "'; expected one of " + choices);
     }

@@ -42,6 +42,8 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
                                             Eigen::VectorXd::Ones(n));  // all of them
   m_projector = make_projector(m_mesh, m_inv_mass, settings.projection, settings.sparse_backend);
+  if (settings.aero.enabled) m_aero = std::make_unique<Aerodynamics>(m_mesh.quads, settings.aero);
+  ExplicitSystem relaxation_system;  // dynamic_relaxation's, made below
   if (settings.integrator == Integrator::implicit_euler) {
     std::vector<EdgeConstraint> tension_edges;
     if (carries_tension()) tension_edges = m_projector->constraints();
@@ -51,16 +53,24 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
     solve.cg_tolerance = settings.implicit_cg_tolerance;
     m_implicit = std::make_unique<ImplicitEuler>(m_model, m_mass_kg, m_inv_mass, solve,
                                                  std::move(tension_edges), m_terms);
-  } else {
+  } else {  // explicit, or dynamic relaxation (made below: it needs the stiffness bound)
     ExplicitSystem system;
     system.internal_forces = [this](const Matrix3X& x, Matrix3X& f) {
       m_timers.time(Phase::forces, [&] { add_internal_forces(x, f); });
     };
+    if (m_aero) {
+      system.velocity_forces = [this](const Matrix3X& x, const Matrix3X& v, Matrix3X& f) {
+        m_timers.time(Phase::forces, [&] { m_aero->add_forces(x, v, m_state.time_s, f); });
+      };
+    }
     system.mass_kg = m_mass_kg;
     system.inv_mass = m_inv_mass;
     system.gravity_m_s2 = settings.gravity_m_s2;
     system.damping_1_s = settings.air_damping_1_s;
-    m_explicit = std::make_unique<ExplicitStepper>(settings.integrator, std::move(system));
+    if (settings.integrator != Integrator::dynamic_relaxation)
+      m_explicit = std::make_unique<ExplicitStepper>(settings.integrator, std::move(system));
+    else
+      relaxation_system = std::move(system);
   }
   m_state.x = m_mesh.rest_positions;
   m_state.v = Matrix3X::Zero(n, 3);
@@ -78,6 +88,11 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
                                ? settings.implicit_default_step_s
                                : settings.time_step_safety * m_critical_step_s;
   m_time_step_s = settings.time_step_s.value_or(automatic);
+  // Dynamic relaxation: one iteration per step of the explicit integrators' step, with
+  // fictitious masses stable at it (sim/integrators/dynamic_relaxation.h).
+  if (settings.integrator == Integrator::dynamic_relaxation)
+    m_relaxation = std::make_unique<DynamicRelaxation>(std::move(relaxation_system), bound,
+                                                       m_time_step_s);
 }
 
 Simulator::~Simulator() = default;
@@ -150,6 +165,7 @@ void Simulator::step(double h_s) {
   }
   // Velocity filter (seed 000): the velocity that carries x_n to the corrected x_{n+1}.
   if (projected || collided) m_state.v = (m_state.x - m_x_start) / h_s;
+  if (m_relaxation && m_relaxation->status().reset) m_state.v.setZero();  // kinetic damping
   m_state.time_s += h_s;
   ++m_steps;
   ++m_stats.steps;
@@ -174,9 +190,20 @@ void Simulator::integrate(double h_s) {
     m_explicit->step(m_state.x, m_state.v, h_s);
     return;
   }
+  if (m_relaxation) {
+    (void)m_relaxation->step(m_state.x, m_state.v, h_s);
+    return;
+  }
+  if (m_aero) {
+    m_timers.time(Phase::forces, [&] {
+      m_aero_forces.setZero(m_state.x.rows(), 3);
+      m_aero->add_forces(m_state.x, m_state.v, m_state.time_s, m_aero_forces);
+    });
+  }
   m_timers.time(Phase::integrate, [&] {
-    const ImplicitStepResult r = m_implicit->step(m_state.x, m_state.v, h_s, m_settings.gravity_m_s2,
-                                                  m_settings.air_damping_1_s, m_tension_k);
+    const ImplicitStepResult r =
+        m_implicit->step(m_state.x, m_state.v, h_s, m_settings.gravity_m_s2,
+                         m_settings.air_damping_1_s, m_tension_k, m_aero_forces);
     m_stats.solve_s += r.solve_s;
     if (!r.solved) ++m_stats.failed_implicit_solves;
     m_stats.cg_iterations += r.cg_iterations;

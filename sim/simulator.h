@@ -7,11 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "sim/aerodynamics.h"
 #include "sim/cloth_model.h"
 #include "sim/collision/obstacle.h"
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
+#include "sim/integrators/dynamic_relaxation.h"
 #include "sim/integrators/explicit_steppers.h"
 #include "sim/integrators/implicit_euler.h"
 #include "sim/integrators/integrator.h"
@@ -56,6 +58,9 @@ struct SimSettings {
   // applied by the push-out from the step's start positions (sim/collision/obstacle.h). 0: the
   // frictionless push-out; a cloth rests on a slope of angle θ when μ > tan θ.
   double collision_friction = 0.0;
+  // Air drag on every triangle and an optional wind field (sim/aerodynamics.h); off unless
+  // enabled. The existing air_damping is separate (a mass-proportional damping).
+  AeroSettings aero;
 };
 
 // Thrown when the simulation diverges; carries where and what.
@@ -109,6 +114,8 @@ class Simulator {
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
   const PhaseTimers& timers() const { return m_timers; }
+  // dynamic_relaxation: where the relaxation stands (residual, kinetic peaks); null otherwise.
+  const DynamicRelaxation* relaxation() const { return m_relaxation.get(); }
   // One line per phase of a step (integrate, forces, project, collide, pins): which terms and
   // methods this simulation runs, with their sizes — only what the scene needs is assembled.
   std::vector<std::string> explain() const;
@@ -146,6 +153,9 @@ class Simulator {
   Eigen::VectorXd m_tension_k;  // per constraint, N/m: carried constraint force (carried_tension.h)
   std::unique_ptr<ImplicitEuler> m_implicit;   // implicit_euler
   std::unique_ptr<ExplicitStepper> m_explicit;  // every other integrator
+  std::unique_ptr<DynamicRelaxation> m_relaxation;  // dynamic_relaxation
+  std::unique_ptr<Aerodynamics> m_aero;         // when settings.aero.enabled
+  Matrix3X m_aero_forces;                       // #V×3, N: implicit Euler's explicit drag
   State m_state;
   Matrix3X m_x_start;              // #V×3 start-of-step positions: velocity filter, friction
   double m_critical_step_s = 0.0;

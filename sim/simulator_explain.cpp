@@ -36,6 +36,13 @@ std::vector<std::string> Simulator::explain() const {
     else
       line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance;
   }
+  if (m_relaxation) {
+    const Eigen::ArrayXd ratio = m_relaxation->fictitious_mass_kg().array() / m_mass_kg.array();
+    line << " of pseudo-time per iteration (frames show iterations, not motion), fictitious "
+            "masses "
+         << ratio.minCoeff() << "–" << ratio.maxCoeff()
+         << " × physical, kinetic damping (air damping unused)";
+  }
   emit();
 
   line << "forces (" << cloth_model_name(m_settings.model) << "): gravity, air damping "
@@ -49,6 +56,17 @@ std::vector<std::string> Simulator::explain() const {
     if (!m_model.bends().empty()) line << ", " << m_model.bends().size() << " bending stencils";
   }
   for (const auto& term : m_terms) line << ", " << term->describe();
+  if (m_aero) {
+    const AeroSettings& a = m_aero->settings();
+    line << ", air drag on " << m_aero->panel_count() << " quads (C_d " << a.drag_coefficient
+         << ", " << a.air_density_kg_m3 << " kg/m³";
+    if (a.wind.velocity_m_s.norm() > 0.0) {
+      line << ", wind " << a.wind.velocity_m_s.norm() << " m/s";
+      if (a.wind.gust.amplitude > 0.0)
+        line << " gusting ±" << 100.0 * a.wind.gust.amplitude << " % every " << a.wind.gust.period_s << " s";
+    }
+    line << ")";
+  }
   if (carries_tension())
     line << ", carried constraint tension on " << m_projector->constraints().size() << " edges";
   emit();

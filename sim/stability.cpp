@@ -155,6 +155,10 @@ CriticalStep predicted_critical_step(Integrator method, double omega_rad_s, doub
       return {StepLimit::bounded, 2.0 / (0.5 * a + std::sqrt(0.25 * a * a - w * w))};
     case Integrator::implicit_euler:
       return {StepLimit::always_stable, std::numeric_limits<double>::infinity()};
+    case Integrator::dynamic_relaxation:  // its fictitious masses are made stable for its step
+      throw std::invalid_argument(
+          "predicted_critical_step: dynamic_relaxation iterates in pseudo-time, not a "
+          "physical-time integrator");
   }
   throw std::logic_error("predicted_critical_step: unknown integrator");
 }

@@ -11,6 +11,8 @@ ExplicitStepper::ExplicitStepper(Integrator method, ExplicitSystem system)
   // Misuse is a programming bug (STYLE 8): std::logic_error, in release too.
   if (method == Integrator::implicit_euler)
     throw std::logic_error("ExplicitStepper: implicit_euler is not explicit (ImplicitEuler)");
+  if (method == Integrator::dynamic_relaxation)
+    throw std::logic_error("ExplicitStepper: dynamic_relaxation has its own stepper");
   if (!m_system.internal_forces) throw std::logic_error("ExplicitStepper: no internal forces");
   if (m_system.mass_kg.size() != m_system.inv_mass.size()) {
     throw std::logic_error("ExplicitStepper: " + std::to_string(m_system.mass_kg.size()) +
@@ -37,6 +39,7 @@ void ExplicitStepper::total_forces(const Matrix3X& x, const Matrix3X& v, double 
                                    Matrix3X& F) {
   F.setZero(x.rows(), 3);
   m_system.internal_forces(x, F);
+  if (m_system.velocity_forces) m_system.velocity_forces(x, v, F);
   const Eigen::RowVector3d g = m_system.gravity_m_s2.transpose();
   for (Index i = 0; i < F.rows(); ++i)
     F.row(i) += m_system.mass_kg[i] * (g - damping_1_s * v.row(i));
@@ -82,7 +85,8 @@ void ExplicitStepper::step(Matrix3X& x, Matrix3X& v, double h_s) {
       central_difference_step(x, v, h_s);
       break;
     case Integrator::implicit_euler:
-      throw std::logic_error("ExplicitStepper: implicit_euler");
+    case Integrator::dynamic_relaxation:
+      throw std::logic_error(std::string("ExplicitStepper: ") + integrator_name(m_method));
   }
 }
 

@@ -42,6 +42,9 @@ namespace weft::sim {
 struct ExplicitSystem {
   // Adds the internal forces at positions x (#V×3, m) to f (#V×3, N; zeroed by the stepper).
   std::function<void(const Matrix3X& x, Matrix3X& f)> internal_forces;
+  // Optional: adds forces that depend on the velocity too (air drag, sim/aerodynamics.h) at
+  // (x, v) to f. Central difference passes its half-step velocity.
+  std::function<void(const Matrix3X& x, const Matrix3X& v, Matrix3X& f)> velocity_forces;
   Eigen::VectorXd mass_kg;   // #V lumped masses
   Eigen::VectorXd inv_mass;  // #V, 1/kg; 0 for pinned vertices
   Vec3 gravity_m_s2 = Vec3::Zero();

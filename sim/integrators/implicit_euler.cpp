@@ -284,7 +284,8 @@ ImplicitEuler::~ImplicitEuler() = default;
 //   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n + M g),   v_{n+1} = v_n + Δv.
 ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_s,
                                        const Vec3& gravity_m_s2, double damping_1_s,
-                                       const Eigen::VectorXd& tension_k) {
+                                       const Eigen::VectorXd& tension_k,
+                                       const Matrix3X& external_forces) {
   const auto start = std::chrono::steady_clock::now();
   Impl& im = *m_impl;
   const Index n = static_cast<Index>(im.mass_kg.size());
@@ -302,6 +303,10 @@ ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_
   im.model.add_forces(x, im.forces);  // springs and bending, N
   for (const auto& term : im.terms) term->add_forces(x, im.forces);
   add_tension_forces(im.tension_edges, tension_k, x, im.forces);
+  if (external_forces.rows() != 0 && external_forces.rows() != n)
+    throw std::logic_error("ImplicitEuler::step: " + std::to_string(external_forces.rows()) +
+                           " external forces for " + std::to_string(n) + " vertices");
+  if (external_forces.rows() == n) im.forces += external_forces;
 
   Eigen::VectorXd rhs(3 * n);  // N·s
   const Eigen::RowVector3d g = gravity_m_s2.transpose();

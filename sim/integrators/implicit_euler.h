@@ -47,10 +47,12 @@ class ImplicitEuler {
                 ForceTerms terms = {});
   ~ImplicitEuler();
   // Replaces v (#V×3, m/s) by v_{n+1} for positions x = x_n; the caller sets x_n + h v_{n+1}.
-  // tension_k: one per tension edge (N/m), or empty for none.
+  // tension_k: one per tension edge (N/m), or empty for none. external_forces (#V×3, N, or
+  // empty): forces at (x_n, v_n) taken explicitly, without stiffness (air drag).
   [[nodiscard]] ImplicitStepResult step(const Matrix3X& x, Matrix3X& v, double h_s,
                                         const Vec3& gravity_m_s2, double damping_1_s,
-                                        const Eigen::VectorXd& tension_k = Eigen::VectorXd());
+                                        const Eigen::VectorXd& tension_k = Eigen::VectorXd(),
+                                        const Matrix3X& external_forces = Matrix3X());
 
  private:
   struct Impl;

@@ -5,6 +5,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace weft::sim {
 
@@ -15,12 +16,29 @@ enum class Integrator {
   rk4,                 // classic 4-stage Runge–Kutta on (x, v)     (order 4)
   velocity_verlet,     // kick–drift–kick                           (order 2)
   central_difference,  // seed 002 eqs. 20–22, staggered velocities (order 2)
+  dynamic_relaxation,  // static equilibrium in pseudo-time: fictitious masses, kinetic damping
+                       // (dynamic_relaxation.h); not a physical-time integrator
 };
 
-inline constexpr std::array<Integrator, 6> all_integrators{
+inline constexpr std::array<Integrator, 7> all_integrators{
     Integrator::symplectic_euler, Integrator::implicit_euler,
     Integrator::explicit_euler,   Integrator::rk4,
-    Integrator::velocity_verlet,  Integrator::central_difference};
+    Integrator::velocity_verlet,  Integrator::central_difference,
+    Integrator::dynamic_relaxation};
+
+// False for dynamic relaxation, whose steps are iterations toward the static equilibrium, not
+// motion in time: stability maps and time-accuracy tests skip it.
+inline constexpr bool integrates_physical_time(Integrator integrator) {
+  return integrator != Integrator::dynamic_relaxation;
+}
+
+// all_integrators without dynamic relaxation, in the same order.
+inline std::vector<Integrator> physical_time_integrators() {
+  std::vector<Integrator> result;
+  for (Integrator i : all_integrators)
+    if (integrates_physical_time(i)) result.push_back(i);
+  return result;
+}
 
 // The scene-file name of an integrator.
 inline const char* integrator_name(Integrator integrator) {
@@ -37,6 +55,8 @@ inline const char* integrator_name(Integrator integrator) {
       return "velocity_verlet";
     case Integrator::central_difference:
       return "central_difference";
+    case Integrator::dynamic_relaxation:
+      return "dynamic_relaxation";
   }
   throw std::logic_error("integrator_name: unknown integrator " +
                          std::to_string(static_cast<int>(integrator)));

@@ -236,7 +236,7 @@ TEST(SceneErrors, WrongEnumListsTheChoices) {
   EXPECT_EQ(error_of(s),
             "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
             "'implicit_euler', 'explicit_euler', 'rk4', 'velocity_verlet', 'central_difference', "
-            "got the string 'rk9'");
+            "'dynamic_relaxation', got the string 'rk9'");
   s = valid_scene();
   s["simulation"]["model"] = 1;
   EXPECT_EQ(error_of(s), "scene.json: simulation.model: expected one of 'mass_spring', 'baraff_witkin', 'rft3', 'rft6', got 1");

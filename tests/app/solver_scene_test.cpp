@@ -105,7 +105,7 @@ TEST(SolverScene, WrongEnumsListTheChoices) {
   EXPECT_EQ(error_of(j),
             "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
             "'implicit_euler', 'explicit_euler', 'rk4', 'velocity_verlet', 'central_difference', "
-            "got the string 'rk9'");
+            "'dynamic_relaxation', got the string 'rk9'");
   j = solver_scene();
   j["simulation"]["linear_solver"] = "umfpack";
   EXPECT_EQ(error_of(j),

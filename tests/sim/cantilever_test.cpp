@@ -26,121 +26,12 @@
 #include <vector>
 
 #include "sim/simulator.h"
+#include "tests/sim/cantilever_support.h"
 
 namespace weft::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-// Kang & Yu's wool: sim::Material's defaults.
-const Material kWool{};
-
-enum class StripAlong { warp, weft };
-
-struct Bent {
-  double drop_m = 0.0;        // clamp edge height − tip height
-  double horizontal_m = 0.0;  // from the clamp edge to the tip, along the strip
-  double chord_deg() const { return std::atan2(drop_m, horizontal_m) * 180.0 / kPi; }
-};
-
-double bending_rigidity(const Material& m, StripAlong along) {
-  return along == StripAlong::warp ? m.bend_warp_Nm : m.bend_weft_Nm;
-}
-
-// Weight per area, N/m².
-double areal_weight(const Material& m, const SimSettings& s) {
-  return m.density_kg_m2 * s.gravity_m_s2.norm();
-}
-
-// A strip `width_m` wide (1 cm like Kang & Yu's 1 × 5 cm strip, seed 002 §4.1: the width does not
-// enter the beam theory, and a narrow strip keeps the test fast), overhanging by `overhang_m` in
-// `segments` free cells beyond the clamp, solved to static equilibrium by damped implicit Euler.
-Bent hang_strip(const Material& material, StripAlong along, double overhang_m, Index segments,
-                ClothModel model = ClothModel::mass_spring, double width_m = 0.01) {
-  const double h = overhang_m / (static_cast<double>(segments) + 0.5);  // clamp edge mid-cell
-  const Index n_long = segments + 2;
-  // Across, cells at most 3× longer than along: the shear springs would otherwise exceed the
-  // stretch stiffness across (MassSpringModel's aspect-ratio check).
-  const Index n_across = std::max<Index>(2, static_cast<Index>(std::ceil(width_m / (3.0 * h))) + 1);
-  const double h_across = width_m / static_cast<double>(n_across - 1);
-
-  GridSpec grid;
-  grid.origin = Vec3(0.0, 0.0, 0.5);
-  if (along == StripAlong::warp) {
-    grid.nu = n_long;
-    grid.nv = n_across;
-    grid.size_u_m = h * static_cast<double>(n_long - 1);
-    grid.size_v_m = width_m;
-    grid.warp_axis = Vec3::UnitX();
-    grid.weft_axis = Vec3::UnitY();
-  } else {
-    grid.nu = n_across;
-    grid.nv = n_long;
-    grid.size_u_m = width_m;
-    grid.size_v_m = h * static_cast<double>(n_long - 1);
-    grid.warp_axis = -Vec3::UnitY();
-    grid.weft_axis = Vec3::UnitX();
-  }
-  const ClothMesh mesh = make_grid(grid);
-  const auto vertex = [&](Index along_k, Index across_k) {
-    return along == StripAlong::warp ? mesh.index(along_k, across_k)
-                                     : mesh.index(across_k, along_k);
-  };
-  std::vector<Index> clamped;
-  for (Index a = 0; a < n_across; ++a)
-    for (Index k : {0, 1}) clamped.push_back(vertex(k, a));
-  std::sort(clamped.begin(), clamped.end());
-
-  SimSettings settings;
-  settings.model = model;
-  settings.integrator = Integrator::implicit_euler;
-  // Bending is explicit in implicit Euler: stay below its critical step, 2/ω with
-  // ω² ≤ 16 B / (ρ h⁴) (the Gershgorin bound of docs/models.md for a bending stencil).
-  const double h_u = along == StripAlong::warp ? h : h_across;
-  const double h_v = along == StripAlong::warp ? h_across : h;
-  const double omega_bend = std::sqrt(
-      16.0 *
-      std::max(material.bend_warp_Nm / std::pow(h_u, 4), material.bend_weft_Nm / std::pow(h_v, 4)) /
-      material.density_kg_m2);
-  settings.time_step_s = 1.6 / omega_bend;
-  // About critical damping of the first cantilever mode, ω1 = 1.875² √(B / (ρ O⁴)).
-  const double B = bending_rigidity(material, along);
-  const double omega1 = 3.516 * std::sqrt(B / (material.density_kg_m2 * std::pow(overhang_m, 4)));
-  settings.air_damping_1_s = 2.0 * omega1;
-
-  Simulator sim(mesh, material, clamped, settings);
-  const double linear_drop = areal_weight(material, settings) * std::pow(overhang_m, 4) / (8.0 * B);
-  const double energy_scale = sim.masses_kg().sum() * settings.gravity_m_s2.norm() * linear_drop;
-  double t = 0.0;
-  while (true) {
-    sim.advance(1.0 / omega1);
-    t += 1.0 / omega1;
-    if (sim.diagnostics().kinetic_energy_J < 1e-9 * energy_scale) break;
-    if (t > 60.0 / omega1) {
-      ADD_FAILURE() << "the strip has not come to rest after " << t << " s";
-      break;
-    }
-  }
-
-  const Matrix3X& x = sim.state().x;
-  Vec3 edge = Vec3::Zero(), tip = Vec3::Zero();
-  for (Index a = 0; a < n_across; ++a) {
-    edge += 0.5 * (x.row(vertex(0, a)) + x.row(vertex(1, a))).transpose();
-    tip += x.row(vertex(n_long - 1, a)).transpose();
-  }
-  edge /= static_cast<double>(n_across);
-  tip /= static_cast<double>(n_across);
-  return {edge.z() - tip.z(), tip.x() - edge.x()};
-}
-
-double bending_length(const Material& m, StripAlong along) {
-  return std::cbrt(bending_rigidity(m, along) / areal_weight(m, SimSettings{}));
-}
-
-// The overhang at which w O³ / B = λ.
-double overhang_for(double lambda, const Material& m, StripAlong along) {
-  return bending_length(m, along) * std::cbrt(lambda);
-}
+using namespace cantilever;  // NOLINT: the strip and its helpers (cantilever_support.h)
 
 TEST(Cantilever, KangYuWoolBendingLengths) {
   EXPECT_NEAR(bending_length(kWool, StripAlong::warp), 1.635e-2, 5e-5);

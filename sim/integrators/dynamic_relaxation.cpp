@@ -1,0 +1,131 @@
+#include "sim/integrators/dynamic_relaxation.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace weft::sim {
+
+Eigen::VectorXd fictitious_masses_kg(const Eigen::VectorXd& row_bound_N_m,
+                                     const Eigen::VectorXd& mass_kg, double h_s,
+                                     double mass_safety) {
+  // Misuse is a programming bug (STYLE 8): std::logic_error, in release too.
+  if (row_bound_N_m.size() != mass_kg.size()) {
+    throw std::logic_error("fictitious_masses_kg: " + std::to_string(row_bound_N_m.size()) +
+                           " row bounds but " + std::to_string(mass_kg.size()) + " masses");
+  }
+  if (!(h_s > 0.0) || !std::isfinite(h_s))
+    throw std::logic_error("fictitious_masses_kg: step " + std::to_string(h_s) + " s");
+  if (!(mass_safety >= 1.0))
+    throw std::logic_error("fictitious_masses_kg: mass safety " + std::to_string(mass_safety) +
+                           ", expected >= 1");
+  Eigen::VectorXd m(mass_kg.size());
+  const double scale = mass_safety * 0.25 * h_s * h_s;  // s h²/4, s²
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    if (!(row_bound_N_m[i] >= 0.0))
+      throw std::logic_error("fictitious_masses_kg: row bound " + std::to_string(row_bound_N_m[i]) +
+                             " N/m at vertex " + std::to_string(i));
+    m[i] = row_bound_N_m[i] > 0.0 ? scale * row_bound_N_m[i] : mass_kg[i];
+  }
+  return m;
+}
+
+double free_kinetic_energy_J(const Eigen::VectorXd& mass_kg, const Eigen::VectorXd& inv_mass,
+                             const Matrix3X& v) {
+  double energy = 0.0;
+  for (Index i = 0; i < v.rows(); ++i)
+    if (inv_mass[i] > 0.0) energy += 0.5 * mass_kg[i] * v.row(i).squaredNorm();
+  return energy;
+}
+
+double relative_residual(const Matrix3X& residual_N, const Eigen::VectorXd& mass_kg,
+                         const Eigen::VectorXd& inv_mass, const Vec3& gravity_m_s2) {
+  double r2 = 0.0, load2 = 0.0;
+  const double g2 = gravity_m_s2.squaredNorm();
+  for (Index i = 0; i < residual_N.rows(); ++i) {
+    if (!(inv_mass[i] > 0.0)) continue;
+    r2 += residual_N.row(i).squaredNorm();
+    load2 += mass_kg[i] * mass_kg[i] * g2;
+  }
+  return load2 > 0.0 ? std::sqrt(r2 / load2) : std::sqrt(r2);
+}
+
+DynamicRelaxation::DynamicRelaxation(ExplicitSystem system, const Eigen::VectorXd& row_bound_N_m,
+                                     double h_max_s, RelaxationSettings settings)
+    : m_system(std::move(system)), m_settings(settings), m_h_max_s(h_max_s) {
+  if (!m_system.internal_forces) throw std::logic_error("DynamicRelaxation: no internal forces");
+  if (m_system.mass_kg.size() != m_system.inv_mass.size()) {
+    throw std::logic_error("DynamicRelaxation: " + std::to_string(m_system.mass_kg.size()) +
+                           " masses but " + std::to_string(m_system.inv_mass.size()) +
+                           " inverse masses");
+  }
+  m_fictitious_mass_kg =
+      fictitious_masses_kg(row_bound_N_m, m_system.mass_kg, h_max_s, m_settings.mass_safety);
+}
+
+const RelaxationStatus& DynamicRelaxation::step(Matrix3X& x, Matrix3X& v, double h_s) {
+  const Index n = static_cast<Index>(m_system.mass_kg.size());
+  if (x.rows() != n || v.rows() != n) {
+    throw std::logic_error("DynamicRelaxation::step: " + std::to_string(x.rows()) +
+                           " positions and " + std::to_string(v.rows()) + " velocities for " +
+                           std::to_string(n) + " vertices");
+  }
+  if (!(h_s > 0.0) || h_s > m_h_max_s * (1.0 + 1e-12)) {
+    throw std::logic_error("DynamicRelaxation::step: step " + std::to_string(h_s) +
+                           " s, expected in (0, " + std::to_string(m_h_max_s) + "]");
+  }
+  const Eigen::VectorXd& m = m_fictitious_mass_kg;
+  const Eigen::VectorXd& inv_mass = m_system.inv_mass;
+
+  // R(x_n) = f(x_n) + M g: the physical load, no damping.
+  m_residual.setZero(n, 3);
+  m_system.internal_forces(x, m_residual);
+  if (m_system.velocity_forces) {  // e.g. a steady wind's load on the cloth at rest
+    m_zero_velocity.setZero(n, 3);
+    m_system.velocity_forces(x, m_zero_velocity, m_residual);
+  }
+  const Eigen::RowVector3d g = m_system.gravity_m_s2.transpose();
+  for (Index i = 0; i < n; ++i) m_residual.row(i) += m_system.mass_kg[i] * g;
+  m_status.residual = relative_residual(m_residual, m_system.mass_kg, inv_mass,
+                                        m_system.gravity_m_s2);
+
+  // Kick: v_{n+½} = v_{n−½} + h M̃⁻¹ R_n (a half kick from rest after a start or a reset).
+  const double kinetic_before = free_kinetic_energy_J(m, inv_mass, v);
+  m_v_previous = v;
+  const double h_kick = m_restart ? 0.5 * h_s : h_s;
+  for (Index i = 0; i < n; ++i)
+    if (inv_mass[i] > 0.0) v.row(i) += (h_kick / m[i]) * m_residual.row(i);
+  const double kinetic_after = free_kinetic_energy_J(m, inv_mass, v);
+
+  ++m_status.iterations;
+  m_status.reset = !m_restart && kinetic_after < kinetic_before;
+  if (m_status.reset) {
+    // The kinetic energy peaked between v_{n−½} and v_{n+½}: back to x* = x_n − (h/2) v_{n−½}
+    // and start again from rest.
+    for (Index i = 0; i < n; ++i) {
+      if (!(inv_mass[i] > 0.0)) continue;
+      x.row(i) -= (0.5 * h_s) * m_v_previous.row(i);
+      v.row(i).setZero();
+    }
+    ++m_status.kinetic_peaks;
+    m_restart = true;
+    m_status.kinetic_energy_J = 0.0;
+    return m_status;
+  }
+  x += h_s * v;  // pins move by their own velocity (0 when fixed), as in ExplicitStepper
+  m_restart = false;
+  m_status.kinetic_energy_J = kinetic_after;
+  return m_status;
+}
+
+const RelaxationStatus& DynamicRelaxation::relax(Matrix3X& x, Matrix3X& v, double tolerance,
+                                                 long max_iterations) {
+  for (long k = 0; k < max_iterations; ++k) {
+    step(x, v, m_h_max_s);
+    if (m_status.residual <= tolerance) break;
+  }
+  return m_status;
+}
+
+}  // namespace weft::sim
