@@ -20,7 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 std::string frame_name(int frame) {
@@ -34,7 +35,8 @@ int remove_old_frames(const fs::path& dir) {
   static const std::regex pattern(R"(frame_\d{4,}\.png)");
   int removed = 0;
   for (const auto& entry : fs::directory_iterator(dir))
-    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path())) ++removed;
+    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
+      ++removed;
   return removed;
 }
 
@@ -47,12 +49,15 @@ void write_text(const fs::path& path, const std::string& text) {
 void apply_overrides(Scene& scene, const RunOptions& options) {
   if (options.frames) {
     if (*options.frames < 1 || *options.frames > 100000)
-      throw SceneError("--frames: expected an integer in 1..100000, got " + std::to_string(*options.frames));
+      throw SceneError("--frames: expected an integer in 1..100000, got " +
+                       std::to_string(*options.frames));
     scene.frames = *options.frames;
   }
-  if (options.size) std::tie(scene.render.width, scene.render.height) = parse_size(*options.size, "--size");
+  if (options.size)
+    std::tie(scene.render.width, scene.render.height) = parse_size(*options.size, "--size");
   if (options.normals_shading)
-    scene.render.shading = *options.normals_shading ? render::Shading::normals : render::Shading::lit;
+    scene.render.shading =
+        *options.normals_shading ? render::Shading::normals : render::Shading::lit;
 }
 
 }  // namespace
@@ -64,7 +69,9 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
     const int w = std::stoi(m[1]), h = std::stoi(m[2]);
     if (w >= 16 && w <= 8192 && h >= 16 && h <= 8192) return {w, h};
   }
-  throw SceneError(option + ": expected WIDTHxHEIGHT with each side in 16..8192 (e.g. 640x480), got '" + text + "'");
+  throw SceneError(option +
+                   ": expected WIDTHxHEIGHT with each side in 16..8192 (e.g. 640x480), got '" +
+                   text + "'");
 }
 
 namespace {
@@ -79,8 +86,8 @@ void print_phase_shares(const sim::PhaseTimers& timers) {
     if (s <= 0.0) continue;
     char part[96];
     std::snprintf(part, sizeof part, "%s%s %.0f %% (%s)", text.empty() ? "" : ", ",
-                  std::string(sim::phase_names[static_cast<std::size_t>(p)]).c_str(), 100.0 * s / total,
-                  format_duration(s).c_str());
+                  std::string(sim::phase_names[static_cast<std::size_t>(p)]).c_str(),
+                  100.0 * s / total, format_duration(s).c_str());
     text += part;
   }
   std::printf("weft: time per phase: %s\n", text.c_str());
@@ -93,34 +100,27 @@ int run_scene(const RunOptions& options) {
   apply_overrides(scene, options);
 
   // Everything that can reject the input happens before the output folder is touched.
-  sim::ClothMesh mesh = sim::make_grid(scene.grid);
-  std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
-  std::optional<sim::Simulator> simulator;
-  try {
-    simulator.emplace(std::move(mesh), scene.material, std::move(pinned), scene.sim);
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(scene.source + ": cloth.material: " + e.what());
-  }
-  for (std::size_t k = 0; k < scene.pin_paths.size(); ++k) {
-    if (scene.pin_paths[k].moves())
-      simulator->set_pin_path(sim::resolve_pins({scene.pins[k]}, simulator->mesh()), scene.pin_paths[k]);
-  }
-  render::RasterRenderer renderer(render::make_osmesa_context(scene.render.width, scene.render.height));
+  const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+  render::RasterRenderer renderer(
+      render::make_osmesa_context(scene.render.width, scene.render.height));
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   fs::create_directories(dir);
   if (const int removed = remove_old_frames(dir))
-    std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed, dir.c_str());
+    std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed,
+                 dir.c_str());
   write_text(dir / "scene.json", scene.text);
-  write_text(dir / "run.txt", "weft " + std::string(version()) + "\ncommand: " + options.command_line +
-                                  "\nscene: " + scene.source + "\n");
+  write_text(dir / "run.txt", "weft " + std::string(version()) + "\ncommand: " +
+                                  options.command_line + "\nscene: " + scene.source + "\n");
   StatsCsv stats(dir / "stats.csv");
 
   const double frame_dt = 1.0 / scene.fps;
-  std::fprintf(stderr, "weft: %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), %s\n",
-               scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
-               1e3 * simulator->time_step(), 1e3 * simulator->critical_time_step(),
-               renderer.description().c_str());
+  std::fprintf(
+      stderr,
+      "weft: %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), %s\n",
+      scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
+      1e3 * simulator->time_step(), 1e3 * simulator->critical_time_step(),
+      renderer.description().c_str());
   if (options.explain) {
     std::printf("weft: the simulation runs, per step:\n");
     for (const std::string& line : simulator->explain()) std::printf("  %s\n", line.c_str());
@@ -141,7 +141,8 @@ int run_scene(const RunOptions& options) {
       progress.finish();
       std::fprintf(stderr, "weft: error: frame %d: %s\n", frame, e.what());
       if (frame > 1)
-        std::fprintf(stderr, "weft: kept frames 1..%d and stats.csv in %s\n", frame - 1, dir.c_str());
+        std::fprintf(stderr, "weft: kept frames 1..%d and stats.csv in %s\n", frame - 1,
+                     dir.c_str());
       else
         std::fprintf(stderr, "weft: no frame was finished; stats.csv is in %s\n", dir.c_str());
       return exit_diverged;
@@ -151,9 +152,8 @@ int run_scene(const RunOptions& options) {
     row.diagnostics = simulator->diagnostics();
 
     start = std::chrono::steady_clock::now();
-    const render::Image image =
-        renderer.render(to_render_mesh(simulator->mesh(), simulator->state().x), scene.render,
-                        obstacle_objects);
+    const render::Image image = renderer.render(
+        to_render_mesh(simulator->mesh(), simulator->state().x), scene.render, obstacle_objects);
     render::write_png(image, dir / frame_name(frame));
     row.render_ms = ms_since(start);
     stats.write(row);
@@ -170,12 +170,16 @@ int run_scene(const RunOptions& options) {
   }
   progress.finish();
   if (unconverged_total > 0)
-    std::fprintf(stderr, "weft: warning: the constraint projection missed its tolerance in %ld of %ld steps "
-                 "(see unconverged_steps in stats.csv)\n", unconverged_total, steps_total);
+    std::fprintf(
+        stderr,
+        "weft: warning: the constraint projection missed its tolerance in %ld of %ld steps "
+        "(see unconverged_steps in stats.csv)\n",
+        unconverged_total, steps_total);
   if (options.explain) print_phase_shares(simulator->timers());
   std::printf("weft: wrote %d frames to %s (simulation %s, rendering %s, total %s)\n", scene.frames,
               dir.c_str(), format_duration(sim_ms_total / 1e3).c_str(),
-              format_duration(render_ms_total / 1e3).c_str(), format_duration(progress.elapsed_s()).c_str());
+              format_duration(render_ms_total / 1e3).c_str(),
+              format_duration(progress.elapsed_s()).c_str());
   return exit_ok;
 }
 

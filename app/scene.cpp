@@ -44,7 +44,8 @@ Eigen::Vector3d read_axis(ObjectReader& r, const std::string& key,
 // given besides it overrides that one value.
 sim::Material read_material(ObjectReader r) {
   std::vector<std::pair<std::string, sim::Material>> presets;
-  for (const sim::MaterialPreset& p : sim::material_presets()) presets.emplace_back(p.name, p.material);
+  for (const sim::MaterialPreset& p : sim::material_presets())
+    presets.emplace_back(p.name, p.material);
   sim::Material m = r.enumeration<sim::Material>("preset", presets, sim::Material{});
   const Range positive = Range::gt(0.0);
   m.density_kg_m2 = r.quantity("density", Quantity::areal_density, m.density_kg_m2, positive);
@@ -55,8 +56,10 @@ sim::Material read_material(ObjectReader r) {
   // Zero shear or bending rigidity is allowed: the term is then not built at all.
   const Range non_negative = Range::ge(0.0);
   m.shear_N_m = r.quantity("shear", Quantity::force_per_length, m.shear_N_m, non_negative);
-  m.bend_warp_Nm = r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, non_negative);
-  m.bend_weft_Nm = r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, non_negative);
+  m.bend_warp_Nm =
+      r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, non_negative);
+  m.bend_weft_Nm =
+      r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, non_negative);
   r.finish();
   return m;
 }
@@ -421,6 +424,24 @@ Scene default_scene() {
   Scene scene = parse_scene(default_scene_text(), builtin_source);
   scene.name = "default";
   return scene;
+}
+
+std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
+  sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
+  std::unique_ptr<sim::Simulator> simulator;
+  try {
+    simulator = std::make_unique<sim::Simulator>(std::move(mesh), scene.material, std::move(pinned),
+                                                 scene.sim);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.source + ": cloth.material: " + e.what());
+  }
+  for (std::size_t k = 0; k < scene.pin_paths.size(); ++k) {
+    if (scene.pin_paths[k].moves())
+      simulator->set_pin_path(sim::resolve_pins({scene.pins[k]}, simulator->mesh()),
+                              scene.pin_paths[k]);
+  }
+  return simulator;
 }
 
 }  // namespace weft::app

@@ -2,6 +2,7 @@
 // A scene file, validated and converted to SI units. The format is documented in docs/scene.md.
 
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -44,6 +45,10 @@ struct Scene {
 Scene parse_scene(const std::string& text, const std::string& source);
 // Reads a scene file. Throws SceneError (a missing or unreadable file included).
 Scene load_scene(const std::filesystem::path& path);
+// The scene's simulator: grid, pins and their paths, material and settings. A material the
+// model rejects throws SceneError naming cloth.material.
+std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene);
+
 // The built-in default scene (the text of assets/scenes/default.json, compiled in).
 Scene default_scene();
 const std::string& default_scene_text();

@@ -33,37 +33,19 @@ struct SweepRun {
   std::vector<Setting> settings;
   Scene scene;
   // Results.
-  double wall_s = 0.0;         // simulation (advance) wall time, set-up excluded
+  double wall_s = 0.0;  // simulation (advance) wall time, set-up excluded
   long steps = 0;
-  double time_step_s = 0.0;    // the step the simulator used
+  double time_step_s = 0.0;  // the step the simulator used
   bool diverged = false;
-  std::string failure;         // the divergence message
-  sim::ClothMesh mesh;         // its rest shape and material coordinates
-  sim::Matrix3X x;             // #V×3 positions at the last frame, metres
-  double max_strain = 0.0;     // largest warp/weft strain at any frame end
+  std::string failure;      // the divergence message
+  sim::ClothMesh mesh;      // its rest shape and material coordinates
+  sim::Matrix3X x;          // #V×3 positions at the last frame, metres
+  double max_strain = 0.0;  // largest warp/weft strain at any frame end
   // Errors against the reference.
   double rms_error_m = 0.0;
   double silhouette_difference = 0.0;
   bool pareto = false;
 };
-
-// The simulator `weft run` would build for the scene (pins resolved, pin paths set).
-std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
-  sim::ClothMesh mesh = sim::make_grid(scene.grid);
-  std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
-  try {
-    auto simulator = std::make_unique<sim::Simulator>(std::move(mesh), scene.material,
-                                                      std::move(pinned), scene.sim);
-    for (std::size_t k = 0; k < scene.pin_paths.size(); ++k) {
-      if (scene.pin_paths[k].moves())
-        simulator->set_pin_path(sim::resolve_pins({scene.pins[k]}, simulator->mesh()),
-                                scene.pin_paths[k]);
-    }
-    return simulator;
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(scene.source + ": cloth.material: " + e.what());
-  }
-}
 
 // Simulates to the scene's last frame, frame by frame as `weft run` does; timing only advance().
 void simulate(SweepRun& run) {
@@ -81,7 +63,8 @@ void simulate(SweepRun& run) {
       run.failure = e.what();
     }
     busy += std::chrono::steady_clock::now() - start;
-    if (!run.diverged) run.max_strain = std::max(run.max_strain, simulator.diagnostics().max_strain);
+    if (!run.diverged)
+      run.max_strain = std::max(run.max_strain, simulator.diagnostics().max_strain);
   }
   run.wall_s = std::chrono::duration<double>(busy).count();
   run.steps = simulator.steps_taken();
@@ -98,9 +81,9 @@ void compare_with_reference(std::vector<SweepRun>& runs, std::size_t reference) 
     if (run.diverged) continue;
     run.rms_error_m = rms_distance_m(ref.mesh, ref.x, run.mesh, run.x);
     const Window window = joint_window(view, ref.x, run.x);
-    run.silhouette_difference =
-        silhouette_difference(silhouette(ref_triangles, ref.x, view, window, kSilhouetteCells),
-                              silhouette(run.mesh.triangles(), run.x, view, window, kSilhouetteCells));
+    run.silhouette_difference = silhouette_difference(
+        silhouette(ref_triangles, ref.x, view, window, kSilhouetteCells),
+        silhouette(run.mesh.triangles(), run.x, view, window, kSilhouetteCells));
   }
   std::vector<double> time_s, error_m;
   std::vector<bool> finished;
@@ -170,7 +153,8 @@ void write_csv(const fs::path& path, const std::vector<SettingValues>& options,
     const SweepRun& r = runs[k];
     out << k + 1;
     for (const Setting& s : r.settings) out << "," << csv_field(s.value);
-    out << "," << number("%.6g", r.wall_s) << "," << r.steps << "," << number("%.6g", r.time_step_s);
+    out << "," << number("%.6g", r.wall_s) << "," << r.steps << ","
+        << number("%.6g", r.time_step_s);
     if (r.diverged) {
       out << ",,,";  // no errors for a run without a last frame
     } else {
@@ -200,7 +184,10 @@ void print_table(const std::vector<SettingValues>& options, const std::vector<Sw
     row.push_back(r.diverged ? "-" : number("%.3g", r.rms_error_m));
     row.push_back(r.diverged ? "-" : number("%.3g %%", 100.0 * r.max_strain));
     row.push_back(r.diverged ? "-" : number("%.3f", r.silhouette_difference));
-    row.push_back(r.diverged ? "diverged" : k == reference ? "reference, Pareto" : r.pareto ? "Pareto" : "");
+    row.push_back(r.diverged       ? "diverged"
+                  : k == reference ? "reference, Pareto"
+                  : r.pareto       ? "Pareto"
+                                   : "");
     rows.push_back(row);
   }
   std::vector<std::size_t> width(header.size(), 0);
@@ -224,7 +211,8 @@ int run_sweep(const SweepOptions& options) {
   std::vector<SettingValues> values;
   for (const std::string& text : options.set) values.push_back(parse_set_option(text));
   if (options.frames && (*options.frames < 1 || *options.frames > 100000))
-    throw SceneError("--frames: expected an integer in 1..100000, got " + std::to_string(*options.frames));
+    throw SceneError("--frames: expected an integer in 1..100000, got " +
+                     std::to_string(*options.frames));
 
   // Every combination is read (and so checked) before any is simulated.
   std::vector<SweepRun> runs;
@@ -235,7 +223,8 @@ int run_sweep(const SweepOptions& options) {
     run.settings = std::move(settings);
     runs.push_back(std::move(run));
   }
-  if (options.reference && (*options.reference < 1 || *options.reference > static_cast<int>(runs.size())))
+  if (options.reference &&
+      (*options.reference < 1 || *options.reference > static_cast<int>(runs.size())))
     throw SceneError("--reference: expected a run number in 1.." + std::to_string(runs.size()) +
                      ", got " + std::to_string(*options.reference));
 
@@ -246,9 +235,8 @@ int run_sweep(const SweepOptions& options) {
     SweepRun& run = runs[k];
     simulate(run);
     std::fprintf(stderr, "weft sweep: run %zu/%zu %s: %.3g s, %ld steps of %.3g ms%s%s\n", k + 1,
-                 runs.size(), label(run, keys).c_str(), run.wall_s,
-                 run.steps, 1e3 * run.time_step_s, run.diverged ? ", diverged: " : "",
-                 run.failure.c_str());
+                 runs.size(), label(run, keys).c_str(), run.wall_s, run.steps,
+                 1e3 * run.time_step_s, run.diverged ? ", diverged: " : "", run.failure.c_str());
   }
 
   const std::size_t reference = choose_reference(runs, options.reference);
@@ -260,7 +248,8 @@ int run_sweep(const SweepOptions& options) {
   std::vector<PlotRun> plot_runs;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const SweepRun& r = runs[k];
-    plot_runs.push_back({r.wall_s, r.rms_error_m, label(r, keys), r.pareto, k == reference, r.diverged});
+    plot_runs.push_back(
+        {r.wall_s, r.rms_error_m, label(r, keys), r.pareto, k == reference, r.diverged});
   }
   render::write_png(sweep_plot(plot_runs, "weft sweep: " + base.name + ", error vs time"),
                     dir / "sweep.png");
@@ -289,10 +278,11 @@ int run_sweep(const SweepOptions& options) {
   std::sort(front.begin(), front.end(),
             [&](std::size_t a, std::size_t b) { return runs[a].wall_s < runs[b].wall_s; });
   for (std::size_t k : front) {
-    std::printf("  run %zu: %s (%.3g s, RMS error %.3g m)\n", k + 1, describe(runs[k].settings).c_str(),
-                runs[k].wall_s, runs[k].rms_error_m);
+    std::printf("  run %zu: %s (%.3g s, RMS error %.3g m)\n", k + 1,
+                describe(runs[k].settings).c_str(), runs[k].wall_s, runs[k].rms_error_m);
   }
-  std::printf("weft sweep: wrote %s and %s\n", (dir / "sweep.csv").c_str(), (dir / "sweep.png").c_str());
+  std::printf("weft sweep: wrote %s and %s\n", (dir / "sweep.csv").c_str(),
+              (dir / "sweep.png").c_str());
   return exit_ok;
 }
 

@@ -10,28 +10,14 @@
 #include <sstream>
 
 #include "render/image.h"
+#include "tests/app/cli_test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result run_weft(const std::string& args) {
-  const std::string command = std::string(WEFT_EXECUTABLE) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  std::size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Result = weft::app::test::CommandResult;
+using weft::app::test::run_weft;
 
 class Cli : public ::testing::Test {
  protected:
@@ -58,7 +44,8 @@ std::string tiny_scene(const std::string& cloth_extra = "", const std::string& t
   "description": "tiny end-to-end test scene",
   "cloth": {
     "size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
-    "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}])" + cloth_extra + R"(
+    "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}])" +
+         cloth_extra + R"(
   },
   "output": {"fps": 24, "frames": 4},
   "render": {"size": [96, 64], "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]}})" +
@@ -114,7 +101,8 @@ TEST_F(Cli, RunWritesFramesStatsAndTheScene) {
 TEST_F(Cli, FramesAndSizeOptionsOverrideTheScene) {
   const fs::path scene = write_scene("tiny.json", tiny_scene());
   const fs::path out = m_dir / "out";
-  const Result r = run_weft("run " + scene.string() + " --out " + out.string() + " --frames 2 --size 40x30");
+  const Result r =
+      run_weft("run " + scene.string() + " --out " + out.string() + " --frames 2 --size 40x30");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(weft::render::read_image(out / "frame_0002.png").width(), 40);
   EXPECT_FALSE(fs::exists(out / "frame_0003.png"));
@@ -127,15 +115,19 @@ struct BadInput {
   std::string expected;    // part of the one-line message
 };
 
-void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
+void PrintTo(const BadInput& bad, std::ostream* os) {
+  *os << bad.name;
+}
 
 class CliBadInput : public Cli, public ::testing::WithParamInterface<BadInput> {};
 
 TEST_P(CliBadInput, OneLineErrorExitCodeOneAndNothingWritten) {
   const BadInput& bad = GetParam();
-  const fs::path scene = bad.scene_text.empty() ? m_dir / "missing.json" : write_scene("scene.json", bad.scene_text);
+  const fs::path scene =
+      bad.scene_text.empty() ? m_dir / "missing.json" : write_scene("scene.json", bad.scene_text);
   const fs::path out = m_dir / "out";
-  const Result r = run_weft("run " + scene.string() + " --out " + out.string() + " " + bad.args_after_scene);
+  const Result r =
+      run_weft("run " + scene.string() + " --out " + out.string() + " " + bad.args_after_scene);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_EQ(r.output.rfind("weft: error: ", 0), 0u) << r.output;
   EXPECT_NE(r.output.find(bad.expected), std::string::npos) << r.output;
@@ -154,15 +146,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"NanString", "", tiny_scene(",\n    \"material\": {\"shear\": \"nan N/m\"}"),
                  "cloth.material.shear"},
         BadInput{"ZeroResolution", "",
-                 tiny_scene().replace(tiny_scene().find("[9, 9]"), 6, "[0, 9]"), "cloth.resolution[0]"},
+                 tiny_scene().replace(tiny_scene().find("[9, 9]"), 6, "[0, 9]"),
+                 "cloth.resolution[0]"},
         BadInput{"PinOutsideTheMesh", "",
-                 tiny_scene().replace(tiny_scene().find("{\"corner\": \"u1v1\"}"), 18, "{\"vertex\": 81}"),
+                 tiny_scene().replace(tiny_scene().find("{\"corner\": \"u1v1\"}"), 18,
+                                      "{\"vertex\": 81}"),
                  "cloth.pins[1]: vertex 81 is outside the mesh (0..80)"},
         BadInput{"WrongEnum", "", tiny_scene("", ",\n  \"simulation\": {\"integrator\": \"rk9\"}"),
                  "simulation.integrator"},
         BadInput{"BadSizeOption", "--size 10x", tiny_scene(), "--size: expected WIDTHxHEIGHT"},
-        BadInput{"BadFramesOption", "--frames 0", tiny_scene(), "--frames: expected an integer in 1..100000"},
-        BadInput{"BadShadingOption", "--shading glossy", tiny_scene(), "--shading: glossy not in {lit,normals}"}),
+        BadInput{"BadFramesOption", "--frames 0", tiny_scene(),
+                 "--frames: expected an integer in 1..100000"},
+        BadInput{"BadShadingOption", "--shading glossy", tiny_scene(),
+                 "--shading: glossy not in {lit,normals}"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 // --explain lists only what the scene needs — the tiny scene has no constraints and no
@@ -181,14 +177,18 @@ TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
 
   const fs::path rich = write_scene(
       "rich.json",
-      tiny_scene("", ",\n  \"obstacles\": [{\"plane\": {\"point\": [0, 0, 0], \"normal\": [0, 0, 1]}}],\n"
-                     "  \"simulation\": {\"integrator\": \"implicit_euler\", \"constraints\": "
-                     "{\"method\": \"fast_projection\"}}"));
+      tiny_scene(
+          "",
+          ",\n  \"obstacles\": [{\"plane\": {\"point\": [0, 0, 0], \"normal\": [0, 0, 1]}}],\n"
+          "  \"simulation\": {\"integrator\": \"implicit_euler\", \"constraints\": "
+          "{\"method\": \"fast_projection\"}}"));
   const Result q = run_weft("run " + rich.string() + " --explain --out " + (m_dir / "b").string());
   EXPECT_EQ(q.exit_code, 0) << q.output;
   EXPECT_CONTAINS(q.output, "integrate: implicit_euler, h = 8.33333 ms, sparse direct solve");
-  EXPECT_EQ(q.output.find("warp/weft springs"), std::string::npos) << q.output;  // constraints instead
-  EXPECT_CONTAINS(q.output, "project: fast_projection on 144 warp/weft edges");  // the pins share none
+  EXPECT_EQ(q.output.find("warp/weft springs"), std::string::npos)
+      << q.output;  // constraints instead
+  EXPECT_CONTAINS(q.output,
+                  "project: fast_projection on 144 warp/weft edges");  // the pins share none
   EXPECT_CONTAINS(q.output, "collide: 1 obstacles");
   EXPECT_CONTAINS(q.output, "project ");
 }

@@ -11,27 +11,16 @@
 #include <vector>
 
 #include "render/image.h"
+#include "tests/app/cli_test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct SweepResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using SweepResult = weft::app::test::CommandResult;
 
 SweepResult run_sweep_command(const std::string& args) {
-  const std::string command = std::string(WEFT_EXECUTABLE) + " sweep " + args + " 2>&1";
-  SweepResult r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  std::size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return weft::app::test::run_weft("sweep " + args);
 }
 
 // A CSV line's fields; "quoted, fields" keep their commas.
@@ -71,7 +60,8 @@ TEST(SweepCli, GridOfTheDefaultSceneWritesCsvAndPlot) {
   const fs::path out = scratch("grid");
   const SweepResult r = run_sweep_command(
       "--set 'cloth.resolution=[8,8],[12,12]' --set simulation.integrator=symplectic_euler,"
-      "velocity_verlet --frames 2 --out " + out.string());
+      "velocity_verlet --frames 2 --out " +
+      out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_CONTAINS(r.output, "run 4/4");
   EXPECT_CONTAINS(r.output, "Pareto-optimal settings");
@@ -127,7 +117,8 @@ TEST(SweepCli, DivergedRunIsARowNotAnError) {
   const fs::path out = scratch("diverged");
   const SweepResult r = run_sweep_command(
       "--set 'cloth.resolution=[8,8]' --set simulation.integrator=symplectic_euler,explicit_euler "
-      "--frames 2 --out " + out.string());
+      "--frames 2 --out " +
+      out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_CONTAINS(r.output, "diverged");
   const auto rows = read_csv(out / "sweep.csv");

@@ -16,24 +16,12 @@ using fd::expect_assembled_stiffness_matches_forces;
 using fd::expect_forces_match_energy;
 using fd::perturbed;
 
-// A deliberately anisotropic material: warp and weft differ, shear and bending non-zero.
 Material test_material() {
-  Material m;
-  m.stretch_warp_N_m = 1000.0;
-  m.stretch_weft_N_m = 600.0;
-  m.shear_N_m = 40.0;
-  m.bend_warp_Nm = 8e-6;
-  m.bend_weft_Nm = 3e-6;
-  return m;
+  return fd::anisotropic_fabric();
 }
 
 ClothMesh small_sheet(Index nu = 4, Index nv = 3, double size_u = 0.3, double size_v = 0.2) {
-  GridSpec g;
-  g.nu = nu;
-  g.nv = nv;
-  g.size_u_m = size_u;
-  g.size_v_m = size_v;
-  return make_grid(g);
+  return fd::flat_sheet(nu, nv, size_u, size_v);
 }
 
 Matrix3X rotated(const Matrix3X& x, const Eigen::Matrix3d& R, const Vec3& t) {

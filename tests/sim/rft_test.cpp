@@ -28,26 +28,12 @@ using fd::smallest_eigenvalue;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A clearly anisotropic fabric (warp ≠ weft in stretch and bending).
 Material fabric() {
-  Material m;
-  m.stretch_warp_N_m = 1000.0;
-  m.stretch_weft_N_m = 600.0;
-  m.shear_N_m = 40.0;
-  m.bend_warp_Nm = 8e-6;
-  m.bend_weft_Nm = 3e-6;
-  return m;
+  return fd::anisotropic_fabric();
 }
 
-// nu × nv vertices over size_u × size_v metres, flat in the world x–y plane at z = 0.
 ClothMesh sheet(Index nu, Index nv, double size_u_m, double size_v_m) {
-  GridSpec spec;
-  spec.nu = nu;
-  spec.nv = nv;
-  spec.size_u_m = size_u_m;
-  spec.size_v_m = size_v_m;
-  spec.origin = Vec3::Zero();
-  return make_grid(spec);
+  return fd::flat_sheet(nu, nv, size_u_m, size_v_m);
 }
 
 // Positions x(u, v) of every vertex from its material coordinates.
