@@ -11,6 +11,7 @@
 #include "app/stats_csv.h"
 #include "app/version.h"
 #include "render/raster.h"
+#include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
 
@@ -128,6 +129,8 @@ int run_scene(const RunOptions& options) {
   }
   const std::vector<render::RenderObject> obstacle_objects =
       obstacle_render_objects(scene.sim.obstacles, scene.render);
+  const auto cloth_triangles = simulator->mesh().triangles();
+  const auto cloth_edges = sim::unique_edges(cloth_triangles);
   Progress progress(stderr, scene.frames, "frame");
   double sim_ms_total = 0.0, render_ms_total = 0.0;
   long unconverged_total = 0, steps_total = 0;
@@ -150,6 +153,8 @@ int run_scene(const RunOptions& options) {
     row.sim_ms = ms_since(start);
     row.steps = simulator->take_step_statistics();
     row.diagnostics = simulator->diagnostics();
+    row.self_intersections = sim::count_edge_triangle_crossings(simulator->state().x,
+                                                                cloth_triangles, cloth_edges);
 
     start = std::chrono::steady_clock::now();
     const render::Image image = renderer.render(

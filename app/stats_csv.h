@@ -16,6 +16,7 @@ struct FrameStats {
   double render_ms = 0.0;  // wall time rendering and writing this frame
   sim::StepStatistics steps;  // what this frame's time steps did (count, projection, solves)
   sim::Diagnostics diagnostics;
+  int self_intersections = 0;  // edge–triangle crossings of the cloth at the frame's end
 };
 
 class StatsCsv {
