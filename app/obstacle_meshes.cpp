@@ -27,6 +27,21 @@ std::vector<render::RenderObject> obstacle_render_objects(
           {render::make_sphere_mesh(sphere->center_m, sphere->radius_m), settings.obstacle_color});
       continue;
     }
+    if (const auto* box = std::get_if<sim::BoxObstacle>(&obstacle)) {
+      objects.push_back({render::make_box_mesh(box->center_m, box->half_size_m, box->yaw_rad),
+                         settings.obstacle_color});
+      continue;
+    }
+    if (const auto* c = std::get_if<sim::CylinderObstacle>(&obstacle)) {
+      objects.push_back({render::make_cylinder_mesh(c->center_m, c->axis, c->radius_m, c->height_m),
+                         settings.obstacle_color});
+      continue;
+    }
+    if (const auto* c = std::get_if<sim::CapsuleObstacle>(&obstacle)) {
+      objects.push_back(
+          {render::make_capsule_mesh(c->a_m, c->b_m, c->radius_m), settings.obstacle_color});
+      continue;
+    }
     const auto& plane = std::get<sim::PlaneObstacle>(obstacle);
     if (is_rendered_ground(plane, settings)) continue;
     const Eigen::Vector3d n = plane.normal.normalized();

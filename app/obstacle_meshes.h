@@ -13,6 +13,7 @@ inline constexpr double plane_patch_half_size_m = 2.0;
 
 // One RenderObject per obstacle to draw, in settings.obstacle_color:
 // - a sphere: a sphere mesh at its true radius (the cloth rests collision_thickness outside it);
+// - a box, cylinder or capsule: its closed mesh at its true size (render/primitives.h);
 // - a plane: a 4 m × 4 m square centred on the point of the plane nearest the camera target,
 //   facing along its normal; none when the plane is the rendered ground (settings.ground on,
 //   normal +z and height ground_z_m, within 1e-9), which already shows it.

@@ -166,31 +166,57 @@ void read_cloth(ObjectReader r, Scene& scene) {
   check_pins(scene.pins, g, r.file(), r.path_of("pins"));
 }
 
-// One obstacle object: exactly one of "sphere", "plane" (sim::Obstacle).
+// One obstacle object: exactly one of "sphere", "plane", "box", "cylinder", "capsule"
+// (sim::Obstacle).
 sim::Obstacle read_obstacle(ObjectReader r) {
-  const bool sphere = r.has("sphere"), plane = r.has("plane");
-  if (!sphere && !plane) r.finish();  // a misspelt "sphere" gets its "did you mean"
-  if (sphere == plane) {
+  const std::vector<std::string> kinds = {"sphere", "plane", "box", "cylinder", "capsule"};
+  std::vector<std::string> present;
+  for (const std::string& kind : kinds)
+    if (r.has(kind)) present.push_back(kind);
+  if (present.empty()) r.finish();  // a misspelt "sphere" gets its "did you mean"
+  if (present.size() != 1) {
     throw_scene_error(r.file(), r.path(),
-                      std::string("expected exactly one of 'sphere' or 'plane', got ") +
-                          (sphere ? "both" : "neither"));
+                      "expected exactly one of 'sphere', 'plane', 'box', 'cylinder' or "
+                      "'capsule', got " +
+                          (present.empty() ? std::string("none")
+                                           : "'" + present[0] + "' and '" + present[1] + "'"));
   }
+  const std::string& kind = present[0];
+  ObjectReader o = r.required_object(kind);
   sim::Obstacle obstacle;
-  if (sphere) {
-    ObjectReader o = r.required_object("sphere");
+  if (kind == "sphere") {
     sim::SphereObstacle s;
     s.center_m = o.quantity_vec3("center", Quantity::length, required);
     s.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
-    o.finish();
     obstacle = s;
-  } else {
-    ObjectReader o = r.required_object("plane");
+  } else if (kind == "plane") {
     sim::PlaneObstacle p;
     p.point_m = o.quantity_vec3("point", Quantity::length, required);
     p.normal = read_axis(o, "normal", required);
-    o.finish();
     obstacle = p;
+  } else if (kind == "box") {
+    sim::BoxObstacle b;
+    b.center_m = o.quantity_vec3("center", Quantity::length, required);
+    const std::vector<double> half =
+        o.quantities("half_size", Quantity::length, 3, required, Range::gt(0.0));
+    b.half_size_m = Eigen::Vector3d(half[0], half[1], half[2]);
+    b.yaw_rad = o.angle_deg("yaw", 0.0) * 3.14159265358979323846 / 180.0;
+    obstacle = b;
+  } else if (kind == "cylinder") {
+    sim::CylinderObstacle c;
+    c.center_m = o.quantity_vec3("center", Quantity::length, required);
+    c.axis = read_axis(o, "axis", required);
+    c.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
+    c.height_m = o.quantity("height", Quantity::length, required, Range::gt(0.0));
+    obstacle = c;
+  } else {
+    sim::CapsuleObstacle c;
+    c.a_m = o.quantity_vec3("a", Quantity::length, required);
+    c.b_m = o.quantity_vec3("b", Quantity::length, required);
+    c.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
+    obstacle = c;
   }
+  o.finish();
   r.finish();
   return obstacle;
 }

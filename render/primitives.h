@@ -1,5 +1,6 @@
 #pragma once
-// Analytic shapes as RenderMeshes: what obstacles (spheres, planes) are drawn with.
+// Analytic shapes as RenderMeshes: what obstacles (spheres, planes, boxes, cylinders, capsules)
+// are drawn with.
 
 #include <Eigen/Core>
 
@@ -21,5 +22,29 @@ RenderMesh make_sphere_mesh(const Eigen::Vector3d& center_m, double radius_m, in
 // zero normal or half_size_m ≤ 0.
 RenderMesh make_square_patch(const Eigen::Vector3d& center_m, const Eigen::Vector3d& normal,
                              double half_size_m);
+
+// A box with half extents half_size_m (all > 0), m, centred on center_m and turned by yaw_rad
+// about +z (its local x axis along (cos yaw, sin yaw, 0)): six faces of two triangles each,
+// counter-clockwise seen from outside, each face with its own four vertices carrying the face's
+// outward normal (flat shading). Throws std::invalid_argument for non-finite input or a half
+// size ≤ 0.
+RenderMesh make_box_mesh(const Eigen::Vector3d& center_m, const Eigen::Vector3d& half_size_m,
+                         double yaw_rad);
+
+// A closed finite cylinder of radius_m and full length height_m about the axis (any non-zero
+// length) through center_m, its middle: a side of `segments` quads with the exact
+// outward radial normals, and two flat caps (a centre vertex and a rim ring each) with normals
+// ±axis. Triangles counter-clockwise seen from outside. Throws std::invalid_argument for
+// non-finite input, a zero axis, a radius or height ≤ 0, or segments outside 3..4096.
+RenderMesh make_cylinder_mesh(const Eigen::Vector3d& center_m, const Eigen::Vector3d& axis,
+                              double radius_m, double height_m, int segments = 64);
+
+// A capsule: the points within radius_m of the segment a_m–b_m, drawn as two UV hemispheres of
+// rings_per_cap rings (pole included) about a_m and b_m joined by a cylinder band; normals the
+// exact outward unit vectors, triangles counter-clockwise seen from outside. a_m = b_m gives a
+// sphere (drawn with its axis along +z). Throws std::invalid_argument for non-finite input, a
+// radius ≤ 0, segments outside 3..4096 or rings_per_cap outside 1..2048.
+RenderMesh make_capsule_mesh(const Eigen::Vector3d& a_m, const Eigen::Vector3d& b_m,
+                             double radius_m, int segments = 64, int rings_per_cap = 16);
 
 }  // namespace weft::render

@@ -30,6 +30,27 @@ Vec3 to_offset_surface(const PlaneObstacle& s, const Vec3& p, double t) {
   return p + (t - (p - s.point_m).dot(s.normal)) * s.normal;
 }
 
+// Signed distance to each shape, positive outside, m (obstacle_shapes.h for the other three).
+double shape_distance(const SphereObstacle& s, const Vec3& p) {
+  return (p - s.center_m).norm() - s.radius_m;
+}
+
+double shape_distance(const PlaneObstacle& s, const Vec3& p) {
+  return (p - s.point_m).dot(s.normal);
+}
+
+template <class Shape>
+double shape_distance(const Shape& s, const Vec3& p) {
+  return signed_distance(s, p);
+}
+
+// A box, cylinder or capsule: the closest surface point moved out along its normal.
+template <class Shape>
+Vec3 to_offset_surface(const Shape& s, const Vec3& p, double t) {
+  const SurfacePoint q = closest_surface_point(s, p);
+  return q.point_m + t * q.normal;
+}
+
 Vec3 to_offset_surface(const Obstacle& o, const Vec3& p, double t) {
   return std::visit([&](const auto& shape) { return to_offset_surface(shape, p, t); }, o);
 }
@@ -59,9 +80,14 @@ Vec3 closest_on_circle(const Circle& k, const Vec3& p) {
 
 // The nearest point to p on the curve where the offset surfaces (at distance t) of a and b
 // intersect: a circle (sphere–plane, sphere–sphere) or a line (plane–plane). None when they do
-// not intersect (disjoint or nested spheres, parallel planes).
+// not intersect (disjoint or nested spheres, parallel planes), and none unless both a and b are
+// spheres or planes.
 std::optional<Vec3> closest_on_offset_intersection(const Obstacle& a, const Obstacle& b,
                                                    const Vec3& p, double t) {
+  const auto sphere_or_plane = [](const Obstacle& o) {
+    return std::holds_alternative<SphereObstacle>(o) || std::holds_alternative<PlaneObstacle>(o);
+  };
+  if (!sphere_or_plane(a) || !sphere_or_plane(b)) return std::nullopt;
   const auto* sphere_a = std::get_if<SphereObstacle>(&a);
   const auto* sphere_b = std::get_if<SphereObstacle>(&b);
   const auto* plane_a = std::get_if<PlaneObstacle>(&a);
@@ -150,6 +176,20 @@ void apply_friction(const std::vector<Obstacle>& obstacles, double t, double fri
   if (!clear_of_all(obstacles, t, p)) resolve_vertex(obstacles, t, p);
 }
 
+// Throws "<what> must be finite and > 0, got <value> m" unless it is.
+void check_positive(const std::string& what, double value_m) {
+  if (!(value_m > 0.0) || !std::isfinite(value_m))
+    throw std::invalid_argument(what + " must be finite and > 0, got " + std::to_string(value_m) +
+                                " m");
+}
+
+void check_unit(const std::string& what, const Vec3& v) {
+  const double length = v.norm();
+  if (!(std::fabs(length - 1.0) <= unit_tolerance))
+    throw std::invalid_argument(what + " must be a unit vector, got length " +
+                                std::to_string(length));
+}
+
 void check_arguments(const std::vector<Obstacle>& obstacles, double thickness_m,
                      const Eigen::VectorXd& inv_mass, const Matrix3X& x) {
   if (inv_mass.size() != x.rows()) {
@@ -188,10 +228,7 @@ int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
 }  // namespace
 
 double signed_distance(const Obstacle& obstacle, const Vec3& p) {
-  if (const auto* s = std::get_if<SphereObstacle>(&obstacle))
-    return (p - s->center_m).norm() - s->radius_m;
-  const auto& plane = std::get<PlaneObstacle>(obstacle);
-  return (p - plane.point_m).dot(plane.normal);
+  return std::visit([&](const auto& shape) { return shape_distance(shape, p); }, obstacle);
 }
 
 void check_obstacles(const std::vector<Obstacle>& obstacles) {
@@ -200,17 +237,29 @@ void check_obstacles(const std::vector<Obstacle>& obstacles) {
     if (const auto* s = std::get_if<SphereObstacle>(&obstacles[k])) {
       if (!s->center_m.allFinite())
         throw std::invalid_argument(name + "sphere centre must be finite");
-      if (!(s->radius_m > 0.0) || !std::isfinite(s->radius_m))
-        throw std::invalid_argument(name + "sphere radius must be finite and > 0, got " +
-                                    std::to_string(s->radius_m) + " m");
-    } else {
-      const auto& plane = std::get<PlaneObstacle>(obstacles[k]);
-      if (!plane.point_m.allFinite())
+      check_positive(name + "sphere radius", s->radius_m);
+    } else if (const auto* plane = std::get_if<PlaneObstacle>(&obstacles[k])) {
+      if (!plane->point_m.allFinite())
         throw std::invalid_argument(name + "plane point must be finite");
-      const double length = plane.normal.norm();
-      if (!(std::fabs(length - 1.0) <= unit_tolerance))
-        throw std::invalid_argument(name + "plane normal must be a unit vector, got length " +
-                                    std::to_string(length));
+      check_unit(name + "plane normal", plane->normal);
+    } else if (const auto* box = std::get_if<BoxObstacle>(&obstacles[k])) {
+      if (!box->center_m.allFinite())
+        throw std::invalid_argument(name + "box centre must be finite");
+      for (int i = 0; i < 3; ++i)
+        check_positive(name + "box half size " + "xyz"[i], box -> half_size_m[i]);
+      if (!std::isfinite(box->yaw_rad))
+        throw std::invalid_argument(name + "box yaw must be finite");
+    } else if (const auto* c = std::get_if<CylinderObstacle>(&obstacles[k])) {
+      if (!c->center_m.allFinite())
+        throw std::invalid_argument(name + "cylinder centre must be finite");
+      check_unit(name + "cylinder axis", c->axis);
+      check_positive(name + "cylinder radius", c->radius_m);
+      check_positive(name + "cylinder height", c->height_m);
+    } else {
+      const auto& capsule = std::get<CapsuleObstacle>(obstacles[k]);
+      if (!capsule.a_m.allFinite() || !capsule.b_m.allFinite())
+        throw std::invalid_argument(name + "capsule endpoints must be finite");
+      check_positive(name + "capsule radius", capsule.radius_m);
     }
   }
 }

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "sim/collision/obstacle_shapes.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -23,14 +24,19 @@ struct PlaneObstacle {
   Vec3 normal{0.0, 0.0, 1.0};  // unit
 };
 
-using Obstacle = std::variant<SphereObstacle, PlaneObstacle>;
+// Box, cylinder and capsule: sim/collision/obstacle_shapes.h.
+using Obstacle =
+    std::variant<SphereObstacle, PlaneObstacle, BoxObstacle, CylinderObstacle, CapsuleObstacle>;
 
 // Signed distance from p to the obstacle's surface, positive outside, metres.
 double signed_distance(const Obstacle& obstacle, const Vec3& p);
 
 // Throws std::invalid_argument naming the obstacle ("obstacle 1: …") unless every sphere has a
-// finite centre and a finite radius > 0 and every plane a finite point and a unit normal
-// (±1e-6). push_out_of_obstacles checks this itself; callers may check earlier.
+// finite centre and a finite radius > 0, every plane a finite point and a unit normal (±1e-6),
+// every box a finite centre, half sizes finite and > 0 and a finite yaw, every cylinder a
+// finite centre, a unit axis (±1e-6), a radius and a height finite and > 0, and every capsule
+// finite endpoints and a radius finite and > 0. push_out_of_obstacles checks this itself;
+// callers may check earlier.
 void check_obstacles(const std::vector<Obstacle>& obstacles);
 
 // Moves every vertex with inv_mass > 0 that lies closer than thickness_m to (or inside) any
@@ -40,7 +46,9 @@ void check_obstacles(const std::vector<Obstacle>& obstacles);
 // distance ≥ thickness_m from every obstacle is left bit-for-bit as it was.
 // Order: for each vertex, the obstacles are applied in list order, in up to 4 passes, until
 // it is clear of all (up to rounding). A sphere's closest surface point is along the ray from
-// its centre (a vertex exactly at the centre goes out along +z); a plane's along its normal.
+// its centre (a vertex exactly at the centre goes out along +z); a plane's along its normal;
+// a box's, cylinder's or capsule's is closest_surface_point (obstacle_shapes.h), offset along
+// the normal there.
 // Where two obstacles meet in a concave wedge (a sphere resting on the ground plane) those
 // alternating moves only creep towards the way out, so a vertex still not clear after the
 // passes goes to the nearest point of the curve where the offset surfaces (at thickness_m) of

@@ -1,6 +1,6 @@
-// Obstacles in scene files: "obstacles" (spheres, planes), "simulation.collision_thickness" and
-// "render.colors.obstacle" land in SI units; every mistake names its key path. And the render
-// objects made from them (app/obstacle_meshes.h).
+// Obstacles in scene files: "obstacles" (spheres, planes, boxes, cylinders, capsules),
+// "simulation.collision_thickness" and "render.colors.obstacle" land in SI units; every mistake
+// names its key path. And the render objects made from them (app/obstacle_meshes.h).
 
 #include <gtest/gtest.h>
 
@@ -29,8 +29,12 @@ Json scene_with_obstacles() {
   })");
 }
 
-Scene parse(const Json& scene) { return test::parse_json_scene(scene); }
-std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
+Scene parse(const Json& scene) {
+  return test::parse_json_scene(scene);
+}
+std::string error_of(const Json& scene) {
+  return test::scene_error_of(scene);
+}
 
 TEST(ObstacleScene, SpheresAndPlanesLandInSIUnits) {
   const Scene s = parse(scene_with_obstacles());
@@ -71,11 +75,16 @@ TEST(ObstacleScene, EachObstacleIsExactlyOneShape) {
   Json j = scene_with_obstacles();
   j["obstacles"][0] = Json::object();
   EXPECT_EQ(error_of(j),
-            "scene.json: obstacles[0]: expected exactly one of 'sphere' or 'plane', got neither");
+            "scene.json: obstacles[0]: expected exactly one of 'sphere', 'plane', 'box', "
+            "'cylinder' or 'capsule', got none");
   j = scene_with_obstacles();
   j["obstacles"][1]["sphere"] = j["obstacles"][0]["sphere"];
   EXPECT_EQ(error_of(j),
-            "scene.json: obstacles[1]: expected exactly one of 'sphere' or 'plane', got both");
+            "scene.json: obstacles[1]: expected exactly one of 'sphere', 'plane', 'box', "
+            "'cylinder' or 'capsule', got 'sphere' and 'plane'");
+  j = scene_with_obstacles();
+  j["obstacles"][0]["capsule"] = j["obstacles"][0]["sphere"];
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0]: expected exactly one of");
   j = scene_with_obstacles();
   j["obstacles"][0]["spehre"] = j["obstacles"][0]["sphere"];
   j["obstacles"][0].erase("sphere");
@@ -135,6 +144,95 @@ TEST(ObstacleScene, BadPlane) {
   j = scene_with_obstacles();
   j["obstacles"][1]["plane"]["point"] = {0, "1 s", 0};
   EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].plane.point[1]: expected a length");
+}
+
+// The box, cylinder and capsule of docs/scene.md, with units.
+Json scene_with_shapes() {
+  Json j = scene_with_obstacles();
+  j["obstacles"] = Json::parse(R"([
+    {"box": {"center": [0, 0, "5 cm"], "half_size": ["5 cm", "4 cm", "50 mm"], "yaw": 30}},
+    {"cylinder": {"center": ["1 m", 0, "20 cm"], "axis": [0, 0, 1], "radius": "9 cm",
+                  "height": "1 cm"}},
+    {"capsule": {"a": [0, "-10 cm", "30 cm"], "b": [0, "10 cm", "30 cm"], "radius": "3 cm"}}
+  ])");
+  return j;
+}
+
+TEST(ObstacleScene, BoxCylinderAndCapsuleLandInSIUnits) {
+  const Scene s = parse(scene_with_shapes());
+  ASSERT_EQ(s.sim.obstacles.size(), 3u);
+  const auto& box = std::get<sim::BoxObstacle>(s.sim.obstacles[0]);
+  EXPECT_TRUE(box.center_m.isApprox(Eigen::Vector3d(0, 0, 0.05), 1e-15));
+  EXPECT_TRUE(box.half_size_m.isApprox(Eigen::Vector3d(0.05, 0.04, 0.05), 1e-15));
+  EXPECT_NEAR(box.yaw_rad, 3.14159265358979323846 / 6.0, 1e-15);  // a bare angle is degrees
+  const auto& cylinder = std::get<sim::CylinderObstacle>(s.sim.obstacles[1]);
+  EXPECT_TRUE(cylinder.center_m.isApprox(Eigen::Vector3d(1.0, 0, 0.2), 1e-15));
+  EXPECT_EQ(cylinder.axis, Eigen::Vector3d(0, 0, 1));
+  EXPECT_NEAR(cylinder.radius_m, 0.09, 1e-15);
+  EXPECT_NEAR(cylinder.height_m, 0.01, 1e-15);
+  const auto& capsule = std::get<sim::CapsuleObstacle>(s.sim.obstacles[2]);
+  EXPECT_TRUE(capsule.a_m.isApprox(Eigen::Vector3d(0, -0.1, 0.3), 1e-15));
+  EXPECT_TRUE(capsule.b_m.isApprox(Eigen::Vector3d(0, 0.1, 0.3), 1e-15));
+  EXPECT_NEAR(capsule.radius_m, 0.03, 1e-15);
+  // Yaw defaults to 0; each shape is drawn, in the obstacle colour.
+  Json j = scene_with_shapes();
+  j["obstacles"][0]["box"].erase("yaw");
+  EXPECT_EQ(std::get<sim::BoxObstacle>(parse(j).sim.obstacles[0]).yaw_rad, 0.0);
+  EXPECT_EQ(obstacle_render_objects(s.sim.obstacles, s.render).size(), 3u);
+}
+
+TEST(ObstacleScene, BadBoxCylinderAndCapsule) {
+  Json j = scene_with_shapes();
+  j["obstacles"][0]["box"]["half_size"] = {"5 cm", 0, "5 cm"};
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.half_size[1]: expected a length > 0");
+  j["obstacles"][0]["box"]["half_size"] = {"5 cm", "5 cm"};
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.half_size: expected an array of 3");
+  j["obstacles"][0]["box"].erase("half_size");
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.half_size: required key is missing");
+  j = scene_with_shapes();
+  j["obstacles"][0]["box"]["yaw"] = "30 cm";
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.yaw: expected an angle");
+  j = scene_with_shapes();
+  j["obstacles"][0]["box"]["size"] = 1;
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.size: unknown key");
+  j = scene_with_shapes();
+  j["obstacles"][1]["cylinder"]["axis"] = {0, 0, 2};
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].cylinder.axis: expected a unit vector");
+  j = scene_with_shapes();
+  j["obstacles"][1]["cylinder"]["height"] = "-1 cm";
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].cylinder.height: expected a length > 0");
+  j = scene_with_shapes();
+  j["obstacles"][1]["cylinder"].erase("radius");
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].cylinder.radius: required key is missing");
+  j = scene_with_shapes();
+  j["obstacles"][2]["capsule"]["radius"] = 0;
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[2].capsule.radius: expected a length > 0");
+  j = scene_with_shapes();
+  j["obstacles"][2]["capsule"]["b"] = {0, "1 kg", 0};
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[2].capsule.b[1]: expected a length");
+  j = scene_with_shapes();
+  j["obstacles"][2]["capsule"].erase("a");
+  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[2].capsule.a: required key is missing");
+}
+
+TEST(ObstacleScene, PedestalDrapeAssetParses) {
+  const Scene s = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" /
+                             "pedestal_drape.json");
+  EXPECT_NE(s.description.find("Kang & Yu"), std::string::npos);
+  EXPECT_NE(s.description.find("seed 002"), std::string::npos);
+  ASSERT_EQ(s.sim.obstacles.size(), 2u);
+  const auto& pedestal = std::get<sim::BoxObstacle>(s.sim.obstacles[0]);
+  // A 10 × 10 cm pedestal standing on the ground; a 20 × 20 cm sheet centred above it.
+  EXPECT_NEAR(2.0 * pedestal.half_size_m.x(), 0.10, 1e-12);
+  EXPECT_NEAR(2.0 * pedestal.half_size_m.y(), 0.10, 1e-12);
+  EXPECT_NEAR(pedestal.center_m.z() - pedestal.half_size_m.z(), 0.0, 1e-12);
+  EXPECT_NEAR(s.grid.size_u_m, 0.20, 1e-12);
+  EXPECT_NEAR(s.grid.size_v_m, 0.20, 1e-12);
+  EXPECT_NEAR(s.grid.origin.x() + 0.5 * s.grid.size_u_m, pedestal.center_m.x(), 1e-12);
+  EXPECT_NEAR(s.grid.origin.y() + 0.5 * s.grid.size_v_m, pedestal.center_m.y(), 1e-12);
+  EXPECT_GT(s.grid.origin.z(), pedestal.center_m.z() + pedestal.half_size_m.z());
+  // The rendered ground is not drawn again: only the pedestal.
+  EXPECT_EQ(obstacle_render_objects(s.sim.obstacles, s.render).size(), 1u);
 }
 
 TEST(ObstacleScene, BadThicknessAndColour) {

@@ -1,11 +1,13 @@
-// Sphere and square-patch meshes: on the surface, closed, outward counter-clockwise triangles,
-// unit outward normals.
+// Sphere, square-patch, box, cylinder and capsule meshes: on the surface, closed, outward
+// counter-clockwise triangles, unit outward normals.
 
 #include "render/primitives.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -94,6 +96,98 @@ TEST(Primitives, SquarePatchFacesItsNormal) {
   EXPECT_TRUE(mean.isApprox(centre, 1e-6));
 }
 
+// Closed and consistently oriented as a surface, whatever vertices are duplicated for sharp
+// edges: every directed edge between positions (to 1e-6 m) appears once, and its reverse once.
+// Each triangle faces the way of its vertices' normals. Returns the enclosed volume (divergence
+// theorem: Σ a·(b × c)/6), positive when the triangles face outward.
+double closed_volume(const RenderMesh& mesh) {
+  const auto key = [&](std::uint32_t v) {
+    const Eigen::Vector3d p = at(mesh, v) * 1e6;
+    return std::array<long, 3>{std::lround(p.x()), std::lround(p.y()), std::lround(p.z())};
+  };
+  std::map<std::pair<std::array<long, 3>, std::array<long, 3>>, int> directed;
+  double volume = 0.0;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) ++directed[{key(t[k]), key(t[(k + 1) % 3])}];
+    const Eigen::Vector3d n = face_normal(mesh, t);
+    EXPECT_GT(n.norm(), 0.0) << "degenerate triangle";
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(mesh.normals[t[k]].norm(), 1.0f, 1e-6f);
+      EXPECT_GT(n.dot(mesh.normals[t[k]].cast<double>()), 0.0) << "triangle against its normals";
+    }
+    volume += at(mesh, t[0]).dot(at(mesh, t[1]).cross(at(mesh, t[2]))) / 6.0;
+  }
+  for (const auto& [edge, count] : directed) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u) << "open edge";
+  }
+  return volume;
+}
+
+TEST(Primitives, BoxIsClosedFlatShadedAndHasItsVolume) {
+  const Eigen::Vector3d centre(0.2, -0.1, 0.05), half(0.05, 0.04, 0.03);
+  const double yaw = 0.5;
+  const RenderMesh mesh = make_box_mesh(centre, half, yaw);
+  EXPECT_EQ(mesh.positions.size(), 24u);
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  EXPECT_NEAR(closed_volume(mesh), 8.0 * half.prod(), 1e-9);
+  // Every vertex is a corner: ±half along the turned axes; its normal is a face's.
+  const Eigen::Vector3d ex(std::cos(yaw), std::sin(yaw), 0), ey(-std::sin(yaw), std::cos(yaw), 0);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3d d = at(mesh, static_cast<std::uint32_t>(v)) - centre;
+    EXPECT_NEAR(std::fabs(d.dot(ex)), half.x(), 1e-7);
+    EXPECT_NEAR(std::fabs(d.dot(ey)), half.y(), 1e-7);
+    EXPECT_NEAR(std::fabs(d.z()), half.z(), 1e-7);
+    const Eigen::Vector3d n = mesh.normals[v].cast<double>();
+    EXPECT_NEAR(std::fabs(n.dot(ex)) + std::fabs(n.dot(ey)) + std::fabs(n.z()), 1.0, 1e-6);
+  }
+}
+
+TEST(Primitives, CylinderIsClosedOnItsSurfaceAndHasItsPrismVolume) {
+  const Eigen::Vector3d centre(-0.1, 0.2, 0.3), axis = Eigen::Vector3d(1, 2, 2) / 3.0;
+  const double radius = 0.09, height = 0.02;
+  const int segments = 24;
+  const RenderMesh mesh = make_cylinder_mesh(centre, 3.0 * axis, radius, height, segments);
+  // Inscribed prism: a regular 24-gon of area (n/2) R² sin(2π/n) times the height.
+  const double polygon =
+      0.5 * segments * radius * radius * std::sin(2.0 * 3.14159265358979 / segments);
+  EXPECT_NEAR(closed_volume(mesh), polygon * height, 1e-9);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3d d = at(mesh, static_cast<std::uint32_t>(v)) - centre;
+    const double z = d.dot(axis), r = (d - z * axis).norm();
+    const Eigen::Vector3d n = mesh.normals[v].cast<double>();
+    if (std::fabs(n.dot(axis)) > 0.5) {  // a cap vertex: on the cap, normal ±axis
+      EXPECT_NEAR(std::fabs(z), 0.5 * height, 1e-7);
+      EXPECT_NEAR(n.dot(axis), z > 0 ? 1.0 : -1.0, 1e-6);
+      EXPECT_LE(r, radius + 1e-7);
+    } else {  // a side vertex: on the rim, normal radial
+      EXPECT_NEAR(r, radius, 1e-7);
+      EXPECT_NEAR(n.dot((d - z * axis) / r), 1.0, 1e-6);
+    }
+  }
+}
+
+TEST(Primitives, CapsuleIsClosedOnItsSurfaceWithNearlyItsVolume) {
+  const Eigen::Vector3d a(0.0, -0.1, 0.3), b(0.05, 0.1, 0.3);
+  const double radius = 0.03, pi = 3.14159265358979323846;
+  const RenderMesh mesh = make_capsule_mesh(a, b, radius, 32, 8);
+  const double length = (b - a).norm();
+  const double exact = pi * radius * radius * length + 4.0 / 3.0 * pi * std::pow(radius, 3);
+  const double volume = closed_volume(mesh);
+  EXPECT_LT(volume, exact);  // inscribed
+  EXPECT_GT(volume, 0.97 * exact);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3d p = at(mesh, static_cast<std::uint32_t>(v));
+    const double s = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    const Eigen::Vector3d off = p - (a + s * (b - a));
+    EXPECT_NEAR(off.norm(), radius, 1e-7);
+    EXPECT_NEAR(mesh.normals[v].cast<double>().dot(off / off.norm()), 1.0, 1e-6);
+  }
+  // a = b: a closed sphere.
+  const RenderMesh ball = make_capsule_mesh(a, a, radius, 32, 8);
+  EXPECT_GT(closed_volume(ball), 0.97 * 4.0 / 3.0 * pi * std::pow(radius, 3));
+}
+
 TEST(Primitives, BadInputThrows) {
   EXPECT_THROW(make_sphere_mesh({0, 0, 0}, 0.0), std::invalid_argument);
   EXPECT_THROW(make_sphere_mesh({0, 0, 0}, -1.0), std::invalid_argument);
@@ -103,6 +197,13 @@ TEST(Primitives, BadInputThrows) {
   EXPECT_THROW(make_square_patch({0, 0, 0}, {0, 0, 0}, 1.0), std::invalid_argument);
   EXPECT_THROW(make_square_patch({0, 0, 0}, {0, 0, 1}, 0.0), std::invalid_argument);
   EXPECT_THROW(make_square_patch({0, 0, INFINITY}, {0, 0, 1}, 1.0), std::invalid_argument);
+  EXPECT_THROW(make_box_mesh({0, 0, 0}, {1, 0, 1}, 0.0), std::invalid_argument);
+  EXPECT_THROW(make_box_mesh({0, 0, 0}, {1, 1, 1}, NAN), std::invalid_argument);
+  EXPECT_THROW(make_cylinder_mesh({0, 0, 0}, {0, 0, 0}, 1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(make_cylinder_mesh({0, 0, 0}, {0, 0, 1}, 1.0, -1.0), std::invalid_argument);
+  EXPECT_THROW(make_cylinder_mesh({0, 0, 0}, {0, 0, 1}, 1.0, 1.0, 2), std::invalid_argument);
+  EXPECT_THROW(make_capsule_mesh({0, 0, 0}, {0, 0, 1}, 0.0), std::invalid_argument);
+  EXPECT_THROW(make_capsule_mesh({0, 0, 0}, {0, 0, 1}, 1.0, 8, 0), std::invalid_argument);
 }
 
 }  // namespace
