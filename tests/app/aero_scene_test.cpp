@@ -7,6 +7,7 @@
 
 #include "app/json_reader.h"
 #include "app/scene.h"
+#include "sim/simulator.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {
@@ -59,6 +60,22 @@ TEST(AeroScene, MistakesNameTheirKey) {
   j["simulation"]["aerodynamics"]["wind_speed"] = 3;
   EXPECT_CONTAINS(test::scene_error_of(j),
                   "scene.json: simulation.aerodynamics.wind_speed: unknown key");
+}
+
+// The simulator builds the drag term only when asked, and --explain says so with its figures.
+TEST(AeroScene, ExplainListsTheDragAndWind) {
+  const auto forces_line = [](const Json& j) {
+    const std::unique_ptr<sim::Simulator> simulator = make_simulator(test::parse_json_scene(j));
+    for (const std::string& line : simulator->explain())
+      if (line.rfind("forces", 0) == 0) return line;
+    return std::string("no forces line");
+  };
+  const std::string on = forces_line(aero_scene());
+  EXPECT_CONTAINS(
+      on, "air drag on 16 quads (C_d 0.9, 1.1 kg/m³, wind 3.04138 m/s gusting ±25 % every 2 s)");
+  Json j = aero_scene();
+  j["simulation"].erase("aerodynamics");
+  EXPECT_EQ(forces_line(j).find("air drag"), std::string::npos);
 }
 
 }  // namespace

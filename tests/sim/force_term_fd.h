@@ -82,49 +82,6 @@ inline void expect_forces_match_energy(const ForceTerm& term, const Matrix3X& x,
       << fd.topRows(std::min<Eigen::Index>(6, fd.rows()));
 }
 
-// The stiffness ∂²E/∂x² of a term that holds a single element (the caller builds one, e.g. on
-// a one-triangle mesh), restricted to that element's stencil, by central differences of its
-// forces.
-inline ElementMatrix fd_element_stiffness(const ForceTerm& single_element_term, const Matrix3X& x,
-                                          double eps) {
-  const int s = single_element_term.stencil_size(0);
-  std::vector<Index> v(static_cast<std::size_t>(s));
-  single_element_term.stencil(0, v.data());
-  ElementMatrix K(3 * s, 3 * s);
-  Matrix3X y = x;
-  for (int b = 0; b < s; ++b)
-    for (int d = 0; d < 3; ++d) {
-      Matrix3X fp = Matrix3X::Zero(x.rows(), 3), fm = Matrix3X::Zero(x.rows(), 3);
-      y(v[static_cast<std::size_t>(b)], d) += eps;
-      single_element_term.add_forces(y, fp);
-      y(v[static_cast<std::size_t>(b)], d) -= 2.0 * eps;
-      single_element_term.add_forces(y, fm);
-      y(v[static_cast<std::size_t>(b)], d) += eps;
-      for (int a = 0; a < s; ++a)
-        for (int c = 0; c < 3; ++c)
-          K(3 * a + c, 3 * b + d) =
-              -(fp(v[static_cast<std::size_t>(a)], c) - fm(v[static_cast<std::size_t>(a)], c)) /
-              (2.0 * eps);
-    }
-  return K;
-}
-
-// Asserts that the unprojected element_stiffness of the single element equals the
-// finite-difference stiffness within rel_tol of its largest entry.
-inline void expect_stiffness_matches_forces(const ForceTerm& single_element_term, const Matrix3X& x,
-                                            double eps = 1e-6, double rel_tol = 1e-4) {
-  ElementMatrix K;
-  single_element_term.element_stiffness(x, 0, K, /*project_psd=*/false);
-  const ElementMatrix fd = fd_element_stiffness(single_element_term, x, eps);
-  const double scale = std::max(K.cwiseAbs().maxCoeff(), fd.cwiseAbs().maxCoeff());
-  const double err = (K - fd).cwiseAbs().maxCoeff();
-  EXPECT_LE(err, rel_tol * scale) << single_element_term.describe()
-                                  << ": stiffness differs from d(−f)/dx by " << err
-                                  << " N/m (largest " << scale << " N/m)\nanalytic:\n"
-                                  << K << "\nfinite differences:\n"
-                                  << fd;
-}
-
 // The term's stiffness assembled over all elements, dense 3#V×3#V (small meshes only).
 inline Eigen::MatrixXd assembled_stiffness(const ForceTerm& term, const Matrix3X& x,
                                            bool project_psd) {

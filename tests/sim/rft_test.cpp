@@ -21,8 +21,8 @@
 namespace weft::sim {
 namespace {
 
+using fd::expect_assembled_stiffness_matches_forces;
 using fd::expect_forces_match_energy;
-using fd::expect_stiffness_matches_forces;
 using fd::perturbed;
 using fd::smallest_eigenvalue;
 
@@ -96,7 +96,7 @@ TEST(RftBending, StiffnessIsTheExactConstantPsdHessian) {
   for (int size : {6, 5, 4}) {  // interior, free-edge and corner patches
     const RftBending term(mesh, fabric(), one_patch(mesh, size));
     const Matrix3X x = perturbed(mesh.rest_positions, 0.02, 7u + static_cast<unsigned>(size));
-    expect_stiffness_matches_forces(term, x);
+    expect_assembled_stiffness_matches_forces(term, x);
     ElementMatrix K, K_rest, K_psd;
     term.element_stiffness(x, 0, K, false);
     term.element_stiffness(mesh.rest_positions, 0, K_rest, false);
@@ -123,7 +123,7 @@ TEST(RftMembrane, StiffnessIsTheExactHessianAndItsProjectionIsPsd) {
       SCOPED_TRACE(::testing::Message()
                    << (kind == RftMembrane::six_node ? "RFT6" : "RFT3") << ", patch of " << size);
       const RftMembraneTerm term(mesh, fabric(), kind, one_patch(mesh, size));
-      expect_stiffness_matches_forces(
+      expect_assembled_stiffness_matches_forces(
           term, perturbed(mesh.rest_positions, 0.01, 11u + static_cast<unsigned>(size)));
       // Compressed and sheared: the exact Hessian is indefinite, the projection is not.
       const Matrix3X squeezed = perturbed(0.8 * mesh.rest_positions, 0.002, 5u);
