@@ -1,19 +1,29 @@
 #include "app/frame_mesh.h"
 
+#include <limits>
+#include <vector>
+
 namespace weft::app {
 
 render::RenderMesh to_render_mesh(const sim::ClothMesh& mesh, const sim::Matrix3X& x) {
   render::RenderMesh out;
   const auto n = static_cast<std::size_t>(x.rows());
-  out.positions.resize(n);
-  out.uvs.resize(n);
+  // Only the used vertices, in their order: the unused ones of a trimmed specimen (outside a
+  // disc) are left out altogether, so that nothing — the shadow pass's bounds included — sees
+  // them. A rectangle uses every vertex and keeps the simulator's numbering.
+  constexpr std::uint32_t unused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> slot(n, unused);
+  out.positions.reserve(n);
+  out.uvs.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
-    out.positions[k] = x.row(static_cast<Eigen::Index>(k)).transpose().cast<float>();
-    out.uvs[k] = mesh.material_coords[k].cast<float>();
+    if (!mesh.vertex_used[k]) continue;
+    slot[k] = static_cast<std::uint32_t>(out.positions.size());
+    out.positions.push_back(x.row(static_cast<Eigen::Index>(k)).transpose().cast<float>());
+    out.uvs.push_back(mesh.material_coords[k].cast<float>());
   }
   for (const auto& t : mesh.triangles())
-    out.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
-                             static_cast<std::uint32_t>(t[2])});
+    out.triangles.push_back({slot[static_cast<std::size_t>(t[0])], slot[static_cast<std::size_t>(t[1])],
+                             slot[static_cast<std::size_t>(t[2])]});
   render::compute_vertex_normals(out);
   return out;
 }

@@ -138,7 +138,7 @@ void check_pins(const std::vector<sim::PinSpec>& pins, const sim::GridSpec& grid
   }
 }
 
-// "cloth": the grid, its material and its pins.
+// "cloth": the grid, its shape, its material and its pins.
 void read_cloth(ObjectReader r, Scene& scene) {
   sim::GridSpec& g = scene.grid;
   const auto size = r.quantities("size", Quantity::length, 2, required, Range::gt(0.0));
@@ -147,6 +147,9 @@ void read_cloth(ObjectReader r, Scene& scene) {
   const auto n = r.integers("resolution", 2, required, Range::closed(2, 4096));
   g.nu = static_cast<sim::Index>(n[0]);
   g.nv = static_cast<sim::Index>(n[1]);
+  g.shape = r.enumeration<sim::SpecimenShape>(
+      "shape", {{"rectangle", sim::SpecimenShape::rectangle}, {"disc", sim::SpecimenShape::disc}},
+      g.shape);
   g.origin = r.quantity_vec3("origin", Quantity::length, g.origin);
   g.warp_axis = read_axis(r, "warp_axis", g.warp_axis);
   g.weft_axis = read_axis(r, "weft_axis", g.weft_axis);

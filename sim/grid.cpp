@@ -1,5 +1,6 @@
 #include "sim/grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,28 @@ std::vector<std::array<Index, 3>> ClothMesh::triangles() const {
   }
   return tris;
 }
+
+Index ClothMesh::used_vertex_count() const {
+  return static_cast<Index>(std::count(vertex_used.begin(), vertex_used.end(), true));
+}
+
+namespace {
+
+// Whether the cell with centre (u, v), m, belongs to the specimen (SpecimenShape).
+bool keeps_cell(const GridSpec& spec, double u_m, double v_m) {
+  switch (spec.shape) {
+    case SpecimenShape::rectangle:
+      return true;
+    case SpecimenShape::disc: {
+      const double a = 0.5 * spec.size_u_m, b = 0.5 * spec.size_v_m;  // semi-axes, m
+      const double x = (u_m - a) / a, y = (v_m - b) / b;
+      return x * x + y * y <= 1.0;
+    }
+  }
+  return true;
+}
+
+}  // namespace
 
 ClothMesh make_grid(const GridSpec& spec) {
   if (spec.nu < 2 || spec.nv < 2)
@@ -41,14 +64,22 @@ ClothMesh make_grid(const GridSpec& spec) {
       mesh.rest_positions.row(k) = (spec.origin + uv.x() * spec.warp_axis + uv.y() * spec.weft_axis).transpose();
     }
   }
-  // Each quad gives a quarter of its area to each corner: the lumped (area-weighted) mass rule.
+  // Each kept quad gives a quarter of its area to each corner: the lumped (area-weighted) mass
+  // rule.
   const double quarter = 0.25 * du * dv;
+  mesh.cell_kept.assign(static_cast<std::size_t>((spec.nu - 1) * (spec.nv - 1)), false);
+  mesh.vertex_used.assign(static_cast<std::size_t>(n), false);
   for (Index j = 0; j + 1 < spec.nv; ++j) {
     for (Index i = 0; i + 1 < spec.nu; ++i) {
+      if (!keeps_cell(spec, (i + 0.5) * du, (j + 0.5) * dv)) continue;
+      mesh.cell_kept[static_cast<std::size_t>(j * (spec.nu - 1) + i)] = true;
       const std::array<Index, 4> q{mesh.index(i, j), mesh.index(i + 1, j), mesh.index(i + 1, j + 1),
                                    mesh.index(i, j + 1)};
       mesh.quads.push_back(q);
-      for (Index v : q) mesh.vertex_area_m2[v] += quarter;
+      for (Index v : q) {
+        mesh.vertex_area_m2[v] += quarter;
+        mesh.vertex_used[static_cast<std::size_t>(v)] = true;
+      }
     }
   }
   return mesh;

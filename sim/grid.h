@@ -1,5 +1,6 @@
 #pragma once
-// Rectangular warp/weft quad grid: the cloth's rest shape and topology.
+// Warp/weft quad grid: the cloth's rest shape and topology. The grid is rectangular; a specimen
+// of another shape (a Cusick drape disc) keeps only the grid cells inside it.
 
 #include <array>
 #include <string>
@@ -9,24 +10,53 @@
 
 namespace weft::sim {
 
+// The specimen cut from the rectangular grid. disc: the ellipse inscribed in the size_u_m ×
+// size_v_m rectangle (a circle of diameter size_u_m when the two are equal); a cell is kept
+// when its centre lies inside or on the ellipse. The kept area converges to the ellipse's at
+// first order in the cell size at worst (every cell the boundary crosses lies within a band
+// of half a cell diagonal around it); the in/out errors of those cells largely cancel, and a
+// circle measures about order 1.5, irregularly (Gauss's circle problem;
+// tests/sim/disc_cloth_test.cpp). No two kept cells meet
+// at a corner only (for any ellipse: the parallelogram law), so the kept cells form a
+// manifold mesh.
+enum class SpecimenShape { rectangle, disc };
+
 struct GridSpec {
-  double size_u_m = 1.0, size_v_m = 1.0;  // extent along warp (u) and weft (v)
+  double size_u_m = 1.0, size_v_m = 1.0;  // extent along warp (u) and weft (v); the disc's diameters
+  SpecimenShape shape = SpecimenShape::rectangle;
   Index nu = 32, nv = 32;                 // vertices along warp and weft, each ≥ 2
   Vec3 origin{0.0, 0.0, 1.0};             // world position of material point (0, 0)
   Vec3 warp_axis{1.0, 0.0, 0.0};          // unit world direction of +u
   Vec3 weft_axis{0.0, 1.0, 0.0};          // unit world direction of +v, orthogonal to warp_axis
 };
 
-// Vertex (i, j) — i along warp, j along weft — has index j·nu + i.
+// Vertex (i, j) — i along warp, j along weft — has index j·nu + i, for every vertex of the
+// rectangular grid. Cell (i, j) is the grid square with corners (i, j) and (i+1, j+1); `quads`
+// holds the kept cells only. A vertex of no kept cell is unused: it has no area (so no mass),
+// no forces or constraints act on it, the simulator never moves it, and it is neither drawn
+// nor counted in the diagnostics. A rectangle keeps every cell and uses every vertex.
 struct ClothMesh {
   Index nu = 0, nv = 0;
   Matrix3X rest_positions;                     // #V×3, metres
   std::vector<Vec2> material_coords;           // #V (u, v), metres
-  std::vector<std::array<Index, 4>> quads;     // #Q, counter-clockwise about warp×weft: (i,j) (i+1,j) (i+1,j+1) (i,j+1)
-  Eigen::VectorXd vertex_area_m2;              // #V lumped (area-weighted) area per vertex
+  std::vector<std::array<Index, 4>> quads;     // #Q kept cells, row by row, counter-clockwise about warp×weft: (i,j) (i+1,j) (i+1,j+1) (i,j+1)
+  Eigen::VectorXd vertex_area_m2;              // #V lumped (area-weighted) area per vertex, 0 if unused
+  std::vector<bool> cell_kept;                 // #(nu−1)(nv−1): cell (i, j) at j·(nu−1) + i
+  std::vector<bool> vertex_used;               // #V: a corner of at least one kept cell
 
   Index vertex_count() const { return static_cast<Index>(rest_positions.rows()); }
   Index index(Index i, Index j) const { return j * nu + i; }
+  // Whether cell (i, j) is kept; false outside the grid (i ∉ [0, nu−2] or j ∉ [0, nv−2]).
+  bool has_cell(Index i, Index j) const {
+    return i >= 0 && j >= 0 && i + 1 < nu && j + 1 < nv &&
+           cell_kept[static_cast<std::size_t>(j * (nu - 1) + i)];
+  }
+  // How many kept cells (0, 1 or 2) have the warp edge (i,j)–(i+1,j), resp. the weft edge
+  // (i,j)–(i,j+1), as a side. An edge exists when this is at least 1; 1 marks a free edge.
+  int warp_edge_cells(Index i, Index j) const { return has_cell(i, j - 1) + has_cell(i, j); }
+  int weft_edge_cells(Index i, Index j) const { return has_cell(i - 1, j) + has_cell(i, j); }
+  bool is_used(Index v) const { return vertex_used[static_cast<std::size_t>(v)]; }
+  Index used_vertex_count() const;
   // Two triangles per quad, split along the (i,j)–(i+1,j+1) diagonal, same orientation as quads.
   std::vector<std::array<Index, 3>> triangles() const;
 };

@@ -12,11 +12,9 @@ namespace {
 
 Vec3 row(const Matrix3X& x, Index i) { return x.row(i).transpose(); }
 
-// Width of cloth a line at index `k` of `count` parallel lines stands for: half a cell on the
-// boundary lines, a whole cell inside.
-double tributary_width(Index k, Index count, double spacing) {
-  return (k == 0 || k == count - 1) ? 0.5 * spacing : spacing;
-}
+// Width of cloth an edge stands for: half a cell of `spacing` (m) across the edge for each of
+// the `cells` kept cells beside it — a whole cell inside, half a cell on a free edge.
+double tributary_width(int cells, double spacing) { return 0.5 * spacing * cells; }
 
 double rest_length(const ClothMesh& mesh, Index a, Index b) {
   return (mesh.material_coords[b] - mesh.material_coords[a]).norm();
@@ -37,15 +35,21 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
         "shear rigidity " + std::to_string(G) + " N/m is too large for the stretch rigidities at "
         "this cell aspect ratio (the shear springs alone would exceed the stretch stiffness)");
 
+  // An edge exists when a kept cell has it as a side (ClothMesh); its tributary width comes from
+  // the kept cells beside it.
+  const auto warp_width = [&](Index i, Index j) { return tributary_width(mesh.warp_edge_cells(i, j), hv); };
+  const auto weft_width = [&](Index i, Index j) { return tributary_width(mesh.weft_edge_cells(i, j), hu); };
   if (structural_springs) {
     for (Index j = 0; j < nv; ++j)
       for (Index i = 0; i + 1 < nu; ++i)
-        m_springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
-                             yu * tributary_width(j, nv, hv) / hu, SpringKind::warp});
+        if (mesh.warp_edge_cells(i, j) > 0)
+          m_springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
+                               yu * warp_width(i, j) / hu, SpringKind::warp});
     for (Index j = 0; j + 1 < nv; ++j)
       for (Index i = 0; i < nu; ++i)
-        m_springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
-                             yv * tributary_width(i, nu, hu) / hv, SpringKind::weft});
+        if (mesh.weft_edge_cells(i, j) > 0)
+          m_springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
+                               yv * weft_width(i, j) / hv, SpringKind::weft});
   }
 
   const double d = std::hypot(hu, hv);
@@ -57,17 +61,22 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
     }
   }
 
+  // A bending stencil where both its edges exist, standing for the mean width of the two.
   if (m.bend_warp_Nm > 0.0) {
     for (Index j = 0; j < nv; ++j)
       for (Index i = 1; i + 1 < nu; ++i)
-        m_bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
-                           m.bend_warp_Nm * tributary_width(j, nv, hv) / hu, hu});
+        if (mesh.warp_edge_cells(i - 1, j) > 0 && mesh.warp_edge_cells(i, j) > 0)
+          m_bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
+                             m.bend_warp_Nm * (0.5 * (warp_width(i - 1, j) + warp_width(i, j))) / hu,
+                             hu});
   }
   if (m.bend_weft_Nm > 0.0) {
     for (Index j = 1; j + 1 < nv; ++j)
       for (Index i = 0; i < nu; ++i)
-        m_bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
-                           m.bend_weft_Nm * tributary_width(i, nu, hu) / hv, hv});
+        if (mesh.weft_edge_cells(i, j - 1) > 0 && mesh.weft_edge_cells(i, j) > 0)
+          m_bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
+                             m.bend_weft_Nm * (0.5 * (weft_width(i, j - 1) + weft_width(i, j))) / hv,
+                             hv});
   }
   // Rest angles from the rest shape (zero for a flat grid, kept general).
   for (auto& b : m_bends) {

@@ -8,11 +8,18 @@ namespace {
 
 std::string range_text(Index count) { return "(0.." + std::to_string(count - 1) + ")"; }
 
+// A selected vertex must belong to the specimen: unused vertices (outside a disc) cannot move.
+std::vector<Index> used(Index v, const ClothMesh& mesh, const std::string& what) {
+  if (!mesh.is_used(v))
+    throw std::invalid_argument(what + " is not part of the cloth (outside the trimmed specimen)");
+  return {v};
+}
+
 std::vector<Index> select(const PinVertex& p, const ClothMesh& mesh) {
   if (p.index < 0 || p.index >= mesh.vertex_count())
     throw std::invalid_argument("vertex " + std::to_string(p.index) + " is outside the mesh " +
                                 range_text(mesh.vertex_count()));
-  return {p.index};
+  return used(p.index, mesh, "vertex " + std::to_string(p.index));
 }
 
 std::vector<Index> select(const PinGrid& p, const ClothMesh& mesh) {
@@ -20,7 +27,8 @@ std::vector<Index> select(const PinGrid& p, const ClothMesh& mesh) {
     throw std::invalid_argument("grid vertex [" + std::to_string(p.i) + ", " + std::to_string(p.j) +
                                 "] is outside the mesh ([0.." + std::to_string(mesh.nu - 1) +
                                 ", 0.." + std::to_string(mesh.nv - 1) + "])");
-  return {mesh.index(p.i, p.j)};
+  return used(mesh.index(p.i, p.j), mesh,
+              "grid vertex [" + std::to_string(p.i) + ", " + std::to_string(p.j) + "]");
 }
 
 std::vector<Index> select(const PinCorner& p, const ClothMesh& mesh) {
@@ -32,7 +40,8 @@ std::vector<Index> select(const PinCorner& p, const ClothMesh& mesh) {
     throw std::invalid_argument("unknown corner '" + p.name + "' (choices: " + choices + ")");
   }
   const auto c = it - names.begin();  // bit 0: u at its maximum, bit 1: v at its maximum
-  return {mesh.index((c & 1) ? mesh.nu - 1 : 0, (c & 2) ? mesh.nv - 1 : 0)};
+  return used(mesh.index((c & 1) ? mesh.nu - 1 : 0, (c & 2) ? mesh.nv - 1 : 0), mesh,
+              "corner " + p.name);
 }
 
 std::vector<Index> select(const PinRegion& p, const ClothMesh& mesh) {
@@ -46,13 +55,14 @@ std::vector<Index> select(const PinRegion& p, const ClothMesh& mesh) {
     if (v < p.v0 - eps || v > p.v1 + eps) continue;
     for (Index i = 0; i < mesh.nu; ++i) {
       const double u = static_cast<double>(i) / (mesh.nu - 1);
-      if (u >= p.u0 - eps && u <= p.u1 + eps) out.push_back(mesh.index(i, j));
+      if (u >= p.u0 - eps && u <= p.u1 + eps && mesh.is_used(mesh.index(i, j)))
+        out.push_back(mesh.index(i, j));
     }
   }
   if (out.empty())
     throw std::invalid_argument("region u [" + std::to_string(p.u0) + ", " + std::to_string(p.u1) +
                                 "], v [" + std::to_string(p.v0) + ", " + std::to_string(p.v1) +
-                                "] contains no vertex");
+                                "] contains no vertex of the cloth");
   return out;
 }
 

@@ -39,6 +39,9 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_mass_kg = material.density_kg_m2 * m_mesh.vertex_area_m2;
   m_inv_mass = m_mass_kg.cwiseInverse();
   for (Index p : m_pinned) m_inv_mass[p] = 0.0;
+  // Unused vertices (outside a trimmed specimen) have no mass and never move, like a pin.
+  for (Index v = 0; v < n; ++v)
+    if (!m_mesh.is_used(v)) m_inv_mass[v] = 0.0;
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
                                             Eigen::VectorXd::Ones(n));  // all of them
   m_projector = make_projector(m_mesh, m_inv_mass, settings.projection, settings.sparse_backend);
@@ -265,6 +268,7 @@ Diagnostics Simulator::diagnostics() const {
   Diagnostics d;
   d.time_s = m_state.time_s;
   for (Index i = 0; i < m_state.x.rows(); ++i) {
+    if (!m_mesh.is_used(i)) continue;  // massless and still
     const double v2 = m_state.v.row(i).squaredNorm();
     d.kinetic_energy_J += 0.5 * m_mass_kg[i] * v2;
     d.max_speed_m_s = std::max(d.max_speed_m_s, std::sqrt(v2));

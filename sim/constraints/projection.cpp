@@ -15,10 +15,13 @@ std::vector<EdgeConstraint> make_edge_constraints(const ClothMesh& mesh, Constra
     if (inv_mass[a] == 0.0 && inv_mass[b] == 0.0) return;  // both pinned: nothing to solve
     out.push_back({a, b, (mesh.material_coords[b] - mesh.material_coords[a]).norm()});
   };
+  // The edges of the kept cells only (ClothMesh).
   for (Index j = 0; j < mesh.nv; ++j)
-    for (Index i = 0; i + 1 < mesh.nu; ++i) add(mesh.index(i, j), mesh.index(i + 1, j));
+    for (Index i = 0; i + 1 < mesh.nu; ++i)
+      if (mesh.warp_edge_cells(i, j) > 0) add(mesh.index(i, j), mesh.index(i + 1, j));
   for (Index j = 0; j + 1 < mesh.nv; ++j)
-    for (Index i = 0; i < mesh.nu; ++i) add(mesh.index(i, j), mesh.index(i, j + 1));
+    for (Index i = 0; i < mesh.nu; ++i)
+      if (mesh.weft_edge_cells(i, j) > 0) add(mesh.index(i, j), mesh.index(i, j + 1));
   if (which == ConstrainedEdges::triangle_edges)
     for (const auto& q : mesh.quads) add(q[0], q[2]);  // the diagonal ClothMesh::triangles() uses
   return out;

@@ -1,0 +1,129 @@
+// "cloth.shape": disc specimens in scene files (the Cusick drape test), pins on them, and what
+// is drawn of them (app/frame_mesh.h): the used vertices only.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "app/frame_mesh.h"
+#include "app/json_reader.h"
+#include "app/scene.h"
+#include "sim/material_presets.h"
+#include "tests/app/scene_test_support.h"
+
+namespace weft::app {
+namespace {
+
+Json disc_scene() {
+  return Json::parse(R"({
+    "description": "a 30 cm disc, falling",
+    "cloth": {"size": ["30 cm", "30 cm"], "resolution": [15, 15], "shape": "disc",
+              "origin": ["-15 cm", "-15 cm", "50 cm"]},
+    "simulation": {"air_damping": "0 1/s"}
+  })");
+}
+
+TEST(DiscScene, ShapeIsReadAndDefaultsToRectangle) {
+  EXPECT_EQ(test::parse_json_scene(disc_scene()).grid.shape, sim::SpecimenShape::disc);
+  Json j = disc_scene();
+  j["cloth"].erase("shape");
+  EXPECT_EQ(test::parse_json_scene(j).grid.shape, sim::SpecimenShape::rectangle);
+  j["cloth"]["shape"] = "rectangle";
+  EXPECT_EQ(test::parse_json_scene(j).grid.shape, sim::SpecimenShape::rectangle);
+}
+
+TEST(DiscScene, AnUnknownShapeListsTheChoices) {
+  Json j = disc_scene();
+  j["cloth"]["shape"] = "circle";
+  EXPECT_CONTAINS(test::scene_error_of(j),
+                  "scene.json: cloth.shape: expected one of 'rectangle', 'disc', got the string "
+                  "'circle'");
+}
+
+TEST(DiscScene, APinOutsideTheDiscIsAnErrorNamingThePin) {
+  Json j = disc_scene();
+  j["cloth"]["pins"] = Json::parse(R"([{"grid": [7, 7]}, {"corner": "u0v0"}])");
+  EXPECT_EQ(test::scene_error_of(j),
+            "scene.json: cloth.pins[1]: corner u0v0 is not part of the cloth (outside the "
+            "trimmed specimen)");
+  j["cloth"]["pins"] = Json::parse(R"([{"region": {"u": [0, 0.05], "v": [0.9, 1]}}])");
+  EXPECT_CONTAINS(test::scene_error_of(j), "scene.json: cloth.pins[0]: region");
+  EXPECT_CONTAINS(test::scene_error_of(j), "contains no vertex of the cloth");
+}
+
+// Falling for a few frames, the unused vertices stay where they were and are not drawn; the
+// drawn mesh is the used vertices, in order, and two triangles per kept cell.
+TEST(DiscScene, OnlyTheDiscIsDrawn) {
+  const Scene scene = test::parse_json_scene(disc_scene());
+  const auto sim = make_simulator(scene);
+  sim->advance(0.1);
+  const sim::ClothMesh& mesh = sim->mesh();
+  const sim::Matrix3X& x = sim->state().x;
+  const render::RenderMesh drawn = to_render_mesh(mesh, x);
+  ASSERT_EQ(static_cast<sim::Index>(drawn.positions.size()), mesh.used_vertex_count());
+  ASSERT_LT(mesh.used_vertex_count(), mesh.vertex_count());
+  EXPECT_EQ(drawn.triangles.size(), 2 * mesh.quads.size());
+  std::size_t k = 0;
+  for (sim::Index v = 0; v < mesh.vertex_count(); ++v) {
+    if (!mesh.is_used(v)) {
+      EXPECT_EQ(sim::Vec3(x.row(v).transpose()), sim::Vec3(mesh.rest_positions.row(v).transpose()));
+      continue;
+    }
+    EXPECT_EQ(drawn.positions[k], sim::Vec3(x.row(v).transpose()).cast<float>());
+    ++k;
+  }
+  // Everything drawn has fallen (by g t²/2 ≈ 4.9 cm) and lies within the disc's radius, plus
+  // half a cell diagonal, of its axis.
+  const double h = 0.3 / 14.0;
+  for (const Eigen::Vector3f& p : drawn.positions) {
+    EXPECT_NEAR(p.z(), 0.5 - 0.5 * 9.81 * 0.01, 0.002);
+    EXPECT_LE(std::hypot(p.x(), p.y()), 0.15 + h / std::sqrt(2.0) + 1e-6);
+  }
+  for (const auto& t : drawn.triangles)
+    for (std::uint32_t v : t) EXPECT_LT(v, drawn.positions.size());
+}
+
+// A rectangle is drawn as before: every vertex, numbered as the simulator numbers them.
+TEST(DiscScene, TheRectangleIsDrawnWhole) {
+  Json j = disc_scene();
+  j["cloth"]["shape"] = "rectangle";
+  const Scene scene = test::parse_json_scene(j);
+  const sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  const render::RenderMesh drawn = to_render_mesh(mesh, mesh.rest_positions);
+  ASSERT_EQ(static_cast<sim::Index>(drawn.positions.size()), mesh.vertex_count());
+  const auto triangles = mesh.triangles();
+  ASSERT_EQ(drawn.triangles.size(), triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (std::size_t c = 0; c < 3; ++c)
+      EXPECT_EQ(static_cast<sim::Index>(drawn.triangles[t][c]), triangles[t][c]);
+}
+
+// The Cusick drape scene: a Ø30 cm wool disc centred over a Ø18 cm support disc.
+TEST(DiscScene, CusickDrapeSceneIsTheStandardGeometry) {
+  const Scene s = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" /
+                             "cusick_drape.json");
+  EXPECT_EQ(s.grid.shape, sim::SpecimenShape::disc);
+  EXPECT_NEAR(s.grid.size_u_m, 0.30, 1e-12);
+  EXPECT_NEAR(s.grid.size_v_m, 0.30, 1e-12);
+  // Held at its centre only, in place of the standard's upper clamping disc.
+  const sim::ClothMesh mesh = sim::make_grid(s.grid);
+  EXPECT_EQ(sim::resolve_pins(s.pins, mesh),
+            std::vector<sim::Index>{mesh.index((mesh.nu - 1) / 2, (mesh.nv - 1) / 2)});
+  EXPECT_EQ(s.material.density_kg_m2, sim::material_preset("wool_kang_yu").material.density_kg_m2);
+  const sim::Vec3 centre = s.grid.origin + 0.15 * s.grid.warp_axis + 0.15 * s.grid.weft_axis;
+  bool support = false;
+  for (const sim::Obstacle& o : s.sim.obstacles) {
+    if (const auto* c = std::get_if<sim::CylinderObstacle>(&o)) {
+      support = true;
+      EXPECT_NEAR(c->radius_m, 0.09, 1e-12);
+      EXPECT_NEAR(c->center_m.x(), centre.x(), 1e-12);
+      EXPECT_NEAR(c->center_m.y(), centre.y(), 1e-12);
+      EXPECT_GT(centre.z(), c->center_m.z() + 0.5 * c->height_m);  // starts above its top
+    }
+  }
+  EXPECT_TRUE(support);
+}
+
+}  // namespace
+}  // namespace weft::app
