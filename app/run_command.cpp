@@ -127,7 +127,9 @@ int run_scene(const RunOptions& options) {
     for (const std::string& line : simulator->explain()) std::printf("  %s\n", line.c_str());
     std::fflush(stdout);
   }
-  const std::vector<render::RenderObject> obstacle_objects =
+  // Moving obstacles are drawn where they are at each frame's time.
+  const bool obstacles_move = sim::any_moves(scene.sim.obstacle_motions);
+  std::vector<render::RenderObject> obstacle_objects =
       obstacle_render_objects(scene.sim.obstacles, scene.render);
   const auto cloth_triangles = simulator->mesh().triangles();
   const auto cloth_edges = sim::unique_edges(cloth_triangles);
@@ -157,6 +159,10 @@ int run_scene(const RunOptions& options) {
                                                                 cloth_triangles, cloth_edges);
 
     start = std::chrono::steady_clock::now();
+    if (obstacles_move) {
+      obstacle_objects = obstacle_render_objects(scene.sim.obstacles, scene.sim.obstacle_motions,
+                                                 simulator->state().time_s, scene.render);
+    }
     const render::Image image = renderer.render(
         to_render_mesh(simulator->mesh(), simulator->state().x), scene.render, obstacle_objects);
     render::write_png(image, dir / frame_name(frame));

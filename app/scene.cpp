@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "app/json_reader.h"
+#include "app/mesh_file.h"
 #include "app/units.h"
 #include "sim/material_presets.h"
 
@@ -169,18 +170,63 @@ void read_cloth(ObjectReader r, Scene& scene) {
   check_pins(scene.pins, g, r.file(), r.path_of("pins"));
 }
 
-// One obstacle object: exactly one of "sphere", "plane", "box", "cylinder", "capsule"
-// (sim::Obstacle).
-sim::Obstacle read_obstacle(ObjectReader r) {
-  const std::vector<std::string> kinds = {"sphere", "plane", "box", "cylinder", "capsule"};
+// "mesh": a closed triangle mesh read from a file (app/mesh_file.h), its path relative to the
+// scene file, scaled from the file's units to metres, turned about +z, then translated.
+sim::MeshObstacle read_mesh_obstacle(ObjectReader& o) {
+  const std::filesystem::path file = o.string("file", required);
+  const double scale = o.number("scale", 1.0, Range::gt(0.0));
+  sim::MeshObstacle mesh;
+  mesh.pose.translation_m =
+      o.quantity_vec3("translate", Quantity::length, Eigen::Vector3d::Zero());
+  mesh.pose.yaw_rad = o.angle_deg("rotate_z", 0.0) * 3.14159265358979323846 / 180.0;
+  const std::filesystem::path path =
+      file.is_absolute() ? file : std::filesystem::path(o.file()).parent_path() / file;
+  try {
+    TriangleMesh triangles = load_triangle_mesh(path);
+    mesh.solid = std::make_shared<const sim::MeshSolid>(scale * triangles.vertices,
+                                                        std::move(triangles.triangles));
+  } catch (const MeshFileError& e) {
+    o.fail("file", e.what());
+  } catch (const std::invalid_argument& e) {
+    o.fail("file", path.string() + ": " + e.what());
+  }
+  return mesh;
+}
+
+// An obstacle's optional "motion": keyframes {"time", "translate", "rotate_z"}
+// (sim::ObstacleMotion).
+sim::ObstacleMotion read_obstacle_motion(ObjectReader& r) {
+  if (!r.has("motion")) return {};
+  std::vector<ObjectReader> frames = r.objects("motion");
+  if (frames.empty()) r.fail("motion", "expected at least one keyframe, got an empty list");
+  std::vector<sim::ObstacleKeyframe> keyframes;
+  for (ObjectReader& f : frames) {
+    sim::ObstacleKeyframe frame;
+    frame.time_s = f.quantity("time", Quantity::time, required);
+    frame.translate_m = f.quantity_vec3("translate", Quantity::length, Eigen::Vector3d::Zero());
+    frame.rotate_z_rad = f.angle_deg("rotate_z", 0.0) * 3.14159265358979323846 / 180.0;
+    f.finish();
+    keyframes.push_back(frame);
+  }
+  try {
+    return sim::ObstacleMotion(std::move(keyframes));  // checks the order of the times
+  } catch (const std::invalid_argument& e) {
+    r.fail("motion", e.what());
+  }
+}
+
+// One obstacle object: exactly one of "sphere", "plane", "box", "cylinder", "capsule", "mesh"
+// (sim::Obstacle), and an optional "motion".
+sim::Obstacle read_obstacle(ObjectReader r, sim::ObstacleMotion& motion) {
+  const std::vector<std::string> kinds = {"sphere", "plane", "box", "cylinder", "capsule", "mesh"};
   std::vector<std::string> present;
   for (const std::string& kind : kinds)
     if (r.has(kind)) present.push_back(kind);
   if (present.empty()) r.finish();  // a misspelt "sphere" gets its "did you mean"
   if (present.size() != 1) {
     throw_scene_error(r.file(), r.path(),
-                      "expected exactly one of 'sphere', 'plane', 'box', 'cylinder' or "
-                      "'capsule', got " +
+                      "expected exactly one of 'sphere', 'plane', 'box', 'cylinder', "
+                      "'capsule' or 'mesh', got " +
                           (present.empty() ? std::string("none")
                                            : "'" + present[0] + "' and '" + present[1] + "'"));
   }
@@ -212,14 +258,17 @@ sim::Obstacle read_obstacle(ObjectReader r) {
     c.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
     c.height_m = o.quantity("height", Quantity::length, required, Range::gt(0.0));
     obstacle = c;
-  } else {
+  } else if (kind == "capsule") {
     sim::CapsuleObstacle c;
     c.a_m = o.quantity_vec3("a", Quantity::length, required);
     c.b_m = o.quantity_vec3("b", Quantity::length, required);
     c.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
     obstacle = c;
+  } else {
+    obstacle = read_mesh_obstacle(o);
   }
   o.finish();
+  motion = read_obstacle_motion(r);
   r.finish();
   return obstacle;
 }
@@ -304,6 +353,19 @@ sim::AeroSettings read_aerodynamics(ObjectReader r) {
   return a;
 }
 
+// "simulation.self_collision": the cloth against itself (sim::SelfCollisionSettings);
+// present means enabled unless "enabled": false.
+sim::SelfCollisionSettings read_self_collision(ObjectReader r) {
+  sim::SelfCollisionSettings c;
+  c.enabled = r.boolean("enabled", true);
+  c.thickness_m = r.quantity("thickness", Quantity::length, c.thickness_m, Range::gt(0.0));
+  c.marble_radius_m =
+      r.quantity("marble_radius", Quantity::length, c.marble_radius_m, Range::ge(0.0));
+  c.iterations = static_cast<int>(r.integer("iterations", c.iterations, Range::closed(1, 100)));
+  r.finish();
+  return c;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s) {
   std::vector<std::pair<std::string, sim::ClothModel>> models;
@@ -332,6 +394,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s) {
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
   s.collision_friction = r.number("collision_friction", s.collision_friction, Range::ge(0.0));
   if (r.has("aerodynamics")) s.aero = read_aerodynamics(r.object("aerodynamics"));
+  if (r.has("self_collision")) s.self_collision = read_self_collision(r.object("self_collision"));
   r.finish();
 }
 
@@ -419,8 +482,11 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   if (scene.description.find_first_not_of(" \t\r\n") == std::string::npos)
     top.fail("description", "expected a non-empty string saying what the scene shows");
   read_cloth(top.required_object("cloth"), scene);
-  for (ObjectReader& obstacle : top.objects("obstacles"))
-    scene.sim.obstacles.push_back(read_obstacle(obstacle));
+  for (ObjectReader& obstacle : top.objects("obstacles")) {
+    sim::ObstacleMotion motion;
+    scene.sim.obstacles.push_back(read_obstacle(obstacle, motion));
+    scene.sim.obstacle_motions.push_back(std::move(motion));
+  }
   read_simulation(top.object("simulation"), scene.sim);
   read_output(top.object("output"), scene);
   read_render(top.object("render"), scene.render);

@@ -9,7 +9,7 @@ StatsCsv::StatsCsv(const std::filesystem::path& path) : m_path(path), m_out(path
   m_out << "frame,time_s,sim_ms,render_ms,steps,max_strain,mean_strain,kinetic_energy_J,"
            "elastic_energy_J,gravity_energy_J,max_speed_m_s,projection_iterations,"
            "max_step_iterations,unconverged_steps,solve_ms,failed_implicit_solves,cg_iterations,"
-           "self_intersections\n";
+           "self_intersections,max_self_contacts\n";
   m_out.flush();
 }
 
@@ -22,7 +22,7 @@ void StatsCsv::write(const FrameStats& r) {
         << d.elastic_energy_J << ',' << d.gravity_energy_J << ',' << d.max_speed_m_s << ','
         << s.projection_iterations << ',' << s.max_projection_iterations << ','
         << s.unconverged_steps << ',' << 1e3 * s.solve_s << ',' << s.failed_implicit_solves << ','
-        << s.cg_iterations << ',' << r.self_intersections << '\n';
+        << s.cg_iterations << ',' << r.self_intersections << ',' << s.max_self_contacts << '\n';
   m_out.flush();
   if (!m_out) throw std::runtime_error(m_path.string() + ": write failed");
 }

@@ -46,6 +46,9 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
                                             Eigen::VectorXd::Ones(n));  // all of them
   m_projector = make_projector(m_mesh, m_inv_mass, settings.projection, settings.sparse_backend);
   if (settings.aero.enabled) m_aero = std::make_unique<Aerodynamics>(m_mesh.quads, settings.aero);
+  m_posed_obstacles = posed_obstacles(settings.obstacles, settings.obstacle_motions, 0.0);
+  if (settings.self_collision.enabled)
+    m_self = std::make_unique<SelfCollision>(m_mesh, settings.self_collision);
   ExplicitSystem relaxation_system;  // dynamic_relaxation's, made below
   if (settings.integrator == Integrator::implicit_euler) {
     std::vector<EdgeConstraint> tension_edges;
@@ -143,6 +146,7 @@ void Simulator::step(double h_s) {
   integrate(h_s);
   for (const MovingPin& p : m_moving_pins)
     m_state.x.row(p.vertex) = pin_position(p, m_state.time_s + h_s);  // exactly, not x + h v
+  pose_obstacles(m_state.time_s, m_state.time_s + h_s);
   // With a projection, push-out and projection alternate (block Gauss–Seidel over contacts and
   // constraints), ending with a projection so that the step meets the tolerance; vertices may
   // end up to the residual of the last push-out inside the collision thickness. A single
@@ -229,16 +233,40 @@ void Simulator::record_projection(const ProjectionResult& r) {
   m_stats.solve_s += r.solve_s;
 }
 
-// Push-out, with Coulomb friction against the displacement since the start of the step.
+// Obstacle push-out, with Coulomb friction against the displacement since the start of the
+// step; then the cloth against itself, and the obstacles once more (frictionless) if that
+// pushed anything, so that no vertex is left inside an obstacle.
 bool Simulator::collide(bool with_friction) {
-  if (m_settings.obstacles.empty()) return false;
-  const std::vector<Obstacle>& obstacles = m_settings.obstacles;
+  const std::vector<Obstacle>& obstacles = m_posed_obstacles;
   const double thickness = m_settings.collision_thickness_m;
-  if (with_friction && m_settings.collision_friction > 0.0) {
-    return push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_x_start,
-                                 m_settings.collision_friction, m_state.x) > 0;
+  const auto push_out = [&](bool friction) {
+    if (obstacles.empty()) return false;
+    if (friction && m_settings.collision_friction > 0.0) {
+      return push_out_of_obstacles(obstacles, m_obstacle_step_motions, thickness, m_inv_mass,
+                                   m_x_start, m_settings.collision_friction, m_state.x) > 0;
+    }
+    return push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_state.x) > 0;
+  };
+  bool moved = push_out(with_friction);
+  if (m_self) {
+    const long contacts = m_self->resolve(m_x_start, m_inv_mass, m_state.x).total();
+    m_stats.max_self_contacts = std::max(m_stats.max_self_contacts, contacts);
+    if (contacts > 0) {
+      push_out(false);
+      moved = true;
+    }
   }
-  return push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_state.x) > 0;
+  return moved;
+}
+
+// Moving obstacles (sim/collision/obstacle_motion.h): posed at the end of the step, and each
+// one's rigid motion over it, which carries friction's start positions along.
+void Simulator::pose_obstacles(double t0_s, double t1_s) {
+  if (!any_moves(m_settings.obstacle_motions)) return;  // m_posed_obstacles stay as made
+  m_posed_obstacles = posed_obstacles(m_settings.obstacles, m_settings.obstacle_motions, t1_s);
+  m_obstacle_step_motions.clear();
+  for (const ObstacleMotion& motion : m_settings.obstacle_motions)
+    m_obstacle_step_motions.push_back(motion.motion_between(t0_s, t1_s));
 }
 
 void Simulator::check_finite() const {

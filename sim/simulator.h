@@ -10,6 +10,8 @@
 #include "sim/aerodynamics.h"
 #include "sim/cloth_model.h"
 #include "sim/collision/obstacle.h"
+#include "sim/collision/obstacle_motion.h"
+#include "sim/collision/self_collision.h"
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
@@ -53,11 +55,18 @@ struct SimSettings {
   double implicit_cg_tolerance = 1e-4;
   // Rigid obstacles (the "collide" phase) and how far the cloth keeps from their surfaces.
   std::vector<Obstacle> obstacles;
+  // Keyframed motion of the obstacles: empty (none moves) or one per obstacle (an empty
+  // ObstacleMotion for one that stays). The collide phase of a step from t to t + h uses the
+  // obstacles posed at t + h, with friction relative to their motion over the step.
+  std::vector<ObstacleMotion> obstacle_motions;
   double collision_thickness_m = 2e-3;
   // Coulomb friction coefficient μ (dimensionless, ≥ 0) of the cloth against every obstacle,
   // applied by the push-out from the step's start positions (sim/collision/obstacle.h). 0: the
   // frictionless push-out; a cloth rests on a slope of angle θ when μ > tan θ.
   double collision_friction = 0.0;
+  // The cloth against itself (the "collide" phase, after the obstacles; off unless enabled):
+  // sim/collision/self_collision.h.
+  SelfCollisionSettings self_collision;
   // Air drag on every triangle and an optional wind field (sim/aerodynamics.h); off unless
   // enabled. The existing air_damping is separate (a mass-proportional damping).
   AeroSettings aero;
@@ -87,6 +96,7 @@ struct StepStatistics {
   double solve_s = 0.0;               // linear solves (implicit Euler and fast projection)
   long failed_implicit_solves = 0;
   long cg_iterations = 0;             // implicit Euler by conjugate gradients, summed over steps
+  long max_self_contacts = 0;         // self-collision contacts in any one step
 };
 
 class Simulator {
@@ -114,6 +124,8 @@ class Simulator {
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
   const PhaseTimers& timers() const { return m_timers; }
+  // Self-collision's broad and narrow phase (their times, candidate lists); null when off.
+  const SelfCollision* self_collision() const { return m_self.get(); }
   // dynamic_relaxation: where the relaxation stands (residual, kinetic peaks); null otherwise.
   const DynamicRelaxation* relaxation() const { return m_relaxation.get(); }
   // One line per phase of a step (integrate, forces, project, collide, pins): which terms and
@@ -131,6 +143,7 @@ class Simulator {
   ProjectionResult project(double h_s);  // one projection; carries its tension
   void record_projection(const ProjectionResult& r);  // a step's projections, summed
   bool collide(bool with_friction);
+  void pose_obstacles(double t0_s, double t1_s);  // m_posed_obstacles at t1, motions t0 → t1
   static constexpr int kContactRounds = 2;  // push-outs between projections, per step
   void check_finite() const;
 
@@ -155,9 +168,12 @@ class Simulator {
   std::unique_ptr<ExplicitStepper> m_explicit;  // every other integrator
   std::unique_ptr<DynamicRelaxation> m_relaxation;  // dynamic_relaxation
   std::unique_ptr<Aerodynamics> m_aero;         // when settings.aero.enabled
+  std::unique_ptr<SelfCollision> m_self;        // when settings.self_collision.enabled
   Matrix3X m_aero_forces;                       // #V×3, N: implicit Euler's explicit drag
   State m_state;
   Matrix3X m_x_start;              // #V×3 start-of-step positions: velocity filter, friction
+  std::vector<Obstacle> m_posed_obstacles;      // where the collide phase finds the obstacles
+  std::vector<RigidPose> m_obstacle_step_motions;  // each one's motion over the step; empty: none
   double m_critical_step_s = 0.0;
   double m_time_step_s = 0.0;
   long m_steps = 0;

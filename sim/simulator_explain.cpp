@@ -85,11 +85,17 @@ std::vector<std::string> Simulator::explain() const {
   emit();
 
   if (m_settings.obstacles.empty()) {
-    line << "collide: off (no obstacles)";
+    line << "collide: " << (m_self ? "no obstacles" : "off (no obstacles, no self-collision)");
   } else {
     line << "collide: " << m_settings.obstacles.size() << " obstacles, thickness "
          << 1e3 * m_settings.collision_thickness_m << " mm, friction "
          << m_settings.collision_friction;
+  }
+  if (m_self) {
+    line << "; self-collision over " << m_self->triangle_count() << " triangles and "
+         << m_self->edge_count() << " edges, thickness " << 1e3 * m_self->thickness_m()
+         << " mm, marbles of radius " << 1e3 * m_self->marble_radius_m()
+         << " mm, candidate margin " << 1e3 * m_self->margin_m() << " mm";
   }
   emit();
 

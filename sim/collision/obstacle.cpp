@@ -203,10 +203,25 @@ void check_arguments(const std::vector<Obstacle>& obstacles, double thickness_m,
   check_obstacles(obstacles);
 }
 
-// Both push_out_of_obstacles overloads; x_start is null without friction.
+// The obstacle a pushed-out vertex at p rests on: the nearest (the first of equally near ones).
+std::size_t contact_obstacle(const std::vector<Obstacle>& obstacles, const Vec3& p) {
+  std::size_t nearest = 0;
+  double nearest_m = signed_distance(obstacles[0], p);
+  for (std::size_t k = 1; k < obstacles.size(); ++k) {
+    const double d = signed_distance(obstacles[k], p);
+    if (d < nearest_m) {
+      nearest_m = d;
+      nearest = k;
+    }
+  }
+  return nearest;
+}
+
+// Every push_out_of_obstacles overload; x_start is null without friction, step_motions null or
+// empty when no obstacle moves.
 int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
              const Eigen::VectorXd& inv_mass, const Matrix3X* x_start, double friction,
-             Matrix3X& x) {
+             const std::vector<RigidPose>* step_motions, Matrix3X& x) {
   int moved = 0;
   if (obstacles.empty()) return moved;
   for (Index i = 0; i < x.rows(); ++i) {
@@ -215,8 +230,14 @@ int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
     if (clear_of_all(obstacles, thickness_m, predicted)) continue;  // left exactly as it was
     Vec3 p = predicted;
     resolve_vertex(obstacles, thickness_m, p);
-    if (x_start && friction > 0.0)
-      apply_friction(obstacles, thickness_m, friction, x_start->row(i).transpose(), predicted, p);
+    if (x_start && friction > 0.0) {
+      Vec3 start = x_start->row(i).transpose();
+      if (step_motions && !step_motions->empty()) {  // friction against the moving surface
+        const std::size_t contact = obstacles.size() > 1 ? contact_obstacle(obstacles, p) : 0;
+        start = (*step_motions)[contact].apply(start);
+      }
+      apply_friction(obstacles, thickness_m, friction, start, predicted, p);
+    }
     if (p != predicted) {
       x.row(i) = p.transpose();
       ++moved;
@@ -255,11 +276,15 @@ void check_obstacles(const std::vector<Obstacle>& obstacles) {
       check_unit(name + "cylinder axis", c->axis);
       check_positive(name + "cylinder radius", c->radius_m);
       check_positive(name + "cylinder height", c->height_m);
-    } else {
-      const auto& capsule = std::get<CapsuleObstacle>(obstacles[k]);
-      if (!capsule.a_m.allFinite() || !capsule.b_m.allFinite())
+    } else if (const auto* capsule = std::get_if<CapsuleObstacle>(&obstacles[k])) {
+      if (!capsule->a_m.allFinite() || !capsule->b_m.allFinite())
         throw std::invalid_argument(name + "capsule endpoints must be finite");
-      check_positive(name + "capsule radius", capsule.radius_m);
+      check_positive(name + "capsule radius", capsule->radius_m);
+    } else {
+      const auto& mesh = std::get<MeshObstacle>(obstacles[k]);
+      if (!mesh.solid) throw std::invalid_argument(name + "mesh has no solid");
+      if (!mesh.pose.translation_m.allFinite() || !std::isfinite(mesh.pose.yaw_rad))
+        throw std::invalid_argument(name + "mesh pose must be finite");
     }
   }
 }
@@ -267,13 +292,25 @@ void check_obstacles(const std::vector<Obstacle>& obstacles) {
 int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
                           const Eigen::VectorXd& inv_mass, Matrix3X& x) {
   check_arguments(obstacles, thickness_m, inv_mass, x);
-  return push_out(obstacles, thickness_m, inv_mass, nullptr, 0.0, x);
+  return push_out(obstacles, thickness_m, inv_mass, nullptr, 0.0, nullptr, x);
 }
 
 int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
                           const Eigen::VectorXd& inv_mass, const Matrix3X& x_start, double friction,
                           Matrix3X& x) {
+  return push_out_of_obstacles(obstacles, {}, thickness_m, inv_mass, x_start, friction, x);
+}
+
+int push_out_of_obstacles(const std::vector<Obstacle>& obstacles,
+                          const std::vector<RigidPose>& step_motions, double thickness_m,
+                          const Eigen::VectorXd& inv_mass, const Matrix3X& x_start, double friction,
+                          Matrix3X& x) {
   check_arguments(obstacles, thickness_m, inv_mass, x);
+  if (!step_motions.empty() && step_motions.size() != obstacles.size()) {
+    throw std::invalid_argument("push_out_of_obstacles: " + std::to_string(step_motions.size()) +
+                                " step motions for " + std::to_string(obstacles.size()) +
+                                " obstacles");
+  }
   if (x_start.rows() != x.rows()) {
     throw std::invalid_argument("push_out_of_obstacles: " + std::to_string(x_start.rows()) +
                                 " start positions for " + std::to_string(x.rows()) + " vertices");
@@ -282,7 +319,7 @@ int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickne
     throw std::invalid_argument("push_out_of_obstacles: friction must be finite and >= 0, got " +
                                 std::to_string(friction));
   }
-  return push_out(obstacles, thickness_m, inv_mass, &x_start, friction, x);
+  return push_out(obstacles, thickness_m, inv_mass, &x_start, friction, &step_motions, x);
 }
 
 }  // namespace weft::sim

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "sim/collision/mesh_obstacle.h"
 #include "sim/collision/obstacle_shapes.h"
 #include "sim/types.h"
 
@@ -24,9 +25,10 @@ struct PlaneObstacle {
   Vec3 normal{0.0, 0.0, 1.0};  // unit
 };
 
-// Box, cylinder and capsule: sim/collision/obstacle_shapes.h.
-using Obstacle =
-    std::variant<SphereObstacle, PlaneObstacle, BoxObstacle, CylinderObstacle, CapsuleObstacle>;
+// Box, cylinder and capsule: sim/collision/obstacle_shapes.h; triangle meshes:
+// sim/collision/mesh_obstacle.h.
+using Obstacle = std::variant<SphereObstacle, PlaneObstacle, BoxObstacle, CylinderObstacle,
+                              CapsuleObstacle, MeshObstacle>;
 
 // Signed distance from p to the obstacle's surface, positive outside, metres.
 double signed_distance(const Obstacle& obstacle, const Vec3& p);
@@ -34,8 +36,9 @@ double signed_distance(const Obstacle& obstacle, const Vec3& p);
 // Throws std::invalid_argument naming the obstacle ("obstacle 1: …") unless every sphere has a
 // finite centre and a finite radius > 0, every plane a finite point and a unit normal (±1e-6),
 // every box a finite centre, half sizes finite and > 0 and a finite yaw, every cylinder a
-// finite centre, a unit axis (±1e-6), a radius and a height finite and > 0, and every capsule
-// finite endpoints and a radius finite and > 0. push_out_of_obstacles checks this itself;
+// finite centre, a unit axis (±1e-6), a radius and a height finite and > 0, every capsule
+// finite endpoints and a radius finite and > 0, and every mesh a solid (not null) and a finite
+// pose (the solid checked its own mesh). push_out_of_obstacles checks this itself;
 // callers may check earlier.
 void check_obstacles(const std::vector<Obstacle>& obstacles);
 
@@ -47,8 +50,8 @@ void check_obstacles(const std::vector<Obstacle>& obstacles);
 // Order: for each vertex, the obstacles are applied in list order, in up to 4 passes, until
 // it is clear of all (up to rounding). A sphere's closest surface point is along the ray from
 // its centre (a vertex exactly at the centre goes out along +z); a plane's along its normal;
-// a box's, cylinder's or capsule's is closest_surface_point (obstacle_shapes.h), offset along
-// the normal there.
+// a box's, cylinder's, capsule's or mesh's is closest_surface_point (obstacle_shapes.h,
+// mesh_obstacle.h), offset along the normal there.
 // Where two obstacles meet in a concave wedge (a sphere resting on the ground plane) those
 // alternating moves only creep towards the way out, so a vertex still not clear after the
 // passes goes to the nearest point of the curve where the offset surfaces (at thickness_m) of
@@ -73,6 +76,19 @@ int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickne
 // Throws std::invalid_argument as above, and for a friction that is negative or not finite or
 // an x_start of another size.
 int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
+                          const Eigen::VectorXd& inv_mass, const Matrix3X& x_start, double friction,
+                          Matrix3X& x);
+
+// As above, for obstacles that move over the step (obstacle_motion.h): `obstacles` are posed
+// at the end of the step and step_motions[k] carries a point fixed to obstacle k from where it
+// was at the start of the step to where it is at the end (empty: none moves). Friction then
+// acts on the displacement relative to the surface: a vertex pushed out has its start position
+// first carried by the motion of the obstacle it ends nearest to (the first in the list among
+// equally near ones), so a cloth resting on a moving plate is carried along with it (static
+// friction) or dragged at most friction × the push-out distance per step (kinetic).
+// Throws std::invalid_argument as above, and for a step_motions of another size, not empty.
+int push_out_of_obstacles(const std::vector<Obstacle>& obstacles,
+                          const std::vector<RigidPose>& step_motions, double thickness_m,
                           const Eigen::VectorXd& inv_mass, const Matrix3X& x_start, double friction,
                           Matrix3X& x);
 

@@ -114,13 +114,14 @@ void SpatialHash::query(const Aabb& box, std::vector<Index>& ids) const {
     ids.resize(m_boxes.size());
     for (std::size_t b = 0; b < m_boxes.size(); ++b) ids[b] = static_cast<Index>(b);
   }
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  // Filter first: most candidates do not overlap, and sorting the rest is then cheap.
   ids.erase(std::remove_if(ids.begin(), ids.end(),
                            [&](Index b) {
                              return !boxes_overlap(m_boxes[static_cast<std::size_t>(b)], box);
                            }),
             ids.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
 }
 
 }  // namespace weft::sim

@@ -171,7 +171,7 @@ TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
   EXPECT_CONTAINS(r.output, "integrate: symplectic_euler, h = ");
   EXPECT_CONTAINS(r.output, "144 warp/weft springs, 128 shear springs");  // 9×9: 2·9·8, 2·8·8
   EXPECT_CONTAINS(r.output, "project: off (no constraints)");
-  EXPECT_CONTAINS(r.output, "collide: off (no obstacles)");
+  EXPECT_CONTAINS(r.output, "collide: off (no obstacles, no self-collision)");
   EXPECT_CONTAINS(r.output, "pins: 2 fixed, 0 moving vertices");
   EXPECT_CONTAINS(r.output, "weft: time per phase: forces ");
 

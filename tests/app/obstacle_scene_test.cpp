@@ -76,12 +76,12 @@ TEST(ObstacleScene, EachObstacleIsExactlyOneShape) {
   j["obstacles"][0] = Json::object();
   EXPECT_EQ(error_of(j),
             "scene.json: obstacles[0]: expected exactly one of 'sphere', 'plane', 'box', "
-            "'cylinder' or 'capsule', got none");
+            "'cylinder', 'capsule' or 'mesh', got none");
   j = scene_with_obstacles();
   j["obstacles"][1]["sphere"] = j["obstacles"][0]["sphere"];
   EXPECT_EQ(error_of(j),
             "scene.json: obstacles[1]: expected exactly one of 'sphere', 'plane', 'box', "
-            "'cylinder' or 'capsule', got 'sphere' and 'plane'");
+            "'cylinder', 'capsule' or 'mesh', got 'sphere' and 'plane'");
   j = scene_with_obstacles();
   j["obstacles"][0]["capsule"] = j["obstacles"][0]["sphere"];
   EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0]: expected exactly one of");

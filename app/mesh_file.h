@@ -1,0 +1,36 @@
+#pragma once
+// Triangle meshes read from files with assimp: OBJ, PLY, STL, glTF/GLB, FBX and whatever else
+// the installed assimp reads. Used for mesh obstacles (sim/collision/mesh_obstacle.h).
+
+#include <array>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "sim/types.h"
+
+namespace weft::app {
+
+// A mesh file that cannot be used. what() reads "PATH: what went wrong".
+class MeshFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TriangleMesh {
+  sim::Matrix3X vertices;                              // #V×3, in the file's length units
+  std::vector<std::array<sim::Index, 3>> triangles;  // #F, indices into vertices, file's order
+};
+
+// Every mesh of the file, merged into one: polygons triangulated (by assimp), each mesh's
+// vertices transformed by its node's transform composed with all its parents' (a mesh used by
+// several nodes appears once per node), then vertices at exactly the same position joined into
+// one (so meshes and faces that share corners share vertices, whatever normals or texture
+// coordinates the file gives them; first-seen order), and triangles that join collapses (two
+// equal corners) dropped. Points and lines are ignored.
+// Throws MeshFileError "PATH: cannot read mesh file: <assimp's reason>" when assimp cannot
+// read it (missing file, unknown format, malformed content), and "PATH: no triangles in the
+// mesh file (…)" when it holds none.
+TriangleMesh load_triangle_mesh(const std::filesystem::path& path);
+
+}  // namespace weft::app

@@ -1,0 +1,123 @@
+#pragma once
+// Self-collision response (issue 5 item 3): keeps the cloth from passing through itself by
+// pushing apart, position-based, every pair of mesh features closer than a contact distance:
+//
+//  - vertex–triangle: a vertex within `thickness_m` of a triangle it is not a corner of;
+//  - edge–edge: two edges (sharing no vertex) whose closest points are within `thickness_m`;
+//  - vertex–vertex "marbles" (seed 003): a sphere of radius `marble_radius_m` around each
+//    vertex; two vertices closer than twice the radius are pushed apart.
+//
+// Neighbours are never in contact: pairs closer in the (flat) rest state than the contact
+// distance plus the mean rest edge length (exclusion_radius_m), as seed 003 excludes marbles
+// joined by a spring — ours join vertices up to two edges apart. So a flat sheet has no
+// contacts, and the cloth can pass through itself only in a fold sharper than one edge.
+//
+// Each contact is a one-sided distance constraint C(x) ≥ 0, projected as in position-based
+// dynamics (Müller et al. 2007, "Position based dynamics"; the mass-weighted correction of
+// Bridson et al. 2002, "Robust treatment of collisions, contact and friction for cloth
+// animation", §7.2, without friction): Δx_k = λ w_k m_k⁻¹ ∇_k C with λ = −C / Σ w_k² m_k⁻¹, so
+// momentum is conserved and pinned vertices (m⁻¹ = 0) do not move. The simulator's velocity
+// update v = (x_{n+1} − x_n)/h then removes the approaching relative normal velocity.
+//
+// Which side: a vertex that was over a triangle (its projection inside it) at the start of the
+// step is kept on the side it was on then, so a vertex that passed through the sheet within one
+// step, by less than the contact distance plus the broad phase's margin, is brought back; two
+// edges whose closest points swapped sides during the step likewise. Faster crossings are
+// missed; the per-frame intersection count (self_intersection.h) reports them.
+//
+// Broad phase: a spatial hash (spatial_hash.h) builds the candidate pairs within the contact
+// distance plus a margin; the list stays valid, and is reused step after step, until some
+// vertex has moved more than half the margin since it was built, relative to the cloth's
+// common translation (a Verlet list).
+// Deterministic: candidates are sorted and contacts are projected in that fixed order
+// (Gauss–Seidel), in up to `iterations` sweeps — after the first only over the pairs it found
+// near contact — ending early when no pair is in contact.
+
+#include <array>
+#include <vector>
+
+#include "sim/grid.h"
+#include "sim/types.h"
+
+namespace weft::sim {
+
+struct SelfCollisionSettings {
+  bool enabled = false;
+  double thickness_m = 2e-3;     // vertex–triangle and edge–edge contact distance, > 0
+  double marble_radius_m = 0.0;  // vertex–vertex: 0 gives thickness_m / 2
+  int iterations = 4;            // Gauss–Seidel sweeps over the contacts per call, ≥ 1
+};
+
+// Contacts found in the first sweep of one resolve() call.
+struct SelfContactCounts {
+  long vertex_triangle = 0;
+  long edge_edge = 0;
+  long marbles = 0;
+  long total() const { return vertex_triangle + edge_edge + marbles; }
+};
+
+class SelfCollision {
+ public:
+  // The contact features are the mesh's triangles (ClothMesh::triangles()), their edges and
+  // vertices. Throws std::invalid_argument unless thickness_m is finite > 0, marble_radius_m
+  // finite ≥ 0 and iterations ≥ 1 (naming the setting).
+  SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings& settings);
+
+  // Pushes apart the pairs in contact at x (#V×3, m), keeping sides as they were at x_start
+  // (the step's start positions). inv_mass: #V, 0 for pinned vertices. Returns the contacts of
+  // the first sweep.
+  SelfContactCounts resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass, Matrix3X& x);
+
+  double marble_radius_m() const { return m_marble_radius_m; }
+  double thickness_m() const { return m_settings.thickness_m; }
+  double margin_m() const { return m_margin_m; }
+  // Pairs closer than this at rest are never in contact (marbles: 2·radius + mean rest edge).
+  double exclusion_radius_m() const { return m_settings.thickness_m + m_neighbourhood_m; }
+  // Candidate pairs of the current list, and how often it was rebuilt.
+  std::size_t candidate_count() const {
+    return m_candidates.vt.size() + m_candidates.ee.size() + m_candidates.vv.size();
+  }
+  long rebuilds() const { return m_rebuilds; }
+  // Wall time spent building candidate lists (broad phase) and projecting contacts (narrow).
+  double broad_phase_s() const { return m_broad_s; }
+  double narrow_phase_s() const { return m_narrow_s; }
+  std::size_t triangle_count() const { return m_triangles.size(); }
+  std::size_t edge_count() const { return m_edges.size(); }
+
+ private:
+  struct PairLists {
+    std::vector<std::array<Index, 2>> vt;  // (vertex, triangle)
+    std::vector<std::array<Index, 2>> ee;  // (edge, edge), first < second
+    std::vector<std::array<Index, 2>> vv;  // (vertex, vertex), first < second
+  };
+  bool needs_rebuild(const Matrix3X& x) const;
+  void rebuild(const Matrix3X& x);
+  int sweep(const PairLists& lists, const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
+            Matrix3X& x, SelfContactCounts* counts, PairLists* near) const;
+  double project_vertex_triangle(const std::array<Index, 2>& pair, const Matrix3X& x_start,
+                                 const Eigen::VectorXd& inv_mass, Matrix3X& x) const;
+  double project_edge_edge(const std::array<Index, 2>& pair, const Matrix3X& x_start,
+                           const Eigen::VectorXd& inv_mass, Matrix3X& x) const;
+  double project_marbles(const std::array<Index, 2>& pair, const Eigen::VectorXd& inv_mass,
+                         Matrix3X& x) const;
+
+  SelfCollisionSettings m_settings;
+  double m_marble_radius_m;
+  double m_margin_m;  // broad-phase margin beyond the contact distances
+  double m_neighbourhood_m;  // the mean rest edge: see exclusion_radius_m()
+  Matrix3X m_rest;
+  std::vector<std::array<Index, 3>> m_triangles;
+  std::vector<std::array<Index, 2>> m_edges;
+  std::vector<Index> m_vertices;  // the vertices of some triangle, ascending
+  // The candidate list and the positions it was built at; the pairs near contact in the
+  // current call's first sweep.
+  PairLists m_candidates;
+  PairLists m_near;
+  Matrix3X m_x_built;
+  bool m_built = false;
+  long m_rebuilds = 0;
+  double m_broad_s = 0.0;
+  double m_narrow_s = 0.0;
+};
+
+}  // namespace weft::sim
