@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "app/measure_command.h"
 #include "app/run_command.h"
 #include "app/scene.h"
 #include "app/stability_command.h"
@@ -75,6 +76,19 @@ int main(int argc, char** argv) {
                         "Run number (row of sweep.csv) the errors are measured against (default: the "
                         "finished run with the largest wall time, taken as the most accurate)");
 
+  MeasureOptions measure;
+  measure.command_line = run.command_line;
+  std::string measure_scene_path, measure_out;
+  int measure_frames = 0;
+  CLI::App* measure_cmd = app.add_subcommand(
+      "measure", "Simulate a scene without rendering; print settle time, drape coefficient and "
+                 "folds; write measure.csv and outline.csv (docs/measure.md)");
+  measure_cmd->add_option("scene", measure_scene_path, "Scene file; the built-in default scene if omitted");
+  measure_cmd->add_option("--out", measure_out, "Output folder (default: out/<scene name>)");
+  measure_cmd->add_option("--frames", measure_frames, "Frames to simulate (overrides output.frames)");
+  measure_cmd->add_flag("--drape", measure.require_drape,
+                        "Require the drape measures: an error if no obstacle supports the cloth centre");
+
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);
     return exit_bad_input;
@@ -102,6 +116,12 @@ int main(int argc, char** argv) {
       if (sweep_cmd->count("--frames")) sweep.frames = sweep_frames;
       if (sweep_cmd->count("--reference")) sweep.reference = sweep_reference;
       return run_sweep(sweep);
+    }
+    if (measure_cmd->parsed()) {
+      if (!measure_scene_path.empty()) measure.scene = measure_scene_path;
+      if (!measure_out.empty()) measure.out = measure_out;
+      if (measure_cmd->count("--frames")) measure.frames = measure_frames;
+      return run_measure(measure);
     }
     if (stability_cmd->parsed()) {
       if (!stability_out.empty()) stability.out = stability_out;

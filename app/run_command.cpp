@@ -5,6 +5,7 @@
 #include <regex>
 
 #include "app/frame_mesh.h"
+#include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
 #include "app/progress.h"
 #include "app/scene.h"
@@ -191,6 +192,8 @@ int run_scene(const RunOptions& options) {
               dir.c_str(), format_duration(sim_ms_total / 1e3).c_str(),
               format_duration(render_ms_total / 1e3).c_str(),
               format_duration(progress.elapsed_s()).c_str());
+  if (const auto drape = drape_summary(scene, *simulator))
+    std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
   return exit_ok;
 }
 

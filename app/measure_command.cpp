@@ -1,0 +1,242 @@
+// weft measure: simulate a scene frame by frame as `weft run` does, without rendering, and
+// measure its settle time and drape (sim/measure/); docs/measure.md.
+
+#include "app/measure_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "app/progress.h"
+#include "app/run_command.h"
+#include "app/version.h"
+#include "sim/collision/self_intersection.h"
+#include "sim/measure/settle.h"
+
+namespace weft::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format(const char* pattern, double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, v);
+  return text;
+}
+
+std::string support_name(const sim::DrapeSupport& s) {
+  return "the " + s.kind + " obstacles[" + std::to_string(s.obstacle) + "]";
+}
+
+class MeasureCsv {
+ public:
+  explicit MeasureCsv(const fs::path& path) : m_path(path), m_out(path) {
+    if (!m_out) throw std::runtime_error(path.string() + ": cannot write");
+    m_out << "frame,time_s,kinetic_energy_J,max_speed_m_s,drape_coefficient,folds\n";
+    m_out.flush();
+  }
+  void write(const MeasureRow& r) {
+    m_out.precision(9);
+    m_out << r.frame << ',' << r.time_s << ',' << r.kinetic_energy_J << ',' << r.max_speed_m_s
+          << ',';
+    if (r.drape_coefficient) m_out << *r.drape_coefficient;
+    m_out << ',';
+    if (r.folds) m_out << *r.folds;
+    m_out << '\n';
+    m_out.flush();
+    if (!m_out) throw std::runtime_error(m_path.string() + ": write failed");
+  }
+
+ private:
+  fs::path m_path;
+  std::ofstream m_out;
+};
+
+void write_outline(const fs::path& path, const sim::DrapeShape& drape,
+                   const sim::FoldCountSettings& folds) {
+  std::ofstream out(path);
+  out << "theta_deg,radius_m,smoothed_radius_m\n";
+  const std::vector<double> smooth =
+      sim::circular_moving_average(drape.radii_m, folds.smoothing_bins);
+  const int bins = static_cast<int>(drape.radii_m.size());
+  out.precision(9);
+  for (int k = 0; k < bins; ++k)
+    out << 360.0 * (k + 0.5) / bins << ',' << drape.radii_m[static_cast<std::size_t>(k)] << ','
+        << smooth[static_cast<std::size_t>(k)] << '\n';
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+// The table on stdout: one "name  value" line per measurement.
+void print_table(const Scene& scene, const SceneMeasurement& m) {
+  const MeasureRow& last = m.rows.back();
+  std::vector<std::pair<std::string, std::string>> lines;
+  const std::string threshold = format("%.3g cm/s", 100.0 * m.settle_threshold_m_s);
+  lines.emplace_back("settle time (max speed < " + threshold + ")",
+                     m.settle_time_s ? format("%.2f s", *m.settle_time_s)
+                                     : format("not settled by t = %.2f s", last.time_s));
+  if (m.final_drape) {
+    const sim::DrapeShape& d = *m.final_drape;
+    lines.emplace_back("drape coefficient", format("%.3f", d.drape_coefficient));
+    lines.emplace_back("folds", std::to_string(d.folds));
+    lines.emplace_back("shadow area", format("%.1f cm^2", 1e4 * d.shadow_m2) +
+                                          format(" (raster cell %.2g mm)", 1e3 * d.cell_m));
+    lines.emplace_back("support", support_name(*m.support) +
+                                      format(", %.1f cm^2", 1e4 * m.support->area_m2) +
+                                      format(" at (%.3g", m.support->axis_m.x()) +
+                                      format(", %.3g) m", m.support->axis_m.y()));
+    lines.emplace_back("specimen area", format("%.1f cm^2", 1e4 * m.specimen_m2));
+  } else {
+    lines.emplace_back("drape coefficient, folds", "not measured: no support under the cloth");
+  }
+  lines.emplace_back("max speed at the end", format("%.3g mm/s", 1e3 * last.max_speed_m_s));
+  lines.emplace_back("self-intersections at the end", std::to_string(m.self_intersections));
+  std::size_t width = 0;
+  for (const auto& [name, value] : lines) width = std::max(width, name.size());
+  std::printf("weft: %s at t = %.2f s (%d frames)\n", scene.source.c_str(), last.time_s,
+              last.frame);
+  for (const auto& [name, value] : lines)
+    std::printf("  %s%s  %s\n", name.c_str(), std::string(width - name.size(), ' ').c_str(),
+                value.c_str());
+}
+
+}  // namespace
+
+sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh) {
+  sim::Vec3 sum = sim::Vec3::Zero();
+  int used = 0;
+  for (sim::Index v = 0; v < mesh.vertex_count(); ++v) {
+    if (!mesh.is_used(v)) continue;
+    sum += mesh.rest_positions.row(v).transpose();
+    ++used;
+  }
+  return used ? sim::Vec3(sum / used) : sum;
+}
+
+std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
+                                               bool require_drape) {
+  const sim::Vec3 c = cloth_center_m(mesh);
+  std::optional<sim::DrapeSupport> support = sim::find_support(scene.sim.obstacles, c);
+  char where[96];
+  std::snprintf(where, sizeof where, "(%.3g, %.3g, %.3g) m", c.x(), c.y(), c.z());
+  if (!support && require_drape)
+    throw SceneError(scene.source + ": obstacles: --drape needs a support under the cloth centre " +
+                     where + " to measure the drape coefficient and folds: a cylinder with a "
+                     "vertical axis, a box or a sphere whose top is below it; found none");
+  const double specimen_m2 = sim::specimen_rest_area_m2(mesh);
+  if (support && !(specimen_m2 > support->area_m2))
+    throw SceneError(scene.source + ": cloth: the specimen (" + format("%.4g", specimen_m2) +
+                     " m^2) is no larger than its support, " + support_name(*support) + " (" +
+                     format("%.4g", support->area_m2) + " m^2): no overhang to measure");
+  return support;
+}
+
+SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bool require_drape,
+                               const std::function<void(const MeasureRow&)>& on_frame) {
+  SceneMeasurement m;
+  const sim::ClothMesh& mesh = simulator.mesh();
+  m.support = scene_support(scene, mesh, require_drape);
+  m.specimen_m2 = sim::specimen_rest_area_m2(mesh);
+  const auto triangles = mesh.triangles();
+  const sim::DrapeMeasureSettings settings;
+
+  const auto record = [&](int frame) {
+    MeasureRow row;
+    row.frame = frame;
+    const sim::Diagnostics d = simulator.diagnostics();
+    row.time_s = simulator.state().time_s;
+    row.kinetic_energy_J = d.kinetic_energy_J;
+    row.max_speed_m_s = d.max_speed_m_s;
+    if (m.support) {
+      m.final_drape = sim::measure_drape(mesh, triangles, simulator.state().x, *m.support, settings);
+      row.drape_coefficient = m.final_drape->drape_coefficient;
+      row.folds = m.final_drape->folds;
+    }
+    m.rows.push_back(row);
+    if (on_frame) on_frame(row);
+  };
+  record(0);
+  const double frame_dt_s = 1.0 / scene.fps;
+  for (int frame = 1; frame <= scene.frames; ++frame) {
+    simulator.advance(frame * frame_dt_s - simulator.state().time_s);
+    record(frame);
+  }
+  std::vector<double> time_s, speed_m_s;
+  for (const MeasureRow& r : m.rows) {
+    time_s.push_back(r.time_s);
+    speed_m_s.push_back(r.max_speed_m_s);
+  }
+  m.settle_time_s = sim::settle_time_s(time_s, speed_m_s, m.settle_threshold_m_s);
+  m.self_intersections = sim::count_edge_triangle_crossings(simulator.state().x, triangles,
+                                                            sim::unique_edges(triangles));
+  return m;
+}
+
+std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulator& simulator) {
+  const auto support = sim::find_support(scene.sim.obstacles, cloth_center_m(simulator.mesh()));
+  const double specimen_m2 = sim::specimen_rest_area_m2(simulator.mesh());
+  if (!support || !(specimen_m2 > support->area_m2)) return std::nullopt;
+  const sim::DrapeShape d = sim::measure_drape(simulator.mesh(), simulator.mesh().triangles(),
+                                               simulator.state().x, *support);
+  return format("drape coefficient %.3f, ", d.drape_coefficient) + std::to_string(d.folds) +
+         " folds over " + support_name(*support);
+}
+
+int run_measure(const MeasureOptions& options) {
+  Scene scene = options.scene ? load_scene(*options.scene) : default_scene();
+  if (options.frames) {
+    if (*options.frames < 1 || *options.frames > 100000)
+      throw SceneError("--frames: expected an integer in 1..100000, got " +
+                       std::to_string(*options.frames));
+    scene.frames = *options.frames;
+  }
+  // Everything that can reject the input happens before the output folder is touched.
+  const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+  const std::optional<sim::DrapeSupport> support =
+      scene_support(scene, simulator->mesh(), options.require_drape);
+
+  const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  fs::create_directories(dir);
+  {
+    std::ofstream txt(dir / "measure.txt");
+    txt << "weft " << version() << "\ncommand: " << options.command_line
+        << "\nscene: " << scene.source << "\n";
+  }
+  MeasureCsv csv(dir / "measure.csv");
+  std::fprintf(stderr,
+               "weft: measuring %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms, %s\n",
+               scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
+               1e3 * simulator->time_step(),
+               support ? ("drape over " + support_name(*support)).c_str()
+                       : "no support under the cloth: settle time only");
+  Progress progress(stderr, scene.frames, "frame");
+  SceneMeasurement m;
+  try {
+    m = measure_scene(scene, *simulator, options.require_drape, [&](const MeasureRow& row) {
+      csv.write(row);
+      if (row.frame == 0) return;
+      std::string detail = format("t = %.2f s", row.time_s) +
+                           format(", max speed %.3g m/s", row.max_speed_m_s);
+      if (row.drape_coefficient)
+        detail += format(", DC %.3f", *row.drape_coefficient) + ", " +
+                  std::to_string(*row.folds) + " folds";
+      progress.update(row.frame, detail);
+    });
+  } catch (const sim::DivergenceError& e) {
+    progress.finish();
+    std::fprintf(stderr, "weft: error: %s\n", e.what());
+    std::fprintf(stderr, "weft: measure.csv up to the last finished frame is in %s\n",
+                 dir.c_str());
+    return exit_diverged;
+  }
+  progress.finish();
+  if (m.final_drape) {
+    write_outline(dir / "outline.csv", *m.final_drape, sim::DrapeMeasureSettings{}.folds);
+  }
+  print_table(scene, m);
+  std::printf("weft: wrote measure.csv%s to %s (%s)\n", m.final_drape ? " and outline.csv" : "",
+              dir.c_str(), format_duration(progress.elapsed_s()).c_str());
+  return exit_ok;
+}
+
+}  // namespace weft::app

@@ -1,0 +1,69 @@
+#pragma once
+// `weft measure`: simulate a scene without rendering and measure its drape frame by frame — the
+// settle time, the drape coefficient, the outline r(θ) and the fold count (issue 5 item 5;
+// sim/measure/, docs/measure.md).
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/scene.h"
+#include "sim/measure/drape_measure.h"
+#include "sim/measure/settle.h"
+#include "sim/simulator.h"
+
+namespace weft::app {
+
+struct MeasureOptions {
+  std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
+  std::optional<std::filesystem::path> out;    // default: out/<scene name>
+  std::optional<int> frames;                   // overrides the scene's output.frames
+  bool require_drape = false;  // --drape: a scene without a support is an error
+  std::string command_line;    // recorded in measure.txt
+};
+
+// One row of measure.csv: the state at the end of a frame (frame 0: the start).
+struct MeasureRow {
+  int frame = 0;
+  double time_s = 0.0;
+  double kinetic_energy_J = 0.0;
+  double max_speed_m_s = 0.0;
+  std::optional<double> drape_coefficient;  // with a support only
+  std::optional<int> folds;
+};
+
+struct SceneMeasurement {
+  std::optional<sim::DrapeSupport> support;  // none: a hang, only the settle time is measured
+  double specimen_m2 = 0.0;                  // the cloth's rest area
+  std::vector<MeasureRow> rows;              // frames 0..N
+  double settle_threshold_m_s = sim::settle_speed_threshold_m_s;
+  std::optional<double> settle_time_s;       // none: still moving at the end
+  std::optional<sim::DrapeShape> final_drape;  // at the last frame, with a support
+  int self_intersections = 0;                // edge–triangle crossings at the last frame
+};
+
+// The cloth centre a support is looked for under: the mean rest position of the used vertices.
+sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh);
+
+// The scene's drape support (sim::find_support under cloth_center_m), or none. With
+// require_drape, none is a SceneError naming the scene file; so is a specimen no larger than
+// its support.
+std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
+                                               bool require_drape);
+
+// Simulates every frame of the scene on `simulator` (made by make_simulator(scene)) and measures
+// it; on_frame, if given, sees each row as it is made. Throws sim::DivergenceError (the rows so
+// far are lost; on_frame has seen them), SceneError as scene_support.
+SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bool require_drape,
+                               const std::function<void(const MeasureRow&)>& on_frame = {});
+
+// "drape coefficient 0.62, 9 folds over the cylinder obstacles[0]" for the simulator's current
+// positions, or none when the scene has no support. For `weft run`'s last line.
+std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulator& simulator);
+
+// Runs the job; bad input throws SceneError before anything is written.
+int run_measure(const MeasureOptions& options);
+
+}  // namespace weft::app

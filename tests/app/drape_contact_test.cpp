@@ -1,0 +1,83 @@
+// Contact invariants on every drape scene of assets/scenes (issue 5's tests): with
+// self-collision on, after every step no free vertex is closer to any obstacle than the
+// collision thickness (so none is inside one), and the final frame has no edge–triangle
+// crossing. To keep the set within seconds each scene runs coarse (17 × 17 vertices) for its
+// first 0.75 s — the fall, the impact and the folds forming, where contact is hardest; the
+// full-resolution runs are the gallery's (gallery/README.md).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <variant>
+
+#include "app/scene.h"
+#include "sim/collision/self_intersection.h"
+
+namespace weft::app {
+namespace {
+
+// The scene on 17 × 17 vertices; a grid-vertex pin (the Cusick specimen's centre) moves to the
+// same place on the coarse grid.
+Scene coarse_scene(const std::string& name) {
+  Scene scene = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" / name);
+  const sim::Index nu = scene.grid.nu, nv = scene.grid.nv, n = 17;
+  for (sim::PinSpec& pin : scene.pins) {
+    if (auto* g = std::get_if<sim::PinGrid>(&pin)) {
+      g->i = static_cast<sim::Index>(std::lround(double(g->i) * (n - 1) / double(nu - 1)));
+      g->j = static_cast<sim::Index>(std::lround(double(g->j) * (n - 1) / double(nv - 1)));
+    }
+  }
+  scene.grid.nu = scene.grid.nv = n;
+  scene.sim.self_collision.enabled = true;
+  return scene;
+}
+
+class DrapeSceneContact : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DrapeSceneContact, NoVertexInsideAnObstacleAfterAnyStepAndNoCrossingAtTheEnd) {
+  const Scene scene = coarse_scene(GetParam());
+  const std::unique_ptr<sim::Simulator> sim = make_simulator(scene);
+  const double thickness = scene.sim.collision_thickness_m;
+  const double h = sim->time_step();
+  const long steps = static_cast<long>(0.75 / h);
+  double closest = 1e300;
+  for (long k = 0; k < steps; ++k) {
+    sim->step(h);
+    const sim::Matrix3X& x = sim->state().x;
+    for (sim::Index i = 0; i < x.rows(); ++i) {
+      if (!sim->mesh().is_used(i)) continue;
+      bool pinned = false;
+      for (const sim::Index p : sim->pinned()) pinned |= p == i;
+      if (pinned) continue;
+      for (std::size_t o = 0; o < scene.sim.obstacles.size(); ++o) {
+        const double d = sim::signed_distance(scene.sim.obstacles[o], x.row(i).transpose());
+        closest = std::min(closest, d);
+        ASSERT_GE(d, thickness - 1e-9) << GetParam() << ": vertex " << i << " at step " << k
+                                       << " is " << d << " m from obstacle " << o;
+      }
+    }
+  }
+  const auto triangles = sim->mesh().triangles();
+  const sim::Index crossings = sim::count_edge_triangle_crossings(
+      sim->state().x, triangles, sim::unique_edges(triangles));
+  EXPECT_EQ(crossings, 0) << GetParam();
+  std::printf("%s (17 x 17, %ld steps): %d crossings", GetParam().c_str(), steps, crossings);
+  if (!scene.sim.obstacles.empty()) std::printf(", closest approach to an obstacle %.3g mm", 1e3 * closest);
+  std::printf("\n");
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, DrapeSceneContact,
+                         ::testing::Values("pedestal_drape.json", "kang_yu_40_pedestal.json",
+                                           "disc_drape_50.json", "sphere_drape_30.json",
+                                           "cusick_drape.json", "sphere_drape_mesh.json",
+                                           "hang_corners_20.json", "hang_corners_100.json"),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param;
+                           return name.substr(0, name.find('.'));
+                         });
+
+}  // namespace
+}  // namespace weft::app

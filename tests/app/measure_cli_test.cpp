@@ -1,0 +1,133 @@
+// End to end through the real `weft measure`: a small drape over a disc prints the table and
+// writes measure.csv (DC = 1 for the flat sheet at t = 0, below 1 once it hangs) and
+// outline.csv; a hang without a support measures only the settle time; --drape on a hang and a
+// bad --frames are errors naming their cause, with nothing written.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/app/cli_test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using weft::app::test::CommandResult;
+using weft::app::test::run_weft;
+
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
+
+class MeasureCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "measure_cli" / info->name();
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  fs::path write_scene(const std::string& text) const {
+    const fs::path path = m_dir / "scene.json";
+    std::ofstream(path) << text;
+    return path;
+  }
+  fs::path m_dir;
+};
+
+// A 30 cm sheet on 16×16 vertices dropped on a Ø12 cm disc (a cylinder 30 cm high) for `frames`
+// frames at 24 fps; or, with `hang`, pinned at two corners with no obstacle.
+std::string small_scene(bool hang) {
+  const std::string obstacles = hang ? "" : R"(
+  "obstacles": [{"cylinder": {"center": [0, 0, "15 cm"], "axis": [0, 0, 1], "radius": "6 cm", "height": "30 cm"}}],)";
+  const std::string pins = hang ? R"(, "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}])" : "";
+  return R"({
+  "description": "weft measure test scene",
+  "cloth": {"size": ["30 cm", "30 cm"], "resolution": [16, 16], "origin": ["-15 cm", "-15 cm", "30.5 cm"],
+            "material": {"preset": "wool_kang_yu"})" + pins + R"(},)" + obstacles + R"(
+  "simulation": {"air_damping": "5 1/s", "collision_friction": 0.5},
+  "output": {"fps": 24, "frames": 12}
+})";
+}
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> fields(1);
+    for (char c : line) {
+      if (c == ',')
+        fields.emplace_back();
+      else
+        fields.back() += c;
+    }
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+TEST_F(MeasureCli, DrapeOverADiscWritesTheTableAndBothFiles) {
+  const fs::path scene = write_scene(small_scene(false));
+  const CommandResult r = run_weft("measure " + scene.string() + " --out " + m_dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "drape over the cylinder obstacles[0]");
+  EXPECT_CONTAINS(r.output, "settle time (max speed < 1 cm/s)");
+  EXPECT_CONTAINS(r.output, "drape coefficient");
+  EXPECT_CONTAINS(r.output, "folds");
+  EXPECT_CONTAINS(r.output, "self-intersections at the end");
+
+  const auto rows = read_csv(m_dir / "measure.csv");
+  ASSERT_EQ(rows.size(), 14u);  // header + frames 0..12
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"frame", "time_s", "kinetic_energy_J", "max_speed_m_s",
+                                                "drape_coefficient", "folds"}));
+  // At t = 0 the sheet is flat: its shadow is the whole specimen, DC = 1 (to the raster's 1 %).
+  EXPECT_NEAR(std::stod(rows[1][4]), 1.0, 0.01);
+  EXPECT_EQ(std::stod(rows[1][3]), 0.0);  // at rest
+  // After 0.5 s of falling the overhang hangs down: DC well below 1 and above 0.
+  const double dc_end = std::stod(rows.back()[4]);
+  EXPECT_LT(dc_end, 0.9);
+  EXPECT_GT(dc_end, 0.0);
+  EXPECT_NEAR(std::stod(rows.back()[1]), 0.5, 1e-9);
+
+  const auto outline = read_csv(m_dir / "outline.csv");
+  ASSERT_EQ(outline.size(), 361u);
+  EXPECT_EQ(outline[0][0], "theta_deg");
+  // No point of the outline lies inside the disc (the cloth covers it) or beyond the sheet's
+  // half diagonal (it cannot stretch that far).
+  for (std::size_t k = 1; k < outline.size(); ++k) {
+    const double radius = std::stod(outline[k][1]);
+    EXPECT_GT(radius, 0.06 - 0.002) << "bin " << k;
+    EXPECT_LT(radius, 0.15 * std::sqrt(2.0) * 1.05) << "bin " << k;
+  }
+}
+
+TEST_F(MeasureCli, AHangMeasuresOnlyTheSettleTime) {
+  const fs::path scene = write_scene(small_scene(true));
+  const CommandResult r = run_weft("measure " + scene.string() + " --frames 6 --out " + m_dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "no support under the cloth");
+  EXPECT_CONTAINS(r.output, "not settled by t = 0.25 s");  // still falling after 6 frames
+  const auto rows = read_csv(m_dir / "measure.csv");
+  ASSERT_EQ(rows.size(), 8u);
+  EXPECT_EQ(rows.back()[4], "");  // no DC
+  EXPECT_GT(std::stod(rows.back()[3]), 0.1);
+  EXPECT_FALSE(fs::exists(m_dir / "outline.csv"));
+}
+
+TEST_F(MeasureCli, DrapeWithoutSupportAndBadFramesAreErrors) {
+  const fs::path scene = write_scene(small_scene(true));
+  const fs::path out = m_dir / "out";
+  CommandResult r = run_weft("measure " + scene.string() + " --drape --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, scene.string() + ": obstacles: --drape needs a support");
+  r = run_weft("measure " + scene.string() + " --frames 0 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "--frames: expected an integer in 1..100000");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
