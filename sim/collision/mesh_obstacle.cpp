@@ -17,6 +17,8 @@
 #include <string>
 #include <utility>
 
+#include "sim/collision/proximity.h"
+
 namespace weft::sim {
 namespace {
 
@@ -72,37 +74,6 @@ class EmbreeScene {
 };
 
 using GeometryOwner = std::unique_ptr<RTCGeometryTy, decltype(&rtcReleaseGeometry)>;
-
-// Closest point on the segment ab to p, as the parameter in [0, 1].
-double segment_parameter(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double ll = ab.squaredNorm();
-  if (!(ll > 0.0)) return 0.0;
-  return std::clamp((p - a).dot(ab) / ll, 0.0, 1.0);
-}
-
-// A zero-area triangle: the nearest of its three edges (and vertices).
-TrianglePoint closest_on_degenerate(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const std::array<Vec3, 3> corner{a, b, c};
-  const std::array<TriangleFeature, 3> edge{TriangleFeature::edge_ab, TriangleFeature::edge_bc,
-                                            TriangleFeature::edge_ca};
-  const std::array<TriangleFeature, 3> vertex{TriangleFeature::vertex_a, TriangleFeature::vertex_b,
-                                              TriangleFeature::vertex_c};
-  TrianglePoint best{a, TriangleFeature::vertex_a};
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    const Vec3& u = corner[k];
-    const Vec3& w = corner[(k + 1) % 3];
-    const double t = segment_parameter(p, u, w);
-    const Vec3 q = u + t * (w - u);
-    const double d2 = (p - q).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = {q, t == 0.0 ? vertex[k] : t == 1.0 ? vertex[(k + 1) % 3] : edge[k]};
-    }
-  }
-  return best;
-}
 
 // The running best of one point query, shared with the Embree callback.
 struct Query {
@@ -169,36 +140,18 @@ RigidPose inverse(const RigidPose& pose) {
 
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
                                         const Vec3& c) {
-  // Voronoi regions of the vertices, then of the edges, else the interior; d1..d6 are the
-  // projections of p − corner on the two edge vectors from a.
-  const Vec3 ab = b - a, ac = c - a;
-  const Vec3 ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return {a, TriangleFeature::vertex_a};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return {b, TriangleFeature::vertex_b};
-  const double vc = d1 * d4 - d3 * d2;  // ∝ barycentric weight of c
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-    const double t = d1 / (d1 - d3);
-    return {a + t * ab, TriangleFeature::edge_ab};
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return {c, TriangleFeature::vertex_c};
-  const double vb = d5 * d2 - d1 * d6;  // ∝ barycentric weight of b
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-    const double t = d2 / (d2 - d6);
-    return {a + t * ac, TriangleFeature::edge_ca};
-  }
-  const double va = d3 * d6 - d5 * d4;  // ∝ barycentric weight of a
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
-    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {b + t * (c - b), TriangleFeature::edge_bc};
-  }
-  const double sum = va + vb + vc;  // ∝ twice the squared area: 0 for a degenerate triangle
-  if (!(sum > 0.0)) return closest_on_degenerate(p, a, b, c);
-  return {a + (vb / sum) * ab + (vc / sum) * ac, TriangleFeature::face};
+  // The shared kernel (proximity.h) sets the weights of the corners off the nearest feature to
+  // exactly 0, so the feature is read off them.
+  const Vec3 w = closest_point_on_triangle_weights(p, a, b, c);
+  const Vec3 point = w[0] * a + w[1] * b + w[2] * c;
+  const bool on_a = w[0] != 0.0, on_b = w[1] != 0.0, on_c = w[2] != 0.0;
+  if (on_a && !on_b && !on_c) return {a, TriangleFeature::vertex_a};
+  if (!on_a && on_b && !on_c) return {b, TriangleFeature::vertex_b};
+  if (!on_a && !on_b && on_c) return {c, TriangleFeature::vertex_c};
+  if (!on_c) return {point, TriangleFeature::edge_ab};
+  if (!on_a) return {point, TriangleFeature::edge_bc};
+  if (!on_b) return {point, TriangleFeature::edge_ca};
+  return {point, TriangleFeature::face};
 }
 
 struct MeshSolid::Bvh {

@@ -47,8 +47,8 @@ struct TrianglePoint {
 };
 
 // The point of triangle abc nearest p, and the feature (vertex, edge or interior) it lies on,
-// by the triangle's Voronoi regions (Ericson 2005, "Real-Time Collision Detection" §5.1.5).
-// A degenerate (zero-area) triangle gives the nearest point of its three edges.
+// by the triangle's Voronoi regions (closest_point_on_triangle_weights, proximity.h). A
+// degenerate (zero-area) triangle gives the nearest point of its longest edge.
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 // The closest surface point of a mesh solid to a query point.

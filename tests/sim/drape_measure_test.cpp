@@ -146,7 +146,7 @@ TEST(SpecimenArea, SumsTheKeptQuadsOnly) {
   spec.shape = SpecimenShape::disc;
   const ClothMesh disc = make_grid(spec);
   const double cell_area = 0.01 * 0.01;
-  EXPECT_NEAR(specimen_rest_area_m2(disc), cell_area * disc.quads.size(), 1e-12);
+  EXPECT_NEAR(specimen_rest_area_m2(disc), cell_area * static_cast<double>(disc.quads.size()), 1e-12);
   EXPECT_LT(disc.quads.size(), 40u * 40u);
   EXPECT_NEAR(specimen_rest_area_m2(disc), kPi * 0.2 * 0.2, 0.02 * kPi * 0.2 * 0.2);
 }
