@@ -87,9 +87,12 @@ std::vector<std::string> Simulator::explain() const {
   if (m_settings.obstacles.empty()) {
     line << "collide: " << (m_self ? "no obstacles" : "off (no obstacles, no self-collision)");
   } else {
-    line << "collide: " << m_settings.obstacles.size() << " obstacles, thickness "
-         << 1e3 * m_settings.collision_thickness_m << " mm, friction "
-         << m_settings.collision_friction;
+    std::size_t meshes = 0, moving = 0;
+    for (const Obstacle& o : m_settings.obstacles) meshes += std::holds_alternative<MeshObstacle>(o);
+    for (const ObstacleMotion& m : m_settings.obstacle_motions) moving += m.moves();
+    line << "collide: " << m_settings.obstacles.size() << " obstacles (" << meshes << " meshes, "
+         << moving << " moving), thickness " << 1e3 * m_settings.collision_thickness_m
+         << " mm, friction " << m_settings.collision_friction;
   }
   if (m_self) {
     line << "; self-collision over " << m_self->triangle_count() << " triangles and "
