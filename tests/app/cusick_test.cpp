@@ -7,28 +7,17 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <filesystem>
 #include <memory>
-#include <variant>
 
 #include "app/measure_command.h"
 #include "app/scene.h"
+#include "coarse_scene.h"
 
 namespace weft::app {
 namespace {
 
 double cusick_drape_coefficient(double bending_scale) {
-  Scene scene = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" /
-                           "cusick_drape.json");
-  const sim::Index n = 31;
-  for (sim::PinSpec& pin : scene.pins) {  // the centre pin, onto the coarse grid's centre
-    if (auto* g = std::get_if<sim::PinGrid>(&pin)) {
-      g->i = static_cast<sim::Index>(std::lround(double(g->i) * (n - 1) / double(scene.grid.nu - 1)));
-      g->j = static_cast<sim::Index>(std::lround(double(g->j) * (n - 1) / double(scene.grid.nv - 1)));
-    }
-  }
-  scene.grid.nu = scene.grid.nv = n;
+  Scene scene = test::coarse_scene("cusick_drape.json", 31);
   scene.frames = 48;  // 2 s
   scene.material.bend_warp_Nm *= bending_scale;
   scene.material.bend_weft_Nm *= bending_scale;

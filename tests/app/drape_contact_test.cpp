@@ -7,30 +7,18 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <filesystem>
 #include <memory>
 #include <string>
-#include <variant>
 
 #include "app/scene.h"
+#include "coarse_scene.h"
 #include "sim/collision/self_intersection.h"
 
 namespace weft::app {
 namespace {
 
-// The scene on 17 × 17 vertices; a grid-vertex pin (the Cusick specimen's centre) moves to the
-// same place on the coarse grid.
-Scene coarse_scene(const std::string& name) {
-  Scene scene = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" / name);
-  const sim::Index nu = scene.grid.nu, nv = scene.grid.nv, n = 17;
-  for (sim::PinSpec& pin : scene.pins) {
-    if (auto* g = std::get_if<sim::PinGrid>(&pin)) {
-      g->i = static_cast<sim::Index>(std::lround(double(g->i) * (n - 1) / double(nu - 1)));
-      g->j = static_cast<sim::Index>(std::lround(double(g->j) * (n - 1) / double(nv - 1)));
-    }
-  }
-  scene.grid.nu = scene.grid.nv = n;
+Scene coarse_scene_with_self_collision(const std::string& name) {
+  Scene scene = test::coarse_scene(name, 17);
   scene.sim.self_collision.enabled = true;
   return scene;
 }
@@ -38,7 +26,7 @@ Scene coarse_scene(const std::string& name) {
 class DrapeSceneContact : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DrapeSceneContact, NoVertexInsideAnObstacleAfterAnyStepAndNoCrossingAtTheEnd) {
-  const Scene scene = coarse_scene(GetParam());
+  const Scene scene = coarse_scene_with_self_collision(GetParam());
   const std::unique_ptr<sim::Simulator> sim = make_simulator(scene);
   const double thickness = scene.sim.collision_thickness_m;
   const double h = sim->time_step();

@@ -19,13 +19,10 @@
 
 #include "app/measure_command.h"
 #include "app/scene.h"
+#include "coarse_scene.h"
 
 namespace weft::app {
 namespace {
-
-Scene scene_file(const std::string& name) {
-  return load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" / name);
-}
 
 SceneMeasurement measure(const Scene& scene) {
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
@@ -33,8 +30,7 @@ SceneMeasurement measure(const Scene& scene) {
 }
 
 TEST(DrapeScenes, FiftyCentimetreSquareOnATwentyCentimetreDiscHasEightToTwelveFolds) {
-  Scene scene = scene_file("disc_drape_50.json");
-  scene.grid.nu = scene.grid.nv = 41;
+  Scene scene = test::coarse_scene("disc_drape_50.json", 41);
   scene.frames = 36;  // 1.5 s at 24 fps
   const SceneMeasurement m = measure(scene);
   ASSERT_TRUE(m.support);
@@ -61,13 +57,12 @@ void expect_settles_near(const Scene& scene, double paper_s) {
 }
 
 TEST(DrapeScenes, TwentyCentimetreHangSettlesByAboutTwoSeconds) {
-  Scene scene = scene_file("hang_corners_20.json");
-  scene.grid.nu = scene.grid.nv = 31;
+  Scene scene = test::coarse_scene("hang_corners_20.json", 31);
   expect_settles_near(scene, 2.0);
 }
 
 TEST(DrapeScenes, MetreHangSettlesByAboutTwoPointFourSeconds) {
-  expect_settles_near(scene_file("hang_corners_100.json"), 2.4);
+  expect_settles_near(test::scene_file("hang_corners_100.json"), 2.4);
 }
 
 }  // namespace

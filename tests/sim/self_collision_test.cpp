@@ -128,12 +128,20 @@ double closest_approach(const ClothMesh& mesh, const Matrix3X& x, double exclusi
   return best;
 }
 
-TEST(SelfCollision, PushesLayersApartToTheThicknessKeepingMomentum) {
-  const ClothMesh mesh = strip(21);
+// Self-collision on, with this contact distance and enough sweeps to resolve a whole layer.
+SelfCollisionSettings layer_settings(double thickness_m, double marble_radius_m = 0.0,
+                                     int iterations = 20) {
   SelfCollisionSettings settings;
   settings.enabled = true;
-  settings.thickness_m = 4e-3;
-  settings.iterations = 20;
+  settings.thickness_m = thickness_m;
+  settings.marble_radius_m = marble_radius_m;
+  settings.iterations = iterations;
+  return settings;
+}
+
+TEST(SelfCollision, PushesLayersApartToTheThicknessKeepingMomentum) {
+  const ClothMesh mesh = strip(21);
+  const SelfCollisionSettings settings = layer_settings(4e-3);
   SelfCollision self(mesh, settings);
   const Matrix3X start = folded_strip(mesh, 3e-3);  // layers 3 mm apart: in contact
   Matrix3X x = start;
@@ -149,10 +157,7 @@ TEST(SelfCollision, PushesLayersApartToTheThicknessKeepingMomentum) {
 
 TEST(SelfCollision, PinnedLayerStaysAndTheFreeOneMovesTheWholeWay) {
   const ClothMesh mesh = strip(21);
-  SelfCollisionSettings settings;
-  settings.enabled = true;
-  settings.thickness_m = 4e-3;
-  settings.iterations = 20;
+  const SelfCollisionSettings settings = layer_settings(4e-3);
   SelfCollision self(mesh, settings);
   const Matrix3X start = folded_strip(mesh, 3e-3);
   Matrix3X x = start;
@@ -171,10 +176,7 @@ TEST(SelfCollision, PinnedLayerStaysAndTheFreeOneMovesTheWholeWay) {
 // at its free end: it is brought back above, and no edge crosses a triangle any more.
 TEST(SelfCollision, ALayerThatPassedThroughWithinAStepGoesBackToItsSide) {
   const ClothMesh mesh = strip(21);
-  SelfCollisionSettings settings;
-  settings.enabled = true;
-  settings.thickness_m = 2e-3;
-  settings.iterations = 20;
+  const SelfCollisionSettings settings = layer_settings(2e-3);
   SelfCollision self(mesh, settings);
   // Shifted 3 mm so that no edge meets the other layer exactly at a vertex or an edge.
   const Matrix3X start = folded_strip(mesh, 3e-3, 3e-3);
@@ -195,11 +197,7 @@ TEST(SelfCollision, ALayerThatPassedThroughWithinAStepGoesBackToItsSide) {
 
 TEST(SelfCollision, MarblesKeepNonNeighbouringVerticesTwoRadiiApart) {
   const ClothMesh mesh = strip(21);  // 1 cm spacing
-  SelfCollisionSettings settings;
-  settings.enabled = true;
-  settings.thickness_m = 1e-3;
-  settings.marble_radius_m = 4e-3;
-  settings.iterations = 50;
+  const SelfCollisionSettings settings = layer_settings(1e-3, 4e-3, 50);
   SelfCollision self(mesh, settings);
   // Mirror exactly onto the lower layer, 1 mm above: every upper vertex sits over a lower one.
   const Matrix3X start = folded_strip(mesh, 1e-3);
