@@ -184,12 +184,7 @@ std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulato
 
 int run_measure(const MeasureOptions& options) {
   Scene scene = options.scene ? load_scene(*options.scene) : default_scene();
-  if (options.frames) {
-    if (*options.frames < 1 || *options.frames > 100000)
-      throw SceneError("--frames: expected an integer in 1..100000, got " +
-                       std::to_string(*options.frames));
-    scene.frames = *options.frames;
-  }
+  if (options.frames) scene.frames = checked_frames_option(*options.frames);
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::optional<sim::DrapeSupport> support =

@@ -49,12 +49,7 @@ void write_text(const fs::path& path, const std::string& text) {
 }
 
 void apply_overrides(Scene& scene, const RunOptions& options) {
-  if (options.frames) {
-    if (*options.frames < 1 || *options.frames > 100000)
-      throw SceneError("--frames: expected an integer in 1..100000, got " +
-                       std::to_string(*options.frames));
-    scene.frames = *options.frames;
-  }
+  if (options.frames) scene.frames = checked_frames_option(*options.frames);
   if (options.size)
     std::tie(scene.render.width, scene.render.height) = parse_size(*options.size, "--size");
   if (options.normals_shading)
@@ -63,6 +58,12 @@ void apply_overrides(Scene& scene, const RunOptions& options) {
 }
 
 }  // namespace
+
+int checked_frames_option(int frames) {
+  if (frames < 1 || frames > 100000)
+    throw SceneError("--frames: expected an integer in 1..100000, got " + std::to_string(frames));
+  return frames;
+}
 
 std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
   static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");

@@ -23,6 +23,10 @@ enum ExitCode : int { exit_ok = 0, exit_bad_input = 1, exit_failure = 2, exit_di
 // Runs the job; bad input throws SceneError before anything is written.
 int run_scene(const RunOptions& options);
 
+// The --frames option of run, measure and sweep: returns it if it is in 1..100000, else throws
+// SceneError naming the option.
+int checked_frames_option(int frames);
+
 // Parses "640x480" (each side 16..8192); throws SceneError naming the option.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);
 

@@ -210,9 +210,7 @@ int run_sweep(const SweepOptions& options) {
     throw SceneError("--set: expected at least one KEY=V1,V2,... to sweep over");
   std::vector<SettingValues> values;
   for (const std::string& text : options.set) values.push_back(parse_set_option(text));
-  if (options.frames && (*options.frames < 1 || *options.frames > 100000))
-    throw SceneError("--frames: expected an integer in 1..100000, got " +
-                     std::to_string(*options.frames));
+  if (options.frames) checked_frames_option(*options.frames);
 
   // Every combination is read (and so checked) before any is simulated.
   std::vector<SweepRun> runs;
