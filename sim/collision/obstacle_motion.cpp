@@ -7,42 +7,30 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/keyframes.h"
+
 namespace weft::sim {
 
 ObstacleMotion::ObstacleMotion(std::vector<ObstacleKeyframe> keyframes)
     : m_keyframes(std::move(keyframes)) {
+  check_keyframe_times(m_keyframes);
   for (std::size_t k = 0; k < m_keyframes.size(); ++k) {
     const ObstacleKeyframe& f = m_keyframes[k];
     const std::string name = "keyframe " + std::to_string(k) + ": ";
-    if (!std::isfinite(f.time_s)) throw std::invalid_argument(name + "time must be finite");
     if (!f.translate_m.allFinite())
       throw std::invalid_argument(name + "translate must be finite");
     if (!std::isfinite(f.rotate_z_rad))
       throw std::invalid_argument(name + "rotate_z must be finite");
-    if (k > 0 && !(f.time_s > m_keyframes[k - 1].time_s)) {
-      throw std::invalid_argument(name + "times must strictly increase, got " +
-                                  std::to_string(f.time_s) + " s after " +
-                                  std::to_string(m_keyframes[k - 1].time_s) + " s");
-    }
   }
 }
 
 RigidPose ObstacleMotion::pose_at(double time_s) const {
   if (m_keyframes.empty()) return {};
-  const auto pose_of = [](const ObstacleKeyframe& f) {
-    return RigidPose{f.translate_m, f.rotate_z_rad};
-  };
-  if (!(time_s > m_keyframes.front().time_s)) return pose_of(m_keyframes.front());
-  if (!(time_s < m_keyframes.back().time_s)) return pose_of(m_keyframes.back());
-  // The first keyframe later than time_s, and the one before it.
-  const auto next = std::upper_bound(
-      m_keyframes.begin(), m_keyframes.end(), time_s,
-      [](double t, const ObstacleKeyframe& f) { return t < f.time_s; });
-  const ObstacleKeyframe& a = *(next - 1);
-  const ObstacleKeyframe& b = *next;
-  const double s = (time_s - a.time_s) / (b.time_s - a.time_s);
-  return {(1.0 - s) * a.translate_m + s * b.translate_m,
-          (1.0 - s) * a.rotate_z_rad + s * b.rotate_z_rad};
+  const KeyframeBlend k = keyframe_blend(m_keyframes, time_s);
+  const ObstacleKeyframe& a = m_keyframes[k.before];
+  const ObstacleKeyframe& b = m_keyframes[k.after];
+  return {(1.0 - k.s) * a.translate_m + k.s * b.translate_m,
+          (1.0 - k.s) * a.rotate_z_rad + k.s * b.rotate_z_rad};
 }
 
 RigidPose ObstacleMotion::motion_between(double t0_s, double t1_s) const {

@@ -255,7 +255,7 @@ TEST(MeshScene, MotionKeyframesAreReadAndChecked) {
   Json backwards = moving;
   backwards["motion"][1]["time"] = "0 s";
   EXPECT_CONTAINS(test::scene_error_of(mesh_scene(backwards)),
-                  "scene.json: obstacles[0].motion: keyframe 1: times must strictly increase");
+                  "scene.json: obstacles[0].motion: keyframe 1: time 0 s is not after keyframe 0's 0 s");
   Json empty = moving;
   empty["motion"] = Json::array();
   EXPECT_CONTAINS(test::scene_error_of(mesh_scene(empty)), "at least one keyframe");
