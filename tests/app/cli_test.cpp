@@ -162,7 +162,8 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 // --explain lists only what the scene needs — the tiny scene has no constraints and no
-// obstacles; with them, the projection and collision phases appear with their sizes — and
+// obstacles; with them and self-collision, the projection and collision phases appear with their
+// sizes (and stats.csv gets its self-contact column) — and
 // ends with each phase's share of the time.
 TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
   const fs::path plain = write_scene("plain.json", tiny_scene());
@@ -181,7 +182,7 @@ TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
           "",
           ",\n  \"obstacles\": [{\"plane\": {\"point\": [0, 0, 0], \"normal\": [0, 0, 1]}}],\n"
           "  \"simulation\": {\"integrator\": \"implicit_euler\", \"constraints\": "
-          "{\"method\": \"fast_projection\"}}"));
+          "{\"method\": \"fast_projection\"}, \"self_collision\": {}}"));
   const Result q = run_weft("run " + rich.string() + " --explain --out " + (m_dir / "b").string());
   EXPECT_EQ(q.exit_code, 0) << q.output;
   EXPECT_CONTAINS(q.output, "integrate: implicit_euler, h = 8.33333 ms, sparse direct solve");
@@ -189,8 +190,15 @@ TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
       << q.output;  // constraints instead
   EXPECT_CONTAINS(q.output,
                   "project: fast_projection on 144 warp/weft edges");  // the pins share none
-  EXPECT_CONTAINS(q.output, "collide: 1 obstacles");
+  EXPECT_CONTAINS(q.output, "collide: 1 obstacles (0 meshes, 0 moving)");
+  // 9×9 vertices: 2·8·8 triangles, 2·9·8 + 8·8 edges; marbles default to half the thickness.
+  EXPECT_CONTAINS(q.output, "self-collision over 128 triangles and 208 edges, thickness 2 mm, "
+                            "marbles of radius 1 mm");
   EXPECT_CONTAINS(q.output, "project ");
+  std::ifstream stats(m_dir / "b" / "stats.csv");
+  std::string header;
+  std::getline(stats, header);
+  EXPECT_CONTAINS(header, ",self_intersections,max_self_contacts");
 }
 
 // A time step beyond the critical one (1.6×) explodes after some frames (1 ms each here): the
