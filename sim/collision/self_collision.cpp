@@ -12,7 +12,6 @@
 
 #include "sim/collision/proximity.h"
 #include "sim/collision/self_intersection.h"
-#include "sim/collision/spatial_hash.h"
 
 namespace weft::sim {
 namespace {
@@ -24,12 +23,6 @@ double seconds_since(Clock::time_point start) {
 }
 
 Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
-
-Aabb inflated(Aabb box, double by_m) {
-  box.lo.array() -= by_m;
-  box.hi.array() += by_m;
-  return box;
-}
 
 // Weights within this of 0 count as on the triangle's boundary, not over its face.
 constexpr double face_tolerance = 1e-9;
@@ -73,7 +66,11 @@ bool push_apart(const std::array<Index, N>& v, const std::array<double, N>& w, c
 }  // namespace
 
 SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings& settings)
-    : m_settings(settings), m_rest(mesh.rest_positions), m_triangles(mesh.triangles()) {
+    : m_settings(settings),
+      m_rest(mesh.rest_positions),
+      m_triangles(mesh.triangles()),
+      m_edges(unique_edges(m_triangles)),
+      m_patches(mesh, m_triangles, m_edges, cells_per_patch_side) {
   if (!(settings.thickness_m > 0.0) || !std::isfinite(settings.thickness_m))
     throw std::invalid_argument("self_collision.thickness must be finite and > 0, got " +
                                 std::to_string(settings.thickness_m) + " m");
@@ -85,119 +82,208 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
                                 std::to_string(settings.iterations));
   m_marble_radius_m =
       settings.marble_radius_m > 0.0 ? settings.marble_radius_m : 0.5 * settings.thickness_m;
-  m_edges = unique_edges(m_triangles);
   for (const auto& t : m_triangles) m_vertices.insert(m_vertices.end(), t.begin(), t.end());
   std::sort(m_vertices.begin(), m_vertices.end());
   m_vertices.erase(std::unique(m_vertices.begin(), m_vertices.end()), m_vertices.end());
   // Neighbours: pairs closer at rest than the contact distance plus the mean rest edge are
   // never in contact, so a flat sheet has no candidates. Margin: half the mean rest edge, and
-  // no less than the contact distance (larger: fewer rebuilds, longer lists; measured at 64²
-  // with bench/self_collision_bench).
+  // no less than the contact distance, plus the active band, a quarter of the contact
+  // distance (a wider margin rebuilds less often but leaves normal-cone culling less room, a
+  // wider band selects less often but keeps more pairs active; both measured at 64² with
+  // bench/self_collision_bench).
   double edge_sum_m = 0.0;
   for (const auto& e : m_edges) edge_sum_m += (row(m_rest, e[0]) - row(m_rest, e[1])).norm();
   const double mean_edge_m = m_edges.empty() ? 0.0 : edge_sum_m / static_cast<double>(m_edges.size());
   const double contact_m = std::max(settings.thickness_m, 2.0 * m_marble_radius_m);
   m_neighbourhood_m = mean_edge_m;
-  m_margin_m = std::max(contact_m, 0.5 * mean_edge_m);
+  m_band_m = 0.25 * contact_m;
+  m_margin_m = std::max(contact_m, 0.5 * mean_edge_m) + m_band_m;
+  // Normal-cone culling (surface_patches.h) drops a pair inside a patch whose normals lie
+  // within θ of an axis; the pair was then at least cos θ · g apart, g its distance along the
+  // cloth, which is at least (1 − c) times its rest distance — c the compression allowed —
+  // and that is at least the exclusion radius. It stays out of contact until the next rebuild
+  // while cos θ · (1 − c) · exclusion ≥ reach (the contact distance plus the margin), which
+  // gives the widest θ to count as flat, capped at 60°. None when the margin is too wide.
+  constexpr double compression = 0.25;
+  const double exclusion_m = std::min(settings.thickness_m, 2.0 * m_marble_radius_m) + mean_edge_m;
+  const double cos_flat = (contact_m + m_margin_m) / ((1.0 - compression) * exclusion_m);
+  constexpr double max_flat_angle_rad = 60.0 * 3.14159265358979323846 / 180.0;
+  m_flat_angle_rad = cos_flat < 1.0 ? std::min(std::acos(cos_flat), max_flat_angle_rad) : 0.0;
 }
 
-// Distances between features do not change when the whole cloth translates, so the list
-// holds while every vertex's displacement since the build differs from one common vector c by
-// at most half the margin: then each side of a pair has moved at most half the margin relative
-// to c, and their distance has changed by at most the margin. c: the centre of the
-// displacements' bounding box, which makes a falling cloth rebuild only as it deforms.
-bool SelfCollision::needs_rebuild(const Matrix3X& x) const {
-  if (!m_built || m_x_built.rows() != x.rows()) return true;
+// Distances between features do not change when the whole cloth translates, so a list built
+// at `reference` holds while every vertex's displacement since then differs from one common
+// vector c by at most `limit_m`: each side of a pair has then moved at most limit_m relative to
+// c, and their distance has changed by at most twice that. c: the centre of the displacements'
+// bounding box, which makes a falling cloth rebuild only as it deforms.
+bool SelfCollision::moved_beyond(const Matrix3X& x, const Matrix3X& reference,
+                                 double limit_m) const {
+  if (reference.rows() != x.rows()) return true;
   Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Array3d hi = -lo;
   for (const Index v : m_vertices) {
-    const Eigen::Array3d d = (x.row(v) - m_x_built.row(v)).transpose().array();
+    const Eigen::Array3d d = (x.row(v) - reference.row(v)).transpose().array();
     lo = lo.min(d);
     hi = hi.max(d);
   }
   const Eigen::RowVector3d c = (0.5 * (lo + hi)).matrix().transpose();
-  const double limit2 = 0.25 * m_margin_m * m_margin_m;  // half the margin, squared
+  const double limit2 = limit_m * limit_m;
   for (const Index v : m_vertices)
-    if ((x.row(v) - m_x_built.row(v) - c).squaredNorm() > limit2) return true;
+    if ((x.row(v) - reference.row(v) - c).squaredNorm() > limit2) return true;
   return false;
 }
 
-// Candidates: pairs within contact distance + margin at x that are not neighbours. A pair can come into contact only after some vertex has moved more than
-// half the margin (each of its sides at most half), which triggers the next rebuild.
+// The pairs of the candidate list within the contact distance plus the active band at x: no
+// other candidate can come into contact before some vertex has moved half the band.
+void SelfCollision::select_active(const Matrix3X& x) {
+  const auto start = Clock::now();
+  const double t = m_settings.thickness_m, band_m = active_band_m();
+  m_active.vt.clear();
+  m_active.ee.clear();
+  m_active.vv.clear();
+  for (const auto& pair : m_candidates.vt)
+    if (point_triangle_distance(x, pair[0], m_triangles[static_cast<std::size_t>(pair[1])]) <
+        t + band_m)
+      m_active.vt.push_back(pair);
+  for (const auto& pair : m_candidates.ee)
+    if (edge_edge_distance(x, m_edges[static_cast<std::size_t>(pair[0])],
+                           m_edges[static_cast<std::size_t>(pair[1])]) < t + band_m)
+      m_active.ee.push_back(pair);
+  const double marble2 = std::pow(2.0 * m_marble_radius_m + band_m, 2);
+  for (const auto& pair : m_candidates.vv)
+    if ((x.row(pair[0]) - x.row(pair[1])).squaredNorm() < marble2) m_active.vv.push_back(pair);
+  m_x_active = x;
+  m_broad_s += seconds_since(start);
+}
+
+// Candidates: pairs within contact distance + margin at x that are not neighbours. A pair can
+// come into contact only after some vertex has moved more than half the margin (each of its
+// sides at most half), which triggers the next rebuild. The patches' spatial hash and normal
+// cones (surface_patches.h) give the patch pairs to look in; each is expanded into its
+// feature pairs, which are kept when a box test, the rest-state exclusion and the exact
+// distance agree.
 void SelfCollision::rebuild(const Matrix3X& x) {
   const auto start = Clock::now();
-  const double t = m_settings.thickness_m, reach_m = t + m_margin_m;
-  const double exclusion_m = exclusion_radius_m();
-  const double marble_contact_m = 2.0 * m_marble_radius_m;
+  const double reach_m = m_settings.thickness_m + m_margin_m;
+  const double marble_reach_m = 2.0 * m_marble_radius_m + m_margin_m;
+  m_patches.refit(x);
+  m_patches.near_pairs(std::max(reach_m, marble_reach_m), m_flat_angle_rad, m_patch_pairs);
+  m_triangle_boxes.clear();
+  for (const auto& tri : m_triangles)
+    m_triangle_boxes.push_back(
+        inflated(bounding_box(row(x, tri[0]), row(x, tri[1]), row(x, tri[2])), reach_m));
+  m_edge_boxes.clear();
+  for (const auto& e : m_edges)
+    m_edge_boxes.push_back(inflated(bounding_box(row(x, e[0]), row(x, e[1])), 0.5 * reach_m));
   m_candidates.vt.clear();
   m_candidates.ee.clear();
   m_candidates.vv.clear();
-  std::vector<Index> ids;
-
-  // Vertex–triangle: triangle boxes, queried with each vertex's box grown by the reach.
-  std::vector<Aabb> boxes;
-  boxes.reserve(m_triangles.size());
-  double extent_sum_m = 0.0;
-  for (const auto& tri : m_triangles) {
-    boxes.push_back(bounding_box(row(x, tri[0]), row(x, tri[1]), row(x, tri[2])));
-    extent_sum_m += (boxes.back().hi - boxes.back().lo).maxCoeff();
+  for (const auto& [p, q] : m_patch_pairs) {
+    const SurfacePatch& a = m_patches[p];
+    const SurfacePatch& b = m_patches[q];
+    // Pairs of patches farther apart at rest than the exclusion radius hold no neighbours.
+    const Aabb rest_a = inflated(a.rest_box, exclusion_radius_m());
+    const bool rest_near = boxes_overlap(rest_a, b.rest_box);
+    add_vertex_triangle_candidates(a, b, x, rest_near);
+    if (p != q) add_vertex_triangle_candidates(b, a, x, rest_near);
+    add_edge_edge_candidates(a, b, p == q, x, rest_near);
+    add_marble_candidates(a, b, p == q, x);
   }
-  const double mean_extent_m =
-      m_triangles.empty() ? 0.0 : extent_sum_m / static_cast<double>(m_triangles.size());
-  const double cell_m = std::max(2.0 * mean_extent_m, reach_m);
-  {
-    const SpatialHash hash(cell_m, std::move(boxes));
-    for (const Index v : m_vertices) {
-      const Vec3 p = row(x, v);
-      hash.query(inflated(Aabb{p, p}, reach_m), ids);
-      for (const Index k : ids) {
-        const auto& tri = m_triangles[static_cast<std::size_t>(k)];
-        if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
-        if (point_triangle_distance(x, v, tri) < reach_m && point_triangle_distance(m_rest, v, tri) >= exclusion_m)
-          m_candidates.vt.push_back({v, k});
-      }
-    }
-  }
-  // Edge–edge: edge boxes grown by half the reach each.
-  boxes.clear();
-  for (const auto& e : m_edges)
-    boxes.push_back(inflated(bounding_box(row(x, e[0]), row(x, e[1])), 0.5 * reach_m));
-  {
-    const SpatialHash hash(cell_m, boxes);
-    for (std::size_t i = 0; i < m_edges.size(); ++i) {
-      hash.query(boxes[i], ids);
-      for (const Index k : ids) {
-        const auto j = static_cast<std::size_t>(k);
-        if (j <= i || shares_vertex(m_edges[i], m_edges[j])) continue;
-        if (edge_edge_distance(x, m_edges[i], m_edges[j]) < reach_m &&
-            edge_edge_distance(m_rest, m_edges[i], m_edges[j]) >= exclusion_m)
-          m_candidates.ee.push_back({static_cast<Index>(i), k});
-      }
-    }
-  }
-  // Vertex–vertex marbles.
-  const double marble_reach_m = marble_contact_m + m_margin_m;
-  boxes.clear();
-  for (const Index v : m_vertices)
-    boxes.push_back(inflated(Aabb{row(x, v), row(x, v)}, 0.5 * marble_reach_m));
-  {
-    const SpatialHash hash(std::max(cell_m, marble_reach_m), boxes);
-    for (std::size_t i = 0; i < m_vertices.size(); ++i) {
-      hash.query(boxes[i], ids);
-      const Index a = m_vertices[i];
-      for (const Index k : ids) {
-        if (static_cast<std::size_t>(k) <= i) continue;
-        const Index b = m_vertices[static_cast<std::size_t>(k)];
-        if ((x.row(a) - x.row(b)).norm() < marble_reach_m &&
-            (m_rest.row(a) - m_rest.row(b)).norm() >= marble_contact_m + m_neighbourhood_m)
-          m_candidates.vv.push_back({a, b});
-      }
-    }
-  }
+  // Sorted, so that the Gauss–Seidel order follows the vertex and edge numbering.
+  std::sort(m_candidates.vt.begin(), m_candidates.vt.end());
+  std::sort(m_candidates.ee.begin(), m_candidates.ee.end());
+  std::sort(m_candidates.vv.begin(), m_candidates.vv.end());
   m_x_built = x;
   m_built = true;
   ++m_rebuilds;
   m_broad_s += seconds_since(start);
+}
+
+// Vertices owned by patch a, those within reach of patch b's box, against b's triangles.
+void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const SurfacePatch& b,
+                                                   const Matrix3X& x, bool rest_near) {
+  const double reach_m = m_settings.thickness_m + m_margin_m;
+  const double exclusion_m = exclusion_radius_m();
+  const Aabb target = inflated(b.box, reach_m);
+  for (const Index v : a.owned_vertices) {
+    const Vec3 p = row(x, v);
+    if (!boxes_overlap(Aabb{p, p}, target)) continue;
+    for (const Index k : b.triangles) {
+      const auto& tri = m_triangles[static_cast<std::size_t>(k)];
+      if (!boxes_overlap(Aabb{p, p}, m_triangle_boxes[static_cast<std::size_t>(k)])) continue;
+      if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
+      if (rest_near && rest_distance_below(v, tri, exclusion_m)) continue;
+      if (point_triangle_distance(x, v, tri) < reach_m) m_candidates.vt.push_back({v, k});
+    }
+  }
+}
+
+// Edges owned by patch a against those owned by patch b (each unordered pair once): first
+// the edges of each whose box reaches the other patch's box.
+void SelfCollision::add_edge_edge_candidates(const SurfacePatch& a, const SurfacePatch& b,
+                                             bool same, const Matrix3X& x, bool rest_near) {
+  const double reach_m = m_settings.thickness_m + m_margin_m;
+  const double exclusion_m = exclusion_radius_m();
+  const auto reaching = [&](const SurfacePatch& from, const SurfacePatch& to,
+                            std::vector<Index>& out) {
+    out.clear();
+    const Aabb target = inflated(to.box, 0.5 * reach_m);
+    for (const Index e : from.owned_edges)
+      if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)], target)) out.push_back(e);
+  };
+  reaching(a, b, m_edges_a);
+  if (same) m_edges_b = m_edges_a;
+  else reaching(b, a, m_edges_b);
+  for (std::size_t i = 0; i < m_edges_a.size(); ++i) {
+    for (std::size_t j = same ? i + 1 : 0; j < m_edges_b.size(); ++j) {
+      const Index ei = std::min(m_edges_a[i], m_edges_b[j]);
+      const Index ej = std::max(m_edges_a[i], m_edges_b[j]);
+      const auto& e = m_edges[static_cast<std::size_t>(ei)];
+      const auto& f = m_edges[static_cast<std::size_t>(ej)];
+      if (!boxes_overlap(m_edge_boxes[static_cast<std::size_t>(ei)],
+                         m_edge_boxes[static_cast<std::size_t>(ej)]) ||
+          shares_vertex(e, f))
+        continue;
+      if (rest_near && rest_distance_below(e, f, exclusion_m)) continue;
+      if (edge_edge_distance(x, e, f) < reach_m) m_candidates.ee.push_back({ei, ej});
+    }
+  }
+}
+
+// Vertices owned by patch a against those owned by patch b (each unordered pair once).
+void SelfCollision::add_marble_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
+                                          const Matrix3X& x) {
+  const double marble_contact_m = 2.0 * m_marble_radius_m;
+  const double reach2 = std::pow(marble_contact_m + m_margin_m, 2);
+  const double exclusion2 = std::pow(marble_contact_m + m_neighbourhood_m, 2);
+  for (std::size_t i = 0; i < a.owned_vertices.size(); ++i) {
+    for (std::size_t j = same ? i + 1 : 0; j < b.owned_vertices.size(); ++j) {
+      const Index u = std::min(a.owned_vertices[i], b.owned_vertices[j]);
+      const Index w = std::max(a.owned_vertices[i], b.owned_vertices[j]);
+      if ((x.row(u) - x.row(w)).squaredNorm() < reach2 &&
+          (m_rest.row(u) - m_rest.row(w)).squaredNorm() >= exclusion2)
+        m_candidates.vv.push_back({u, w});
+    }
+  }
+}
+
+// Whether the rest distance between the features is below limit_m. A corner (endpoint)
+// distance bounds it from above, which settles the neighbours without the exact distance.
+bool SelfCollision::rest_distance_below(Index v, const std::array<Index, 3>& tri,
+                                        double limit_m) const {
+  const double limit2 = limit_m * limit_m;
+  for (const Index c : tri)
+    if ((m_rest.row(v) - m_rest.row(c)).squaredNorm() < limit2) return true;
+  return point_triangle_distance(m_rest, v, tri) < limit_m;
+}
+
+bool SelfCollision::rest_distance_below(const std::array<Index, 2>& e,
+                                        const std::array<Index, 2>& f, double limit_m) const {
+  const double limit2 = limit_m * limit_m;
+  for (const Index p : e)
+    for (const Index q : f)
+      if ((m_rest.row(p) - m_rest.row(q)).squaredNorm() < limit2) return true;
+  return edge_edge_distance(m_rest, e, f) < limit_m;
 }
 
 // Each contact kind: the pair's gap along its contact normal (side-aware, see the header),
@@ -311,12 +397,19 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
                                 " inverse masses for a mesh of " + std::to_string(m_rest.rows()) +
                                 " vertices");
   SelfContactCounts counts;
-  if (needs_rebuild(x)) rebuild(x);
+  // Two Verlet lists: the candidates within the margin, rebuilt when some vertex has moved
+  // (margin − band)/2 — checked only when the active pairs are reselected, after at most
+  // band/2 more, so the candidates never miss a pair — and the active pairs within the band,
+  // reselected from the candidates when some vertex has moved band/2.
+  if (!m_built || moved_beyond(x, m_x_active, 0.5 * active_band_m())) {
+    if (!m_built || moved_beyond(x, m_x_built, 0.5 * (m_margin_m - active_band_m()))) rebuild(x);
+    select_active(x);
+  }
   const auto start = Clock::now();
   m_near.vt.clear();
   m_near.ee.clear();
   m_near.vv.clear();
-  int contacts = sweep(m_candidates, x_start, inv_mass, x, &counts, &m_near);
+  int contacts = sweep(m_active, x_start, inv_mass, x, &counts, &m_near);
   for (int i = 1; i < m_settings.iterations && contacts > 0; ++i)
     contacts = sweep(m_near, x_start, inv_mass, x, nullptr, nullptr);
   m_narrow_s += seconds_since(start);

@@ -25,10 +25,14 @@
 // edges whose closest points swapped sides during the step likewise. Faster crossings are
 // missed; the per-frame intersection count (self_intersection.h) reports them.
 //
-// Broad phase: a spatial hash (spatial_hash.h) builds the candidate pairs within the contact
-// distance plus a margin; the list stays valid, and is reused step after step, until some
-// vertex has moved more than half the margin since it was built, relative to the cloth's
-// common translation (a Verlet list).
+// Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by a
+// spatial hash of their boxes; normal cones drop flat patches and flat pairs of neighbouring
+// patches (flat_angle_rad() says when that is safe, and is 0 when it is not); the remaining
+// patch pairs give the candidate pairs within the contact distance plus a margin. Two nested
+// Verlet lists, both measured relative to the cloth's common translation: the candidates stay
+// valid until some vertex has moved half the margin since they were built, and the active
+// pairs — the candidates within the contact distance plus a narrower band, which the steps
+// project — until some vertex has moved half the band since they were selected.
 // Deterministic: candidates are sorted and contacts are projected in that fixed order
 // (Gauss–Seidel), in up to `iterations` sweeps — after the first only over the pairs it found
 // near contact — ending early when no pair is in contact.
@@ -36,6 +40,7 @@
 #include <array>
 #include <vector>
 
+#include "sim/collision/surface_patches.h"
 #include "sim/grid.h"
 #include "sim/types.h"
 
@@ -71,6 +76,8 @@ class SelfCollision {
   double marble_radius_m() const { return m_marble_radius_m; }
   double thickness_m() const { return m_settings.thickness_m; }
   double margin_m() const { return m_margin_m; }
+  // Active pairs: the candidates within the contact distance plus this band.
+  double active_band_m() const { return m_band_m; }
   // Pairs closer than this at rest are never in contact (marbles: 2·radius + mean rest edge).
   double exclusion_radius_m() const { return m_settings.thickness_m + m_neighbourhood_m; }
   // Candidate pairs of the current list, and how often it was rebuilt.
@@ -82,6 +89,11 @@ class SelfCollision {
   double broad_phase_s() const { return m_broad_s; }
   double narrow_phase_s() const { return m_narrow_s; }
   std::size_t triangle_count() const { return m_triangles.size(); }
+  // Patches whose normals lie within this angle of an axis count as flat (0: no culling).
+  double flat_angle_rad() const { return m_flat_angle_rad; }
+
+  // Grid cells per side of a broad-phase patch (surface_patches.h).
+  static constexpr Index cells_per_patch_side = 2;
   std::size_t edge_count() const { return m_edges.size(); }
 
  private:
@@ -90,8 +102,18 @@ class SelfCollision {
     std::vector<std::array<Index, 2>> ee;  // (edge, edge), first < second
     std::vector<std::array<Index, 2>> vv;  // (vertex, vertex), first < second
   };
-  bool needs_rebuild(const Matrix3X& x) const;
+  bool moved_beyond(const Matrix3X& x, const Matrix3X& reference, double limit_m) const;
+  void select_active(const Matrix3X& x);
   void rebuild(const Matrix3X& x);
+  void add_vertex_triangle_candidates(const SurfacePatch& a, const SurfacePatch& b,
+                                      const Matrix3X& x, bool rest_near);
+  void add_edge_edge_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
+                                const Matrix3X& x, bool rest_near);
+  void add_marble_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
+                             const Matrix3X& x);
+  bool rest_distance_below(Index v, const std::array<Index, 3>& tri, double limit_m) const;
+  bool rest_distance_below(const std::array<Index, 2>& e, const std::array<Index, 2>& f,
+                           double limit_m) const;
   int sweep(const PairLists& lists, const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
             Matrix3X& x, SelfContactCounts* counts, PairLists* near) const;
   double project_vertex_triangle(const std::array<Index, 2>& pair, const Matrix3X& x_start,
@@ -104,16 +126,25 @@ class SelfCollision {
   SelfCollisionSettings m_settings;
   double m_marble_radius_m;
   double m_margin_m;  // broad-phase margin beyond the contact distances
+  double m_band_m;    // active-pair band beyond the contact distances, < m_margin_m
   double m_neighbourhood_m;  // the mean rest edge: see exclusion_radius_m()
   Matrix3X m_rest;
   std::vector<std::array<Index, 3>> m_triangles;
   std::vector<std::array<Index, 2>> m_edges;
   std::vector<Index> m_vertices;  // the vertices of some triangle, ascending
-  // The candidate list and the positions it was built at; the pairs near contact in the
-  // current call's first sweep.
+  SurfacePatches m_patches;
+  double m_flat_angle_rad = 0.0;
+  // Rebuild scratch: the near patch pairs, triangle boxes grown by the reach, edge boxes by half.
+  std::vector<std::array<Index, 2>> m_patch_pairs;
+  std::vector<Aabb> m_triangle_boxes, m_edge_boxes;
+  std::vector<Index> m_edges_a, m_edges_b;
+  // The candidate list and the positions it was built at; the active pairs and the positions
+  // they were selected at; the pairs near contact in the current call's first sweep.
   PairLists m_candidates;
-  PairLists m_near;
   Matrix3X m_x_built;
+  PairLists m_active;
+  Matrix3X m_x_active;
+  PairLists m_near;
   bool m_built = false;
   long m_rebuilds = 0;
   double m_broad_s = 0.0;

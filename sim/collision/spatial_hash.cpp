@@ -16,8 +16,10 @@ Aabb bounding_box(const Vec3& a, const Vec3& b, const Vec3& c) {
   return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
 }
 
-bool boxes_overlap(const Aabb& a, const Aabb& b) {
-  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+Aabb inflated(Aabb box, double by_m) {
+  box.lo.array() -= by_m;
+  box.hi.array() += by_m;
+  return box;
 }
 
 SpatialHash::SpatialHash(double cell_size_m, std::vector<Aabb> boxes)

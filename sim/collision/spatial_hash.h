@@ -25,7 +25,11 @@ struct Aabb {
 Aabb bounding_box(const Vec3& a, const Vec3& b);
 Aabb bounding_box(const Vec3& a, const Vec3& b, const Vec3& c);
 // Closed intervals: touching boxes overlap.
-bool boxes_overlap(const Aabb& a, const Aabb& b);
+inline bool boxes_overlap(const Aabb& a, const Aabb& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
+// The box grown by by_m on every side.
+Aabb inflated(Aabb box, double by_m);
 
 class SpatialHash {
  public:

@@ -1,0 +1,181 @@
+// Patches of the cloth with bounding boxes and normal cones; see surface_patches.h.
+
+#include "sim/collision/surface_patches.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace weft::sim {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
+
+Aabb merged(const Aabb& a, const Aabb& b) { return {a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)}; }
+
+double angle_between_unit(const Vec3& a, const Vec3& b) {
+  return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+}
+
+}  // namespace
+
+double cone_angle_about(const SurfacePatch& p, const Vec3& axis) {
+  const double length = p.normal_sum.norm();
+  if (!(p.cone_angle_rad < pi) || !(length > 0.0)) return pi;
+  return std::min(pi, angle_between_unit(axis, p.normal_sum / length) + p.cone_angle_rad);
+}
+
+SurfacePatches::SurfacePatches(const ClothMesh& mesh,
+                               const std::vector<std::array<Index, 3>>& triangles,
+                               const std::vector<std::array<Index, 2>>& edges, Index cells_per_side)
+    : m_triangles(triangles) {
+  if (cells_per_side < 1)
+    throw std::invalid_argument("surface patches: cells per side must be >= 1, got " +
+                                std::to_string(cells_per_side));
+  if (triangles.size() != 2 * mesh.quads.size())
+    throw std::invalid_argument("surface patches: expected the mesh's " +
+                                std::to_string(2 * mesh.quads.size()) + " triangles, got " +
+                                std::to_string(triangles.size()));
+  const Index patches_u = (mesh.nu - 2) / cells_per_side + 1;
+  const Index patches_v = (mesh.nv - 2) / cells_per_side + 1;
+  m_patches_u = patches_u;
+  m_patch_of_grid.assign(static_cast<std::size_t>(patches_u * patches_v), -1);
+  std::vector<Index> patch_of_triangle(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& quad = mesh.quads[t / 2];
+    if (triangles[t][0] != quad[0])
+      throw std::invalid_argument("surface patches: triangle " + std::to_string(t) +
+                                  " is not from grid cell " + std::to_string(t / 2));
+    const std::array<Index, 2> grid{(quad[0] % mesh.nu) / cells_per_side,
+                                    (quad[0] / mesh.nu) / cells_per_side};
+    Index& p = m_patch_of_grid[static_cast<std::size_t>(grid[1] * patches_u + grid[0])];
+    if (p < 0) {
+      p = static_cast<Index>(m_patches.size());
+      m_patches.emplace_back();
+      m_patches.back().grid = grid;
+    }
+    m_patches[static_cast<std::size_t>(p)].triangles.push_back(static_cast<Index>(t));
+    patch_of_triangle[t] = p;
+  }
+  // Ownership: the patch of the first triangle with the vertex, resp. the edge.
+  std::vector<bool> vertex_owned(static_cast<std::size_t>(mesh.vertex_count()), false);
+  std::vector<bool> edge_owned(edges.size(), false);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    SurfacePatch& patch = m_patches[static_cast<std::size_t>(patch_of_triangle[t])];
+    const auto& tri = triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(tri[k]);
+      if (!vertex_owned[v]) {
+        vertex_owned[v] = true;
+        patch.owned_vertices.push_back(tri[k]);
+      }
+      const std::array<Index, 2> edge{std::min(tri[k], tri[(k + 1) % 3]),
+                                      std::max(tri[k], tri[(k + 1) % 3])};
+      const auto it = std::lower_bound(edges.begin(), edges.end(), edge);
+      if (it == edges.end() || *it != edge)
+        throw std::invalid_argument("surface patches: edge list lacks an edge of triangle " +
+                                    std::to_string(t));
+      const auto e = static_cast<std::size_t>(it - edges.begin());
+      if (!edge_owned[e]) {
+        edge_owned[e] = true;
+        patch.owned_edges.push_back(static_cast<Index>(e));
+      }
+    }
+  }
+  for (SurfacePatch& patch : m_patches) {
+    std::sort(patch.owned_vertices.begin(), patch.owned_vertices.end());
+    std::sort(patch.owned_edges.begin(), patch.owned_edges.end());
+  }
+  refit(mesh.rest_positions);
+  for (SurfacePatch& patch : m_patches) patch.rest_box = patch.box;
+}
+
+void SurfacePatches::refit(const Matrix3X& x) {
+  m_normals.resize(m_triangles.size());
+  for (SurfacePatch& patch : m_patches) {
+    patch.normal_sum.setZero();
+    bool degenerate = false;
+    for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
+      const auto t = static_cast<std::size_t>(patch.triangles[k]);
+      const auto& tri = m_triangles[t];
+      const Vec3 a = row(x, tri[0]), b = row(x, tri[1]), c = row(x, tri[2]);
+      const Aabb box = bounding_box(a, b, c);
+      patch.box = k == 0 ? box : merged(patch.box, box);
+      m_normals[t] = (b - a).cross(c - a);
+      degenerate = degenerate || !(m_normals[t].squaredNorm() > 0.0);
+      patch.normal_sum += m_normals[t];
+    }
+    const double length = patch.normal_sum.norm();
+    if (degenerate || !(length > 0.0)) {
+      patch.cone_angle_rad = pi;
+      continue;
+    }
+    const Vec3 axis = patch.normal_sum / length;
+    double cos_min = 1.0;
+    for (const Index t : patch.triangles) {
+      const Vec3& n = m_normals[static_cast<std::size_t>(t)];
+      cos_min = std::min(cos_min, axis.dot(n) / n.norm());
+    }
+    patch.cone_angle_rad = std::acos(std::clamp(cos_min, -1.0, 1.0));
+  }
+}
+
+bool SurfacePatches::neighbours(Index p, Index q) const {
+  const auto& a = (*this)[p].grid;
+  const auto& b = (*this)[q].grid;
+  return p != q && std::abs(a[0] - b[0]) <= 1 && std::abs(a[1] - b[1]) <= 1;
+}
+
+double SurfacePatches::union_cone_angle(Index p, Index q) const {
+  const auto& a = (*this)[p].grid;
+  const auto& b = (*this)[q].grid;
+  std::array<const SurfacePatch*, 4> members{};  // neighbours span at most 2 × 2 patches
+  std::size_t count = 0;
+  Vec3 sum = Vec3::Zero();
+  for (Index j = std::min(a[1], b[1]); j <= std::max(a[1], b[1]); ++j)
+    for (Index i = std::min(a[0], b[0]); i <= std::max(a[0], b[0]); ++i) {
+      const Index k = m_patch_of_grid[static_cast<std::size_t>(j * m_patches_u + i)];
+      if (k < 0) return pi;
+      members[count++] = &(*this)[k];
+      sum += (*this)[k].normal_sum;
+    }
+  if (!(sum.squaredNorm() > 0.0)) return pi;
+  const Vec3 axis = sum.normalized();
+  double angle = 0.0;
+  for (std::size_t m = 0; m < count; ++m) angle = std::max(angle, cone_angle_about(*members[m], axis));
+  return angle;
+}
+
+void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
+                                std::vector<std::array<Index, 2>>& pairs) const {
+  pairs.clear();
+  std::vector<Aabb> boxes;
+  boxes.reserve(m_patches.size());
+  double extent_sum_m = 0.0;
+  for (const SurfacePatch& patch : m_patches) {
+    boxes.push_back(inflated(patch.box, 0.5 * reach_m));
+    extent_sum_m += (boxes.back().hi - boxes.back().lo).maxCoeff();
+  }
+  if (boxes.empty()) return;
+  const SpatialHash hash(extent_sum_m / static_cast<double>(boxes.size()), boxes);
+  const bool culling = flat_angle_rad > 0.0;
+  std::vector<Index> ids;
+  for (std::size_t i = 0; i < m_patches.size(); ++i) {
+    const auto p = static_cast<Index>(i);
+    const SurfacePatch& a = m_patches[i];
+    hash.query(boxes[i], ids);
+    for (const Index q : ids) {
+      if (q < p) continue;
+      if (culling) {
+        if (q == p && a.cone_angle_rad < flat_angle_rad) continue;
+        if (neighbours(p, q) && union_cone_angle(p, q) < flat_angle_rad) continue;
+      }
+      pairs.push_back({p, q});
+    }
+  }
+}
+
+}  // namespace weft::sim

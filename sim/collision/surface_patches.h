@@ -1,0 +1,90 @@
+#pragma once
+// Self-collision broad phase on patches of the cloth (issue 5 item 3). The triangles are
+// grouped into square patches of the warp/weft grid (cells_per_side² cells each); every
+// vertex and every edge is owned by exactly one patch (the patch of the first triangle that
+// has it). Each rebuild gives a patch its bounding box and its normal cone — the axis of its
+// summed area-weighted normals and the largest angle between that axis and a triangle's
+// normal — then finds the patch pairs that can hold a contact with a spatial hash of the
+// boxes (spatial_hash.h), and drops the pairs the normal cones rule out:
+//
+//  - a patch whose cone is narrower than `flat_angle` cannot come near itself, and
+//  - neither can two neighbouring patches (sharing a side or a corner) when the union of the
+//    patches in the square or strip of the patch grid that holds both is — all of them
+//    present, so that the union is a convex piece of the grid —
+//
+// (Volino & Magnenat-Thalmann 1994, "Efficient self-collision detection on smoothly
+// discretized surface animations using geometrical shape regularity"; Provot 1997). The
+// reason, and when it holds: over a connected surface whose normals all lie within θ of an
+// axis a, the surface is a height field over the plane ⊥ a with slope at most tan θ, so two
+// of its points a geodesic distance g apart (along the surface) are at least g·cos θ apart in
+// space — when the patch's projection is convex, as a square of cloth that is not folded
+// over is. SelfCollision (self_collision.h) checks that this bound keeps every pair it
+// drops out of reach; the contour test of Volino & Magnenat-Thalmann, which also rules out a
+// patch that winds like a spiral ramp, is not done: such a patch would need a half turn
+// within a few cells.
+//
+// Every vertex–triangle, edge–edge and vertex–vertex pair of features lies in exactly one
+// returned patch pair (by ownership), so a caller that expands the pairs sees each feature
+// pair at most once. Deterministic: pairs come sorted.
+
+#include <array>
+#include <vector>
+
+#include "sim/collision/spatial_hash.h"
+#include "sim/grid.h"
+#include "sim/types.h"
+
+namespace weft::sim {
+
+struct SurfacePatch {
+  std::array<Index, 2> grid{0, 0};     // patch coordinates along warp and weft
+  std::vector<Index> triangles;        // indices into the triangle list
+  std::vector<Index> owned_vertices;   // ascending
+  std::vector<Index> owned_edges;      // indices into the edge list, ascending
+  Aabb rest_box;                       // of its triangles in the rest state
+  // Set by SurfacePatches::refit: the box of its triangles at x, and the normal cone.
+  Aabb box;
+  Vec3 normal_sum = Vec3::Zero();      // Σ of the triangles' area-weighted normals
+  double cone_angle_rad = 0.0;         // π when undefined (a degenerate triangle)
+};
+
+class SurfacePatches {
+ public:
+  // triangles: ClothMesh::triangles(); edges: unique_edges(triangles). A patch covers
+  // cells_per_side × cells_per_side grid cells (≥ 1). Throws std::invalid_argument if
+  // cells_per_side < 1 or the triangles do not come from the mesh's kept cells.
+  SurfacePatches(const ClothMesh& mesh, const std::vector<std::array<Index, 3>>& triangles,
+                 const std::vector<std::array<Index, 2>>& edges, Index cells_per_side);
+
+  // Boxes and normal cones at positions x (#V×3, m).
+  void refit(const Matrix3X& x);
+
+  // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
+  // within reach_m of each other and that the normal cones do not rule out, where a cone
+  // narrower than flat_angle_rad counts as flat (0: no pair is ruled out). Sorted. Call
+  // refit first.
+  void near_pairs(double reach_m, double flat_angle_rad,
+                  std::vector<std::array<Index, 2>>& pairs) const;
+
+  const std::vector<SurfacePatch>& patches() const { return m_patches; }
+  const SurfacePatch& operator[](Index p) const { return m_patches[static_cast<std::size_t>(p)]; }
+  // Whether patches p ≠ q share a grid side or corner.
+  bool neighbours(Index p, Index q) const;
+  // The widest angle between the axis of the union of the patches in the grid rectangle
+  // spanned by neighbours p and q and its patches' normals; π when one of them is missing
+  // (cut away, as at a disc's edge) or its cone is undefined.
+  double union_cone_angle(Index p, Index q) const;
+
+ private:
+  std::vector<std::array<Index, 3>> m_triangles;
+  std::vector<SurfacePatch> m_patches;
+  Index m_patches_u = 0;              // patch grid columns
+  std::vector<Index> m_patch_of_grid; // patch at grid (i, j): [j · m_patches_u + i], −1 if none
+  std::vector<Vec3> m_normals;  // refit's scratch: each triangle's area-weighted normal
+};
+
+// Largest angle between unit axis `axis` and the cone of patch p (its axis's angle plus its
+// half-angle), used to bound the cone of a union. Radians, at most π.
+double cone_angle_about(const SurfacePatch& p, const Vec3& axis);
+
+}  // namespace weft::sim

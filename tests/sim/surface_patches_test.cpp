@@ -1,0 +1,163 @@
+// The self-collision broad phase on patches (sim/collision/surface_patches.h): patches
+// partition the triangles and own each vertex and edge once; a flat sheet needs no pair; and,
+// on a sheet rolled into a spiral whose layers lie within reach of each other, every feature
+// pair within reach that is not a rest neighbour lies in a returned patch pair, while the
+// normal cones drop most of the patch pairs of the gently curved layers.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "sim/collision/proximity.h"
+#include "sim/collision/self_collision.h"
+#include "sim/collision/self_intersection.h"
+#include "sim/collision/surface_patches.h"
+#include "sim/grid.h"
+
+namespace weft::sim {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+ClothMesh sheet(Index n, SpecimenShape shape = SpecimenShape::rectangle) {
+  GridSpec spec;
+  spec.nu = spec.nv = n;
+  spec.shape = shape;
+  spec.origin = Vec3(-0.5, -0.5, 0.3);
+  return make_grid(spec);
+}
+
+// Rolls the sheet about the weft (y) axis along the spiral r = r0 + gap·φ/2π, the warp
+// coordinate u becoming arc length along it, so that consecutive layers are `gap` apart.
+Matrix3X rolled(const ClothMesh& mesh, double r0_m, double gap_m) {
+  const double b = gap_m / (2.0 * pi);
+  const auto arc = [&](double phi) {  // ∫₀^φ sqrt(r² + b²) dφ, by the midpoint rule
+    const int n = 2000;
+    double s = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double r = r0_m + b * (phi * (k + 0.5) / n);
+      s += std::sqrt(r * r + b * b) * phi / n;
+    }
+    return s;
+  };
+  std::map<double, double> phi_at;  // u → φ, by bisection, once per grid column
+  Matrix3X x = mesh.rest_positions;
+  for (Index v = 0; v < mesh.vertex_count(); ++v) {
+    const double u = mesh.material_coords[static_cast<std::size_t>(v)].x();
+    if (!phi_at.count(u)) {
+      double lo = 0.0, hi = u / r0_m;  // arc(φ) ≥ r0 φ
+      for (int it = 0; it < 50; ++it) (arc(0.5 * (lo + hi)) < u ? lo : hi) = 0.5 * (lo + hi);
+      phi_at[u] = 0.5 * (lo + hi);
+    }
+    const double phi = phi_at[u], r = r0_m + b * phi;
+    x.row(v) = Eigen::RowVector3d(r * std::sin(phi), mesh.rest_positions(v, 1), 0.5 - r * std::cos(phi));
+  }
+  return x;
+}
+
+TEST(SurfacePatches, PartitionTrianglesAndOwnEachVertexAndEdgeOnce) {
+  for (const SpecimenShape shape : {SpecimenShape::rectangle, SpecimenShape::disc}) {
+    const ClothMesh mesh = sheet(17, shape);
+    const auto triangles = mesh.triangles();
+    const auto edges = unique_edges(triangles);
+    const SurfacePatches patches(mesh, triangles, edges, 2);
+    std::vector<int> triangle_seen(triangles.size()), vertex_seen(mesh.vertex_count()),
+        edge_seen(edges.size());
+    for (const SurfacePatch& p : patches.patches()) {
+      EXPECT_LE(p.triangles.size(), 8u);
+      for (const Index t : p.triangles) ++triangle_seen[static_cast<std::size_t>(t)];
+      for (const Index v : p.owned_vertices) ++vertex_seen[static_cast<std::size_t>(v)];
+      for (const Index e : p.owned_edges) ++edge_seen[static_cast<std::size_t>(e)];
+    }
+    for (const int c : triangle_seen) EXPECT_EQ(c, 1);
+    for (Index v = 0; v < mesh.vertex_count(); ++v)
+      EXPECT_EQ(vertex_seen[static_cast<std::size_t>(v)], mesh.is_used(v) ? 1 : 0) << "vertex " << v;
+    for (const int c : edge_seen) EXPECT_EQ(c, 1);
+  }
+}
+
+TEST(SurfacePatches, AFlatSheetNeedsNoPairButEveryNeighbourPairWithoutCulling) {
+  const ClothMesh mesh = sheet(33);
+  const auto triangles = mesh.triangles();
+  const auto edges = unique_edges(triangles);
+  SurfacePatches patches(mesh, triangles, edges, 2);
+  // Tilted and moved: cones do not depend on the sheet's placement.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Matrix3X x = (mesh.rest_positions * turn.transpose()).rowwise() + Eigen::RowVector3d(1, 2, 3);
+  patches.refit(x);
+  std::vector<std::array<Index, 2>> pairs;
+  patches.near_pairs(0.01, 40.0 * pi / 180.0, pairs);
+  EXPECT_TRUE(pairs.empty());
+  patches.near_pairs(0.01, 0.0, pairs);
+  // 16 × 16 patches: each with itself, 2·16·15 side neighbours and 2·15·15 diagonal ones.
+  EXPECT_EQ(pairs.size(), 256u + 480u + 450u);
+  for (const SurfacePatch& p : patches.patches()) EXPECT_LT(p.cone_angle_rad, 1e-6);  // acos rounding
+}
+
+TEST(SurfacePatches, ARolledSheetKeepsEveryPairWithinReach) {
+  const ClothMesh mesh = sheet(65);
+  SelfCollisionSettings settings;
+  settings.enabled = true;
+  settings.thickness_m = 3e-3;
+  const SelfCollision self(mesh, settings);
+  ASSERT_GT(self.flat_angle_rad(), 0.0);
+  const double reach_m =
+      std::max(self.thickness_m(), 2.0 * self.marble_radius_m()) + self.margin_m();
+  const Matrix3X x = rolled(mesh, 0.12, 0.006);  // 1.3 turns, layers 6 mm apart
+
+  const auto triangles = mesh.triangles();
+  const auto edges = unique_edges(triangles);
+  SurfacePatches patches(mesh, triangles, edges, SelfCollision::cells_per_patch_side);
+  patches.refit(x);
+  std::vector<std::array<Index, 2>> culled, all;
+  patches.near_pairs(reach_m, self.flat_angle_rad(), culled);
+  patches.near_pairs(reach_m, 0.0, all);
+  const std::set<std::array<Index, 2>> kept(culled.begin(), culled.end());
+  EXPECT_LT(culled.size(), all.size() / 2) << "the cones should drop the gently curved layers' pairs";
+
+  std::vector<Index> vertex_owner(mesh.vertex_count(), -1), edge_owner(edges.size(), -1),
+      triangle_patch(triangles.size(), -1);
+  for (Index p = 0; p < static_cast<Index>(patches.patches().size()); ++p) {
+    for (const Index v : patches[p].owned_vertices) vertex_owner[static_cast<std::size_t>(v)] = p;
+    for (const Index e : patches[p].owned_edges) edge_owner[static_cast<std::size_t>(e)] = p;
+    for (const Index t : patches[p].triangles) triangle_patch[static_cast<std::size_t>(t)] = p;
+  }
+  const auto covered = [&](Index p, Index q) { return kept.count({std::min(p, q), std::max(p, q)}) > 0; };
+  const auto row = [&](const Matrix3X& m, Index v) -> Vec3 { return m.row(v).transpose(); };
+  const double exclusion_m = self.exclusion_radius_m();
+  long near_pairs = 0;
+  for (Index v = 0; v < mesh.vertex_count(); ++v)
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const auto& tri = triangles[t];
+      if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
+      if (std::abs(x(v, 1) - x(tri[0], 1)) > 0.05) continue;  // far apart across the roll
+      const auto distance = [&](const Matrix3X& m) {
+        const Vec3 w = closest_point_on_triangle_weights(row(m, v), row(m, tri[0]), row(m, tri[1]), row(m, tri[2]));
+        return (row(m, v) - (w[0] * row(m, tri[0]) + w[1] * row(m, tri[1]) + w[2] * row(m, tri[2]))).norm();
+      };
+      if (distance(x) >= reach_m || distance(mesh.rest_positions) < exclusion_m) continue;
+      ++near_pairs;
+      ASSERT_TRUE(covered(vertex_owner[static_cast<std::size_t>(v)], triangle_patch[t]))
+          << "vertex " << v << " and triangle " << t;
+    }
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (std::size_t j = i + 1; j < edges.size(); ++j) {
+      const auto& e = edges[i];
+      const auto& f = edges[j];
+      if (e[0] == f[0] || e[0] == f[1] || e[1] == f[0] || e[1] == f[1]) continue;
+      if (std::abs(x(e[0], 1) - x(f[0], 1)) > 0.05) continue;  // far apart across the roll
+      const auto distance = [&](const Matrix3X& m) {
+        const auto [s, u] = closest_segment_parameters(row(m, e[0]), row(m, e[1]), row(m, f[0]), row(m, f[1]));
+        return ((row(m, e[0]) + s * (row(m, e[1]) - row(m, e[0]))) - (row(m, f[0]) + u * (row(m, f[1]) - row(m, f[0])))).norm();
+      };
+      if (distance(x) >= reach_m || distance(mesh.rest_positions) < exclusion_m) continue;
+      ++near_pairs;
+      ASSERT_TRUE(covered(edge_owner[i], edge_owner[j])) << "edges " << i << " and " << j;
+    }
+  EXPECT_GT(near_pairs, 1000) << "the layers should be within reach of each other";
+}
+
+}  // namespace
+}  // namespace weft::sim
