@@ -38,6 +38,14 @@ int main(int argc, char** argv) {
   std::string shading;
   run_cmd->add_option("--shading", shading, "lit, or normals: the normal as colour (overrides render.shading)")
       ->check(CLI::IsMember({"lit", "normals"}));
+  std::string renderer;
+  run_cmd->add_option("--renderer", renderer,
+                      "raster (OSMesa, fast previews) or raytrace (Embree: soft shadows, ambient "
+                      "occlusion, sheen; overrides render.renderer)")
+      ->check(CLI::IsMember({"raster", "raytrace"}));
+  int samples = 0;
+  run_cmd->add_option("--samples", samples,
+                      "Ray tracer samples per pixel (overrides render.raytrace.samples)");
   run_cmd->add_flag("--explain", run.explain,
                     "Print the terms and phases the simulation runs, and each phase's share of its time");
 
@@ -108,6 +116,8 @@ int main(int argc, char** argv) {
       if (run_cmd->count("--frames")) run.frames = frames;
       if (!size.empty()) run.size = size;
       if (!shading.empty()) run.normals_shading = shading == "normals";
+      if (!renderer.empty()) run.renderer = renderer;
+      if (run_cmd->count("--samples")) run.samples = samples;
       return run_scene(run);
     }
     if (sweep_cmd->parsed()) {

@@ -12,6 +12,7 @@
 #include "app/stats_csv.h"
 #include "app/version.h"
 #include "render/raster.h"
+#include "render/renderer.h"
 #include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -55,6 +56,22 @@ void apply_overrides(Scene& scene, const RunOptions& options) {
   if (options.normals_shading)
     scene.render.shading =
         *options.normals_shading ? render::Shading::normals : render::Shading::lit;
+  if (options.renderer) {
+    if (*options.renderer == "raster") {
+      scene.render.renderer = render::RendererKind::raster;
+    } else if (*options.renderer == "raytrace") {
+      scene.render.renderer = render::RendererKind::raytrace;
+    } else {
+      throw SceneError("--renderer: expected 'raster' or 'raytrace', got '" + *options.renderer +
+                       "'");
+    }
+  }
+  if (options.samples) {
+    if (*options.samples < 1 || *options.samples > 65536)
+      throw SceneError("--samples: expected an integer in 1..65536, got " +
+                       std::to_string(*options.samples));
+    scene.render.raytrace.samples_per_pixel = *options.samples;
+  }
 }
 
 }  // namespace
@@ -104,8 +121,7 @@ int run_scene(const RunOptions& options) {
 
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
-  render::RasterRenderer renderer(
-      render::make_osmesa_context(scene.render.width, scene.render.height));
+  const std::unique_ptr<render::Renderer> renderer = render::make_renderer(scene.render);
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   fs::create_directories(dir);
@@ -123,7 +139,7 @@ int run_scene(const RunOptions& options) {
       "weft: %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), %s\n",
       scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
       1e3 * simulator->time_step(), 1e3 * simulator->critical_time_step(),
-      renderer.description().c_str());
+      renderer->description().c_str());
   if (options.explain) {
     std::printf("weft: the simulation runs, per step:\n");
     for (const std::string& line : simulator->explain()) std::printf("  %s\n", line.c_str());
@@ -165,7 +181,7 @@ int run_scene(const RunOptions& options) {
       obstacle_objects = obstacle_render_objects(scene.sim.obstacles, scene.sim.obstacle_motions,
                                                  simulator->state().time_s, scene.render);
     }
-    const render::Image image = renderer.render(
+    const render::Image image = renderer->render(
         to_render_mesh(simulator->mesh(), simulator->state().x), scene.render, obstacle_objects);
     render::write_png(image, dir / frame_name(frame));
     row.render_ms = ms_since(start);

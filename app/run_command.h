@@ -13,6 +13,8 @@ struct RunOptions {
   std::optional<int> frames;                   // overrides the scene's output.frames
   std::optional<std::string> size;             // "WxH", overrides render.size
   std::optional<bool> normals_shading;         // overrides render.shading (true: normals)
+  std::optional<std::string> renderer;         // "raster" or "raytrace", overrides render.renderer
+  std::optional<int> samples;                  // overrides render.raytrace.samples
   bool explain = false;                        // print the simulated terms and phase times
   std::string command_line;                    // recorded in run.txt
 };

@@ -425,6 +425,21 @@ render::Camera read_camera(ObjectReader r) {
   return c;
 }
 
+// "render.raytrace": the ray tracer's own settings (render::RayTraceSettings).
+void read_raytrace(ObjectReader r, render::RayTraceSettings& t) {
+  t.samples_per_pixel =
+      static_cast<int>(r.integer("samples", t.samples_per_pixel, Range::closed(1, 65536)));
+  t.bounces = static_cast<int>(r.integer("bounces", t.bounces, Range::closed(0, 64)));
+  t.ao_samples = static_cast<int>(r.integer("ao_samples", t.ao_samples, Range::closed(0, 1024)));
+  t.ao_distance_m = r.quantity("ao_distance", Quantity::length, t.ao_distance_m, Range::gt(0.0));
+  t.sun_angular_radius_deg =
+      r.angle_deg("sun_radius", t.sun_angular_radius_deg, Range::closed(0.0, 45.0));
+  t.sheen = r.number("sheen", t.sheen, Range::closed(0.0, 1.0));
+  t.sheen_roughness = r.number("sheen_roughness", t.sheen_roughness, Range::gt(0.0).le(1.0));
+  t.seed = static_cast<std::uint32_t>(r.integer("seed", t.seed, Range::closed(0, 4294967295)));
+  r.finish();
+}
+
 // "render": image size, camera, light, colours, ground, shading (render::RenderSettings).
 void read_render(ObjectReader r, render::RenderSettings& s) {
   const auto size =
@@ -465,6 +480,11 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
   if (s.msaa_samples & (s.msaa_samples - 1))
     r.fail("msaa", "expected 1, 2, 4 or 8 samples, got " + std::to_string(s.msaa_samples));
+  s.renderer = r.enumeration<render::RendererKind>(
+      "renderer", {{"raster", render::RendererKind::raster},
+                   {"raytrace", render::RendererKind::raytrace}},
+      s.renderer);
+  read_raytrace(r.object("raytrace"), s.raytrace);
   r.finish();
 }
 

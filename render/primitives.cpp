@@ -1,4 +1,5 @@
-// Sphere, square-patch, box, cylinder and capsule meshes for drawing analytic obstacles.
+// Sphere, square-patch, box, cylinder and capsule meshes for drawing analytic obstacles, and
+// parametric grid sheets.
 
 #include "render/primitives.h"
 
@@ -237,6 +238,32 @@ RenderMesh make_capsule_mesh(const Eigen::Vector3d& a_m, const Eigen::Vector3d& 
     profile.push_back(
         {radius_m * sin_polar(k), -h - radius_m * cos_polar(k), sin_polar(k), -cos_polar(k)});
   return revolve(0.5 * (a_m + b_m), axis, profile, segments);
+}
+
+RenderMesh make_grid_mesh(int nu, int nv,
+                          const std::function<Eigen::Vector3d(double u, double v)>& position) {
+  if (nu < 2 || nv < 2 || static_cast<long long>(nu) * nv > 0xFFFFFFFFll) {
+    throw std::invalid_argument("make_grid_mesh: expected at least 2×2 vertices (and fewer than "
+                                "2^32), got " + std::to_string(nu) + "×" + std::to_string(nv));
+  }
+  RenderMesh mesh;
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      const double u = static_cast<double>(i) / (nu - 1), v = static_cast<double>(j) / (nv - 1);
+      mesh.positions.push_back(position(u, v).cast<float>());
+      mesh.uvs.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    }
+  }
+  const auto row = static_cast<std::uint32_t>(nu);
+  for (int j = 0; j + 1 < nv; ++j) {
+    for (int i = 0; i + 1 < nu; ++i) {
+      const auto k = static_cast<std::uint32_t>(j) * row + static_cast<std::uint32_t>(i);
+      mesh.triangles.push_back({k, k + 1, k + row + 1});
+      mesh.triangles.push_back({k, k + row + 1, k + row});
+    }
+  }
+  compute_vertex_normals(mesh);
+  return mesh;
 }
 
 }  // namespace weft::render

@@ -3,6 +3,7 @@
 // are drawn with.
 
 #include <Eigen/Core>
+#include <functional>
 
 #include "render/render_mesh.h"
 
@@ -46,5 +47,13 @@ RenderMesh make_cylinder_mesh(const Eigen::Vector3d& center_m, const Eigen::Vect
 // radius ≤ 0, segments outside 3..4096 or rings_per_cap outside 1..2048.
 RenderMesh make_capsule_mesh(const Eigen::Vector3d& a_m, const Eigen::Vector3d& b_m,
                              double radius_m, int segments = 64, int rings_per_cap = 16);
+
+// A sheet of nu×nv vertices: vertex (i, j), index j·nu + i, at position(u, v) with
+// u = i/(nu − 1), v = j/(nv − 1) (metres), uv (u, v); each cell split into the triangles
+// (i, j)(i+1, j)(i+1, j+1) and (i, j)(i+1, j+1)(i, j+1), counter-clockwise seen from the side
+// ∂p/∂u × ∂p/∂v points to; vertex normals computed. Throws std::invalid_argument unless
+// nu, nv ≥ 2 and nu·nv fits 32-bit indices.
+RenderMesh make_grid_mesh(int nu, int nv,
+                          const std::function<Eigen::Vector3d(double u, double v)>& position);
 
 }  // namespace weft::render

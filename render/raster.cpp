@@ -42,48 +42,10 @@ std::string size_text(int width, int height) {
   return std::to_string(width) + "x" + std::to_string(height);
 }
 
-// Bad input in the settings: an exception naming the field and what was expected.
-void validate(const RenderSettings& s, int max_size) {
-  const auto fail = [](const std::string& what) {
-    throw std::invalid_argument("RenderSettings: " + what);
-  };
-  if (s.width <= 0 || s.height <= 0 || s.width > max_size || s.height > max_size) {
-    fail("width×height must be within 1.." + std::to_string(max_size) + ", got " +
-         size_text(s.width, s.height));
-  }
-  if (s.msaa_samples < 0) fail("msaa_samples must be >= 0, got " + std::to_string(s.msaa_samples));
-  if (!s.light_direction.allFinite() || !(s.light_direction.norm() > 0.0)) {
-    fail("light_direction must be a finite non-zero vector");
-  }
-  if (!(s.light_intensity >= 0.0) || !std::isfinite(s.light_intensity)) {
-    fail("light_intensity must be finite and >= 0");
-  }
-  if (!(s.ambient >= 0.0) || !std::isfinite(s.ambient)) fail("ambient must be finite and >= 0");
-  if (s.ground && (!(s.ground_half_size_m > 0.0) || !std::isfinite(s.ground_half_size_m) ||
-                   !std::isfinite(s.ground_z_m))) {
-    fail("ground needs a finite ground_z_m and ground_half_size_m > 0");
-  }
-}
-
-// Bad input in the mesh: indices in range, positions finite, at most INT_MAX/3 triangles.
-// Messages start with `name` ("RenderMesh", "object 2").
-void validate(const RenderMesh& mesh, const std::string& name = "RenderMesh") {
-  const std::size_t vertex_count = mesh.positions.size();
-  for (std::size_t v = 0; v < vertex_count; ++v) {
-    if (!mesh.positions[v].allFinite()) {
-      throw std::invalid_argument(name + ": vertex " + std::to_string(v) +
-                                  " has a non-finite position");
-    }
-  }
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    for (std::uint32_t v : mesh.triangles[f]) {
-      if (v >= vertex_count) {
-        throw std::invalid_argument(name + ": triangle " + std::to_string(f) + " uses vertex " +
-                                    std::to_string(v) + " but the mesh has " +
-                                    std::to_string(vertex_count) + " vertices");
-      }
-    }
-  }
+// Bad input in the mesh (validate, render_mesh.h), and at most INT_MAX/3 triangles (one draw
+// call). Messages start with `name` ("RenderMesh", "object 2").
+void validate_for_gl(const RenderMesh& mesh, const std::string& name = "RenderMesh") {
+  validate(mesh, name);
   if (mesh.triangles.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max() / 3)) {
     throw std::invalid_argument(name + ": too many triangles for one draw call");
   }
@@ -151,16 +113,6 @@ void check_framebuffer(const GlFunctions& gl, GLenum target, const std::string& 
   }
 }
 
-// `mesh`, or a copy with vertex normals computed into `storage` when they are missing or
-// stale in size.
-const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
-  if (mesh.normals.size() == mesh.positions.size()) return mesh;
-  storage.positions = mesh.positions;
-  storage.triangles = mesh.triangles;
-  compute_vertex_normals(storage);
-  return storage;
-}
-
 // Index range of one object in the merged object mesh, and its colour.
 struct ObjectRange {
   std::size_t first_index = 0;  // into the element buffer (3 per triangle)
@@ -175,7 +127,7 @@ RenderMesh merge_objects(const std::vector<RenderObject>& objects,
   for (std::size_t k = 0; k < objects.size(); ++k) {
     const std::string name = "object " + std::to_string(k);
     const RenderObject& object = objects[k];
-    validate(object.mesh, name);
+    validate_for_gl(object.mesh, name);
     if (!object.color.allFinite()) throw std::invalid_argument(name + ": colour is not finite");
     if (merged.positions.size() + object.mesh.positions.size() >
         std::numeric_limits<std::uint32_t>::max()) {
@@ -191,7 +143,7 @@ RenderMesh merge_objects(const std::vector<RenderObject>& objects,
     for (const auto& t : mesh.triangles)
       merged.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   }
-  validate(merged, "objects");  // the total must fit one draw call too
+  validate_for_gl(merged, "objects");  // the total must fit one draw call too
   return merged;
 }
 
@@ -226,6 +178,28 @@ Eigen::Matrix4f light_view_projection(const std::vector<const RenderMesh*>& mesh
 }
 
 }  // namespace
+
+void validate(const RenderSettings& s, int max_size) {
+  const auto fail = [](const std::string& what) {
+    throw std::invalid_argument("RenderSettings: " + what);
+  };
+  if (s.width <= 0 || s.height <= 0 || s.width > max_size || s.height > max_size) {
+    fail("width×height must be within 1.." + std::to_string(max_size) + ", got " +
+         size_text(s.width, s.height));
+  }
+  if (s.msaa_samples < 0) fail("msaa_samples must be >= 0, got " + std::to_string(s.msaa_samples));
+  if (!s.light_direction.allFinite() || !(s.light_direction.norm() > 0.0)) {
+    fail("light_direction must be a finite non-zero vector");
+  }
+  if (!(s.light_intensity >= 0.0) || !std::isfinite(s.light_intensity)) {
+    fail("light_intensity must be finite and >= 0");
+  }
+  if (!(s.ambient >= 0.0) || !std::isfinite(s.ambient)) fail("ambient must be finite and >= 0");
+  if (s.ground && (!(s.ground_half_size_m > 0.0) || !std::isfinite(s.ground_half_size_m) ||
+                   !std::isfinite(s.ground_z_m))) {
+    fail("ground needs a finite ground_z_m and ground_half_size_m > 0");
+  }
+}
 
 struct RasterRenderer::Impl {
   explicit Impl(std::unique_ptr<GlContext> context);
@@ -575,7 +549,7 @@ Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSe
                                    const std::vector<RenderObject>& objects) {
   m_context->make_current();
   validate(s, m_max_size);
-  validate(cloth_input);
+  validate_for_gl(cloth_input);
   // Vertex normals are required; computed on a copy when missing or stale in size.
   RenderMesh cloth_storage;
   const RenderMesh& cloth = with_normals(cloth_input, cloth_storage);

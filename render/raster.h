@@ -9,10 +9,15 @@
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/render_mesh.h"
+#include "render/raytrace/raytrace_settings.h"
 
 namespace weft::render {
 
 enum class Shading { lit, normals };  // normals: |n| as colour (seed 003's debug view)
+
+// Which renderer draws the frames (render/renderer.h): the OSMesa rasterizer or the Embree
+// ray tracer.
+enum class RendererKind { raster, raytrace };
 
 struct RenderSettings {
   int width = 640, height = 480;
@@ -31,7 +36,13 @@ struct RenderSettings {
   Eigen::Vector3f obstacle_color{0.70f, 0.74f, 0.80f};
   Shading shading = Shading::lit;
   int msaa_samples = 4;
+  RendererKind renderer = RendererKind::raster;
+  RayTraceSettings raytrace;  // read by the ray tracer only
 };
+
+// Bad input: throws std::invalid_argument naming the field ("RenderSettings: ...") unless the
+// settings can be drawn; max_size is the largest width or height the renderer supports.
+void validate(const RenderSettings& settings, int max_size);
 
 // An opaque object drawn with the cloth (e.g. an obstacle): lit like the cloth's front side,
 // in one colour on both sides, depth-tested against the cloth and the other objects, and

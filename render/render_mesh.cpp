@@ -1,4 +1,4 @@
-// Area-weighted vertex normals for a RenderMesh.
+// Area-weighted vertex normals for a RenderMesh, and its validation.
 
 #include "render/render_mesh.h"
 
@@ -39,6 +39,33 @@ void compute_vertex_normals(RenderMesh& mesh) {
                           ? Eigen::Vector3f((sums[v] / length).cast<float>())
                           : Eigen::Vector3f::UnitZ();
   }
+}
+
+void validate(const RenderMesh& mesh, const std::string& name) {
+  const std::size_t vertex_count = mesh.positions.size();
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    if (!mesh.positions[v].allFinite()) {
+      throw std::invalid_argument(name + ": vertex " + std::to_string(v) +
+                                  " has a non-finite position");
+    }
+  }
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::uint32_t v : mesh.triangles[f]) {
+      if (v >= vertex_count) {
+        throw std::invalid_argument(name + ": triangle " + std::to_string(f) + " uses vertex " +
+                                    std::to_string(v) + " but the mesh has " +
+                                    std::to_string(vertex_count) + " vertices");
+      }
+    }
+  }
+}
+
+const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
+  if (mesh.normals.size() == mesh.positions.size()) return mesh;
+  storage.positions = mesh.positions;
+  storage.triangles = mesh.triangles;
+  compute_vertex_normals(storage);
+  return storage;
 }
 
 }  // namespace weft::render

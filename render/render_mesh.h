@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace weft::render {
@@ -19,5 +20,13 @@ struct RenderMesh {
 // Area-weighted vertex normals from the triangles (zero-area triangles contribute nothing;
 // an isolated vertex gets +z).
 void compute_vertex_normals(RenderMesh& mesh);
+
+// Bad input: throws std::invalid_argument, the message starting with `name` ("RenderMesh",
+// "object 2"), unless every position is finite and every triangle's indices are in range.
+void validate(const RenderMesh& mesh, const std::string& name = "RenderMesh");
+
+// `mesh`, or a copy with vertex normals computed into `storage` when they are missing or stale
+// in size (the renderers shade with smooth vertex normals).
+const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage);
 
 }  // namespace weft::render

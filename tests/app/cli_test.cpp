@@ -228,4 +228,30 @@ TEST_F(Cli, DivergingRunStopsAndKeepsItsFrames) {
   EXPECT_FALSE(fs::exists(out / name)) << name;
 }
 
+// --renderer raytrace draws the same frames with the Embree ray tracer (its description in the
+// header line); a bad --renderer or --samples is bad input with nothing written.
+TEST_F(Cli, RunWithTheRayTracer) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const fs::path out = m_dir / "out";
+  const Result r = run_weft("run " + scene.string() +
+                            " --frames 1 --renderer raytrace --samples 2 --out " + out.string());
+  if (r.exit_code == 2 && r.output.find("built without the ray tracer") != std::string::npos)
+    GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "Embree");
+  const weft::render::Image image = weft::render::read_image(out / "frame_0001.png");
+  EXPECT_EQ(image.width(), 96);
+  EXPECT_EQ(image.height(), 64);
+
+  const Result bad = run_weft("run " + scene.string() + " --renderer povray --out " +
+                              (m_dir / "bad").string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_CONTAINS(bad.output, "--renderer: povray not in {raster,raytrace}");
+  const Result bad_samples = run_weft("run " + scene.string() + " --samples 0 --out " +
+                                      (m_dir / "bad").string());
+  EXPECT_EQ(bad_samples.exit_code, 1) << bad_samples.output;
+  EXPECT_CONTAINS(bad_samples.output, "--samples: expected an integer in 1..65536, got 0");
+  EXPECT_FALSE(fs::exists(m_dir / "bad"));
+}
+
 }  // namespace

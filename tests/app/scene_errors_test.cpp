@@ -329,5 +329,32 @@ TEST(SceneErrors, ErrorsFromAFileNameItsPath) {
   std::filesystem::remove(path);
 }
 
+TEST(SceneErrors, RendererAndRayTraceSettings) {
+  Json s = valid_scene();
+  s["render"]["renderer"] = "pathtracer";
+  EXPECT_CONTAINS(error_of(s), "render.renderer: expected one of 'raster', 'raytrace'");
+  s = valid_scene();
+  s["render"]["raytrace"] = {{"samples", 0}};
+  EXPECT_CONTAINS(error_of(s), "render.raytrace.samples: expected an integer in [1, 65536], got 0");
+  s = valid_scene();
+  s["render"]["raytrace"] = {{"spp", 4}};
+  EXPECT_CONTAINS(error_of(s), "render.raytrace.spp: unknown key");
+  s = valid_scene();
+  s["render"]["raytrace"] = {{"sun_radius", "50 deg"}};
+  EXPECT_CONTAINS(error_of(s), "render.raytrace.sun_radius: expected an angle in [0, 45] deg");
+
+  s = valid_scene();
+  s["render"]["renderer"] = "raytrace";
+  s["render"]["raytrace"] = {{"samples", 4}, {"bounces", 2}, {"ao_distance", "20 cm"},
+                             {"sun_radius", "1 deg"}, {"sheen", 0}};
+  const Scene scene = parse_scene(s.dump(), "scene.json");
+  EXPECT_EQ(scene.render.renderer, render::RendererKind::raytrace);
+  EXPECT_EQ(scene.render.raytrace.samples_per_pixel, 4);
+  EXPECT_EQ(scene.render.raytrace.bounces, 2);
+  EXPECT_DOUBLE_EQ(scene.render.raytrace.ao_distance_m, 0.2);
+  EXPECT_DOUBLE_EQ(scene.render.raytrace.sun_angular_radius_deg, 1.0);
+  EXPECT_EQ(scene.render.raytrace.sheen, 0.0);
+}
+
 }  // namespace
 }  // namespace weft::app

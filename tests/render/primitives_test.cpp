@@ -206,5 +206,29 @@ TEST(Primitives, BadInputThrows) {
   EXPECT_THROW(make_capsule_mesh({0, 0, 0}, {0, 0, 1}, 1.0, 8, 0), std::invalid_argument);
 }
 
+// A flat 4×3 grid: 12 vertices, 2·3·2 = 12 triangles, uv = the grid parameters, every normal
+// ∂p/∂u × ∂p/∂v = +z for p = (2u, v, 0), and the triangles tile the 2 m² rectangle exactly.
+TEST(Primitives, GridMeshCountsUvsNormalsAndArea) {
+  const RenderMesh grid =
+      make_grid_mesh(4, 3, [](double u, double v) { return Eigen::Vector3d(2.0 * u, v, 0.5); });
+  ASSERT_EQ(grid.positions.size(), 12u);
+  ASSERT_EQ(grid.triangles.size(), 12u);
+  ASSERT_EQ(grid.uvs.size(), 12u);
+  EXPECT_FLOAT_EQ(grid.uvs[5].x(), 1.0f / 3.0f);  // vertex (1, 1)
+  EXPECT_FLOAT_EQ(grid.uvs[5].y(), 0.5f);
+  double area = 0.0;
+  for (const auto& t : grid.triangles) {
+    const Eigen::Vector3f n = (grid.positions[t[1]] - grid.positions[t[0]])
+                                  .cross(grid.positions[t[2]] - grid.positions[t[0]]);
+    EXPECT_GT(n.z(), 0.0f);  // counter-clockwise seen from +z
+    area += 0.5 * n.norm();
+  }
+  EXPECT_NEAR(area, 2.0, 1e-6);
+  for (const Eigen::Vector3f& n : grid.normals)
+    EXPECT_NEAR((n - Eigen::Vector3f::UnitZ()).norm(), 0.0, 1e-6);
+  EXPECT_THROW(make_grid_mesh(1, 3, [](double, double) { return Eigen::Vector3d::Zero(); }),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace weft::render

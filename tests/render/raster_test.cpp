@@ -19,63 +19,23 @@
 #include <vector>
 
 #include "render/primitives.h"
+#include "tests/render/render_test_support.h"
 
 namespace weft::render {
 namespace {
 
-namespace fs = std::filesystem;
+using test::Pixel;
+using test::project;
+using test::rectangle;
+using test::same_bytes;
+using test::to_rgb8;
+using test::view_from_above;
 
 constexpr int colour_tolerance = 3;  // 8-bit units, for interpolation and rounding
-
-// Axis-aligned rectangle in the plane z = z_m, counter-clockwise seen from +z (front = +z).
-RenderMesh rectangle(double x0, double x1, double y0, double y1, double z_m) {
-  RenderMesh mesh;
-  mesh.positions = {
-      Eigen::Vector3d(x0, y0, z_m).cast<float>(), Eigen::Vector3d(x1, y0, z_m).cast<float>(),
-      Eigen::Vector3d(x1, y1, z_m).cast<float>(), Eigen::Vector3d(x0, y1, z_m).cast<float>()};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-  compute_vertex_normals(mesh);
-  return mesh;
-}
 
 // The 1 m × 1 m square at z = 0.5 m centred on the z axis.
 RenderMesh unit_square() {
   return rectangle(-0.5, 0.5, -0.5, 0.5, 0.5);
-}
-
-// Camera on the +z axis looking straight down at the square, +y up on screen, +x right.
-RenderSettings view_from_above(int width, int height) {
-  RenderSettings s;
-  s.width = width;
-  s.height = height;
-  s.ground = false;
-  s.camera.eye = {0, 0, 3};
-  s.camera.target = {0, 0, 0.5};
-  s.camera.up = {0, 1, 0};
-  s.camera.fov_y_deg = 40;
-  return s;
-}
-
-struct Pixel {
-  int x = 0, y = 0;  // image coordinates, (0, 0) top-left
-};
-
-// Pixel containing the projection of a world point.
-Pixel project(const RenderSettings& s, const Eigen::Vector3d& world) {
-  const double aspect = static_cast<double>(s.width) / s.height;
-  const Eigen::Vector4f clip = s.camera.projection_matrix(aspect) * s.camera.view_matrix() *
-                               Eigen::Vector4f(world.cast<float>().homogeneous());
-  const double x_ndc = clip.x() / clip.w(), y_ndc = clip.y() / clip.w();
-  return {static_cast<int>(std::floor((0.5 * x_ndc + 0.5) * s.width)),
-          static_cast<int>(std::floor((0.5 - 0.5 * y_ndc) * s.height))};
-}
-
-std::uint8_t to_byte(double c) {
-  return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0));
-}
-
-Rgb8 to_rgb8(const Eigen::Vector3f& c) {
-  return {to_byte(c.x()), to_byte(c.y()), to_byte(c.z())};
 }
 
 // The shading formula for a surface of the given colour and facing normal (unit, world).
@@ -112,11 +72,6 @@ int max_channel_difference(Rgb8 a, Rgb8 b) {
   return result;
 }
 
-bool same_bytes(const Image& a, const Image& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::equal(a.data(), a.data() + 3 * a.width() * a.height(), b.data());
-}
-
 class Raster : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -131,39 +86,23 @@ class Raster : public ::testing::Test {
   }
 
   // On failure, every image rendered by the test is written where a person can find it.
-  void TearDown() override {
-    if (!HasFailure() || m_rendered.empty()) return;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const fs::path dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "render";
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    for (std::size_t i = 0; i < m_rendered.size(); ++i) {
-      const fs::path path = dir / (std::string(info->name()) + "_" + std::to_string(i) + "_" +
-                                   m_rendered[i].first + ".png");
-      try {
-        write_png(m_rendered[i].second, path);
-        std::cerr << "  rendered image: " << path.string() << "\n";
-      } catch (const std::exception& e) {
-        std::cerr << "  could not save evidence: " << e.what() << "\n";
-      }
-    }
-  }
+  void TearDown() override { m_rendered.save_if_failed(); }
 
   Image render(const RenderMesh& mesh, const RenderSettings& s, const std::string& name) {
     Image image = m_renderer->render(mesh, s);
-    m_rendered.emplace_back(name, image);
+    m_rendered.add(name, image);
     return image;
   }
 
   Image render(const RenderMesh& cloth, const RenderSettings& s,
                const std::vector<RenderObject>& objects, const std::string& name) {
     Image image = m_renderer->render(cloth, s, objects);
-    m_rendered.emplace_back(name, image);
+    m_rendered.add(name, image);
     return image;
   }
 
   std::unique_ptr<RasterRenderer> m_renderer;
-  std::vector<std::pair<std::string, Image>> m_rendered;
+  test::FailureEvidence m_rendered{"render"};
 };
 
 TEST_F(Raster, DescriptionNamesTheContext) {

@@ -1,0 +1,224 @@
+// Per-pixel light transport of the ray tracer (see integrator.h and, for the shading model and
+// its units, shading.h). Per camera sample:
+//   1. the camera ray through a sub-pixel point (the pixel centre for 1 sample per pixel);
+//      a miss shows the background,
+//   2. at each hit: the sun, its visibility from one shadow ray into the sun's cone, times the
+//      cosine with the shading normal; diffuse reflectance plus, on the cloth, the sheen lobe,
+//   3. bounces left: continue along a cosine-weighted direction (the sky's radiance where it
+//      escapes); none left: the sky times the unoccluded fraction of ao_samples cosine-weighted
+//      rays of length ao_distance_m (ambient occlusion),
+//   4. a camera ray's ground hit gets the grid lines and fades into the background at its rim.
+
+#include "render/raytrace/integrator.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "render/raytrace/sampling.h"
+#include "render/raytrace/shading.h"
+
+namespace weft::render::rt {
+
+namespace {
+
+constexpr float infinity = std::numeric_limits<float>::infinity();
+
+struct Hit {
+  const SurfaceShading* surface = nullptr;
+  Eigen::Vector3f position;     // metres
+  Eigen::Vector3f geometric;    // unit geometric normal on the side the ray came from
+  Eigen::Vector3f normal;       // unit shading normal (interpolated vertex normals), same side
+  Eigen::Vector3f reflectance;  // of the side that was hit
+  float distance_m = 0.0f;      // from the ray origin
+};
+
+RTCRay make_ray(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float tnear,
+                float tfar) {
+  RTCRay ray;
+  ray.org_x = origin.x();
+  ray.org_y = origin.y();
+  ray.org_z = origin.z();
+  ray.tnear = tnear;
+  ray.dir_x = direction.x();
+  ray.dir_y = direction.y();
+  ray.dir_z = direction.z();
+  ray.time = 0.0f;
+  ray.tfar = tfar;
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
+// The closest hit along origin + t direction, t in [tnear, tfar], or false.
+bool intersect(const FrameView& view, const Eigen::Vector3f& origin,
+               const Eigen::Vector3f& direction, float tnear, float tfar, Hit& hit) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit ray_hit;
+  ray_hit.ray = make_ray(origin, direction, tnear, tfar);
+  ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(view.scene, &context, &ray_hit);
+  if (ray_hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+  const SurfaceShading& surface = view.surfaces[ray_hit.hit.geomID];
+  const RenderMesh& mesh = *surface.mesh;
+  const auto& t = mesh.triangles[ray_hit.hit.primID];
+  const float u = ray_hit.hit.u, v = ray_hit.hit.v, w = 1.0f - u - v;
+  const Eigen::Vector3f& a = mesh.positions[t[0]];
+  const Eigen::Vector3f& b = mesh.positions[t[1]];
+  const Eigen::Vector3f& c = mesh.positions[t[2]];
+  hit.surface = &surface;
+  hit.position = w * a + u * b + v * c;  // on the triangle, more exact than origin + t dir
+  hit.distance_m = ray_hit.ray.tfar * direction.norm();
+
+  Eigen::Vector3f geometric = (b - a).cross(c - a);  // the front side's normal
+  const float length = geometric.norm();
+  geometric = length > 0.0f ? Eigen::Vector3f(geometric / length) : Eigen::Vector3f::UnitZ();
+  const bool front = geometric.dot(direction) < 0.0f;
+  if (!front) geometric = -geometric;
+  Eigen::Vector3f normal = w * mesh.normals[t[0]] + u * mesh.normals[t[1]] + v * mesh.normals[t[2]];
+  if (!front) normal = -normal;
+  const float normal_length = normal.norm();
+  // Vertex normals of opposite sign across a sharp fold can cancel or point away from the
+  // side seen: the geometric normal stands in.
+  hit.normal = normal_length > 1e-6f && normal.dot(geometric) > 0.0f
+                   ? Eigen::Vector3f(normal / normal_length)
+                   : geometric;
+  hit.geometric = geometric;
+  hit.reflectance = front ? surface.front : surface.back;
+  return true;
+}
+
+bool occluded(const FrameView& view, const Eigen::Vector3f& origin,
+              const Eigen::Vector3f& direction, float tfar) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray = make_ray(origin, direction, 0.0f, tfar);
+  rtcOccluded1(view.scene, &context, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar to −inf when something blocks the ray
+}
+
+Eigen::Vector3f offset_origin(const FrameView& view, const Hit& hit) {
+  return hit.position + view.epsilon_m * hit.geometric;
+}
+
+// Radiance leaving `hit` towards `to_viewer` (unit) by the sun: diffuse, plus sheen on cloth.
+Eigen::Vector3f sun_light(const FrameView& view, const Hit& hit, const Eigen::Vector3f& to_viewer,
+                          Pcg32& rng, RayCounts& counts) {
+  const float cosine = hit.normal.dot(view.sun);
+  const float u1 = rng.next_float(), u2 = rng.next_float();  // drawn always: fixed stream use
+  if (!(view.sun_intensity > 0.0f) || !(cosine > 0.0f)) return Eigen::Vector3f::Zero();
+  const Eigen::Vector3f towards =
+      view.sun_cos_max < 1.0f ? uniform_cone(view.sun, view.sun_cos_max, u1, u2) : view.sun;
+  if (!(towards.dot(hit.geometric) > 0.0f)) return Eigen::Vector3f::Zero();  // below the surface
+  ++counts.shadow;
+  if (occluded(view, offset_origin(view, hit), towards, infinity)) return Eigen::Vector3f::Zero();
+  Eigen::Vector3f out = hit.reflectance * (view.sun_intensity * cosine);
+  if (hit.surface->sheen && view.sheen > 0.0f) {
+    // Tinted halfway between white and the cloth's colour.
+    const Eigen::Vector3f tint = 0.5f * (Eigen::Vector3f::Ones() + hit.reflectance);
+    out += tint * (view.sheen * view.sun_intensity *
+                   sheen_response(hit.normal, view.sun, to_viewer, view.sheen_roughness));
+  }
+  return out;
+}
+
+// Unoccluded fraction of ao_samples cosine-weighted rays of length ao_distance_m.
+float sky_visibility(const FrameView& view, const Hit& hit, Pcg32& rng, RayCounts& counts) {
+  if (view.ao_samples <= 0) return 1.0f;
+  int open = 0;
+  for (int k = 0; k < view.ao_samples; ++k) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    const Eigen::Vector3f direction = cosine_hemisphere(hit.normal, u1, u2);
+    if (!(direction.dot(hit.geometric) > 0.0f)) continue;  // into the surface itself
+    ++counts.occlusion;
+    if (!occluded(view, offset_origin(view, hit), direction, view.ao_distance_m)) ++open;
+  }
+  return static_cast<float>(open) / static_cast<float>(view.ao_samples);
+}
+
+// Grid lines and rim fade of the ground seen by a camera ray: the reflectance factor (lines),
+// and the weight of the background (0 inside, 1 at the rim).
+void ground_pattern(const FrameView& view, const Hit& hit, const Eigen::Vector3f& direction_unit,
+                    float& line_factor, float& background_weight) {
+  const float incidence = std::max(std::abs(direction_unit.dot(hit.geometric)), 0.25f);
+  const float pixel_m = hit.distance_m * view.pixel_angle / incidence;
+  line_factor = 1.0f - ground_grid_lines(hit.position.x(), hit.position.y(), pixel_m);
+  const float r =
+      (hit.position.head<2>() - view.ground_center.head<2>()).norm() / view.ground_half_size_m;
+  const float t = std::clamp((r - 0.6f) / 0.4f, 0.0f, 1.0f);
+  background_weight = t * t * (3.0f - 2.0f * t);
+}
+
+// Linear radiance of one camera sample through image point (px, py).
+Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& rng,
+                              RayCounts& counts) {
+  const Eigen::Vector3f direction =
+      view.forward + (2.0f * px / static_cast<float>(view.width) - 1.0f) * view.right -
+      (2.0f * py / static_cast<float>(view.height) - 1.0f) * view.up;
+  ++counts.camera;
+  Hit hit;
+  if (!intersect(view, view.eye, direction, view.near_m, view.far_m, hit)) return view.background;
+  Eigen::Vector3f to_viewer = -direction.normalized();
+
+  if (view.shading == Shading::normals) {  // the colour 0.5 n + 0.5, as the rasterizer
+    return reflectance_from_color(0.5f * hit.normal + Eigen::Vector3f::Constant(0.5f));
+  }
+  float background_weight = 0.0f;
+  if (hit.surface->ground) {
+    float line_factor = 1.0f;
+    ground_pattern(view, hit, -to_viewer, line_factor, background_weight);
+    hit.reflectance *= line_factor;
+  }
+
+  Eigen::Vector3f radiance = Eigen::Vector3f::Zero();
+  Eigen::Vector3f throughput = Eigen::Vector3f::Ones();
+  for (int depth = 0;; ++depth) {
+    radiance += throughput.cwiseProduct(sun_light(view, hit, to_viewer, rng, counts));
+    if (depth == view.bounces) {
+      radiance += throughput.cwiseProduct(hit.reflectance) *
+                  (view.sky * sky_visibility(view, hit, rng, counts));
+      break;
+    }
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    const Eigen::Vector3f next = cosine_hemisphere(hit.normal, u1, u2);
+    if (!(next.dot(hit.geometric) > 0.0f)) break;  // into the surface: absorbed
+    throughput = throughput.cwiseProduct(hit.reflectance);
+    ++counts.bounce;
+    const Eigen::Vector3f origin = offset_origin(view, hit);
+    if (!intersect(view, origin, next, 0.0f, infinity, hit)) {
+      radiance += throughput * view.sky;
+      break;
+    }
+    to_viewer = -next;
+  }
+  return (1.0f - background_weight) * radiance + background_weight * view.background;
+}
+
+}  // namespace
+
+Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts) {
+  const std::uint64_t pixel_index =
+      static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(view.width) +
+      static_cast<std::uint64_t>(x);
+  // The pixel's own rotation of the sub-pixel pattern.
+  Pcg32 pixel_rng = sample_generator(pixel_index, 0xFFFFFFFFu, view.seed);
+  const Eigen::Vector2f rotation(pixel_rng.next_float(), pixel_rng.next_float());
+
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (int k = 0; k < view.samples_per_pixel; ++k) {
+    const auto sample = static_cast<std::uint32_t>(k);
+    const Eigen::Vector2f offset =
+        view.samples_per_pixel == 1 ? Eigen::Vector2f(0.5f, 0.5f) : pixel_offset(sample, rotation);
+    Pcg32 rng = sample_generator(pixel_index, sample, view.seed);
+    sum += render_sample(view, static_cast<float>(x) + offset.x(),
+                         static_cast<float>(y) + offset.y(), rng, counts);
+  }
+  return sum / static_cast<float>(view.samples_per_pixel);
+}
+
+}  // namespace weft::render::rt

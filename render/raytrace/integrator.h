@@ -1,0 +1,61 @@
+#pragma once
+// The ray tracer's per-pixel work: camera rays, hits, and the light they carry back. Pure
+// functions of a read-only FrameView (built by ray_tracer.cpp once per frame), so that any
+// number of threads can shade pixels at once.
+
+#include <embree3/rtcore.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "render/raster.h"
+#include "render/raytrace/ray_tracer.h"
+#include "render/render_mesh.h"
+
+namespace weft::render::rt {
+
+// What shading needs to know of one Embree geometry.
+struct SurfaceShading {
+  const RenderMesh* mesh = nullptr;         // positions, unit vertex normals (same size), triangles
+  Eigen::Vector3f front{0.0f, 0.0f, 0.0f};  // linear reflectance of the front (counter-clockwise)
+  Eigen::Vector3f back{0.0f, 0.0f, 0.0f};   // and of the back side
+  bool sheen = false;                       // the cloth: diffuse + sheen
+  bool ground = false;                      // the ground: grid lines and fade (camera rays)
+};
+
+// One frame's scene and settings in the units and form the inner loop wants.
+struct FrameView {
+  RTCScene scene = nullptr;
+  std::vector<SurfaceShading> surfaces;  // indexed by Embree geometry ID
+
+  int width = 0, height = 0;
+  // Camera: the ray through image point (px, py) (pixels, (0, 0) the top-left corner) is
+  // eye + t (forward + (2 px / width − 1) right − (2 py / height − 1) up), t in [near, far]:
+  // t is the depth along the view axis, as the rasterizer's clip planes.
+  Eigen::Vector3f eye, forward, right, up;  // right, up scaled by the half-extent at depth 1
+  float near_m = 0.0f, far_m = 0.0f;
+  float pixel_angle = 0.0f;  // radians per pixel at the image centre
+
+  Shading shading = Shading::lit;
+  Eigen::Vector3f sun{0.0f, 0.0f, 1.0f};         // unit, towards the sun
+  float sun_cos_max = 1.0f;                      // cos of the sun's angular radius
+  float sun_intensity = 0.0f;                    // see shading.h
+  float sky = 0.0f;                              // sky radiance (RenderSettings::ambient)
+  Eigen::Vector3f background{0.0f, 0.0f, 0.0f};  // linear radiance of camera rays that miss
+
+  bool ground = false;
+  Eigen::Vector3f ground_center{0.0f, 0.0f, 0.0f};
+  float ground_half_size_m = 0.0f;
+
+  int samples_per_pixel = 1, bounces = 0, ao_samples = 0;
+  float ao_distance_m = 0.0f;
+  float sheen = 0.0f, sheen_roughness = 0.5f;
+  std::uint32_t seed = 0;
+  float epsilon_m = 1e-5f;  // secondary rays start this far off the surface
+};
+
+// Mean linear radiance (RGB) of pixel (x, y) over its samples; adds the rays it traced.
+Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts);
+
+}  // namespace weft::render::rt

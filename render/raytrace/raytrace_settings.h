@@ -1,0 +1,28 @@
+#pragma once
+// Settings of the Embree ray tracer (render/raytrace/ray_tracer.h) that the rasterizer has no
+// use for: samples, bounces, ambient occlusion, soft shadows, cloth sheen and threads. Header
+// only and free of Embree, so that scene files can hold them whether or not the ray tracer is
+// built (CMake option WEFT_WITH_EMBREE_RT).
+
+#include <cstdint>
+
+namespace weft::render {
+
+struct RayTraceSettings {
+  int samples_per_pixel = 16;  // camera samples per pixel; 1: one ray through the pixel centre
+  // 0: direct sun light + ambient occlusion (AO); N > 0: path tracing with N diffuse bounces
+  // (the last vertex still takes the sky through AO).
+  int bounces = 0;
+  int ao_samples = 1;          // AO rays per camera sample (0: the sky is never occluded)
+  double ao_distance_m = 1.0;  // occluders farther than this do not darken
+  // Angular radius of the sun's disc: shadow rays are spread over this cone (0: hard shadows).
+  double sun_angular_radius_deg = 2.0;
+  // Cloth sheen (Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF"): weight
+  // 0 (off) .. 1 and the roughness of its "Charlie" distribution, (0, 1].
+  double sheen = 0.5;
+  double sheen_roughness = 0.5;
+  int threads = 0;         // render threads; 0: all hardware threads. Never changes a bit.
+  std::uint32_t seed = 0;  // mixed into every pixel's random generator
+};
+
+}  // namespace weft::render
