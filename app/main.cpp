@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "app/folds_command.h"
 #include "app/measure_command.h"
 #include "app/run_command.h"
 #include "app/scene.h"
@@ -97,6 +98,39 @@ int main(int argc, char** argv) {
   measure_cmd->add_flag("--drape", measure.require_drape,
                         "Require the drape measures: an error if no obstacle supports the cloth centre");
 
+  // weft folds (issue 6): tension-field folds of a suspended cloth; inputs converted to SI here.
+  FoldsOptions folds;
+  folds.command_line = run.command_line;
+  double folds_h_cm = 0, folds_L_cm = 0, folds_d_cm = 0, folds_t_mm = 0, folds_E_MPa = 0,
+         folds_w_N_mm2 = 0, folds_Q = 0, folds_bottom = 0;
+  std::string folds_out, folds_overlay, folds_supports, folds_size, folds_shape = "rectangle",
+                        folds_interpolation = "cosine";
+  CLI::App* folds_cmd = app.add_subcommand(
+      "folds", "Tension-field folds of a cloth hanging from two supports (Conci 2007): print n, Q, "
+               "z_max, a_i, L'; render them; draw them on a photo (docs/folds.md)");
+  folds_cmd->add_option("--h-cm", folds_h_cm, "Height h of the cloth, cm")->required();
+  folds_cmd->add_option("--L-cm", folds_L_cm, "Width L of the flat cloth, cm")->required();
+  folds_cmd->add_option("--d-cm", folds_d_cm, "Support displacement d, cm: the span is l = L - d")->required();
+  folds_cmd->add_option("--t-mm", folds_t_mm, "Thickness t, mm")->required();
+  folds_cmd->add_option("--E-MPa", folds_E_MPa, "Young's modulus E, MPa")->required();
+  folds_cmd->add_option("--w-N-mm2", folds_w_N_mm2, "Weight per area w, N/mm^2 (e.g. 15e-7)")->required();
+  folds_cmd->add_option("--nu", folds.inputs.poisson_ratio, "Poisson's ratio (default 0.3)");
+  folds_cmd->add_option("--c", folds.inputs.load_constant,
+                        "Load-condition constant c of eq. (7) (default: the fit to the paper's Table 1)");
+  folds_cmd->add_option("--Q", folds_Q, "Amplitude ratio Q > 1, instead of eq. (7)'s");
+  folds_cmd->add_option("--tolerance", folds.inputs.tolerance, "On |L' - L|/L (default 0.05)");
+  folds_cmd->add_flag("--json", folds.json, "Print the result as one JSON object");
+  folds_cmd->add_option("--out", folds_out, "Render the folded cloth to DIR/folds.png (the overlay goes there too; default out/folds)");
+  folds_cmd->add_option("--size", folds_size, "Image size WIDTHxHEIGHT of folds.png (default 640x480)");
+  folds_cmd->add_option("--shape", folds_shape, "Membrane rendered: rectangle or cosine")
+      ->check(CLI::IsMember({"rectangle", "cosine"}));
+  folds_cmd->add_option("--interpolation", folds_interpolation,
+                        "z between wrinkle lines: cosine (smooth) or linear (the paper's)")
+      ->check(CLI::IsMember({"cosine", "linear"}));
+  folds_cmd->add_option("--overlay", folds_overlay, "Photo (PNG/JPG) to draw the fold lines on: writes folds_overlay.png");
+  folds_cmd->add_option("--supports", folds_supports, "x1,y1,x2,y2: the supports' pixels in the photo");
+  folds_cmd->add_option("--bottom", folds_bottom, "Pixel row of the cloth's bottom at the middle (default: same scale as across)");
+
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);
     return exit_bad_input;
@@ -132,6 +166,25 @@ int main(int argc, char** argv) {
       if (!measure_out.empty()) measure.out = measure_out;
       if (measure_cmd->count("--frames")) measure.frames = measure_frames;
       return run_measure(measure);
+    }
+    if (folds_cmd->parsed()) {
+      folds.inputs.height_m = 1e-2 * folds_h_cm;
+      folds.inputs.width_m = 1e-2 * folds_L_cm;
+      folds.inputs.support_shift_m = 1e-2 * folds_d_cm;
+      folds.inputs.thickness_m = 1e-3 * folds_t_mm;
+      folds.inputs.youngs_modulus_Pa = 1e6 * folds_E_MPa;
+      folds.inputs.weight_N_m2 = 1e6 * folds_w_N_mm2;  // N/mm² → N/m²
+      if (folds_cmd->count("--Q")) folds.inputs.ratio = folds_Q;
+      if (!folds_out.empty()) folds.out = folds_out;
+      if (!folds_size.empty()) folds.size = folds_size;
+      if (!folds_overlay.empty()) folds.overlay = folds_overlay;
+      if (!folds_supports.empty()) folds.supports = folds_supports;
+      if (folds_cmd->count("--bottom")) folds.bottom_px = folds_bottom;
+      folds.shape = folds_shape == "cosine" ? weft::sim::MembraneShape::cosine
+                                            : weft::sim::MembraneShape::rectangle;
+      folds.interpolation = folds_interpolation == "linear" ? weft::sim::FoldInterpolation::linear
+                                                            : weft::sim::FoldInterpolation::cosine;
+      return run_folds(folds);
     }
     if (stability_cmd->parsed()) {
       if (!stability_out.empty()) stability.out = stability_out;

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 namespace weft::render {
 
@@ -176,6 +177,8 @@ bool clip_segment(double& x0, double& y0, double& x1, double& y1, double lo_x, d
 
 Canvas::Canvas(int width, int height, Rgb8 background) : m_image(width, height, background) {}
 
+Canvas::Canvas(Image image) : m_image(std::move(image)) {}
+
 void Canvas::fill_rect(int x0, int y0, int x1, int y1, Rgb8 colour) {
   x0 = std::max(x0, 0);
   y0 = std::max(y0, 0);
@@ -216,6 +219,32 @@ void Canvas::line(double x0, double y0, double x1, double y1, Rgb8 colour, int t
     const int py = nearest_pixel(y0 + t * dy);
     fill_rect(px - before, py - before, px + after + 1, py + after + 1, colour);
   }
+}
+
+double Canvas::dashed_line(double x0, double y0, double x1, double y1, Rgb8 colour,
+                           int thickness, double dash, double gap, double phase) {
+  const double period = dash + gap;
+  const double length = std::hypot(x1 - x0, y1 - y0);
+  if (!(std::isfinite(length) && dash > 0.0 && gap >= 0.0 && std::isfinite(period))) return phase;
+  phase = std::fmod(std::max(phase, 0.0), period);
+  const auto at = [&](double s) {
+    const double t = length > 0.0 ? s / length : 0.0;
+    return std::pair{x0 + t * (x1 - x0), y0 + t * (y1 - y0)};
+  };
+  double s = 0.0;
+  while (s < length) {
+    const bool on = phase < dash;
+    const double step = std::min(length - s, on ? dash - phase : period - phase);
+    if (on) {
+      // The last pixel of a dash is its start plus dash − 1 pixels: `dash` pixels in all.
+      const auto [ax, ay] = at(s);
+      const auto [bx, by] = at(s + std::max(step - 1.0, 0.0));
+      line(ax, ay, bx, by, colour, thickness);
+    }
+    s += step;
+    phase = std::fmod(phase + step, period);
+  }
+  return phase;
 }
 
 void Canvas::circle(double cx, double cy, double r, Rgb8 colour, bool filled) {

@@ -12,6 +12,8 @@ namespace weft::render {
 class Canvas {
  public:
   Canvas(int width, int height, Rgb8 background);
+  // Draws over an existing image (e.g. a photo).
+  explicit Canvas(Image image);
 
   int width() const { return m_image.width(); }
   int height() const { return m_image.height(); }
@@ -23,6 +25,11 @@ class Canvas {
   void rect(int x0, int y0, int x1, int y1, Rgb8 colour);
   // A straight line between pixel centres, `thickness` pixels wide, clipped.
   void line(double x0, double y0, double x1, double y1, Rgb8 colour, int thickness = 1);
+  // The same line dashed: `dash` pixels drawn, `gap` pixels skipped, measured along the line
+  // from `phase` pixels into the dash–gap period. Returns the phase at (x1, y1), so that the
+  // segments of a polyline continue one pattern.
+  double dashed_line(double x0, double y0, double x1, double y1, Rgb8 colour, int thickness,
+                     double dash, double gap, double phase = 0.0);
   // A circle of radius r pixels centred at (cx, cy), filled or as an outline.
   void circle(double cx, double cy, double r, Rgb8 colour, bool filled = true);
   // Printable ASCII (other characters draw as '?') in the built-in font, each glyph

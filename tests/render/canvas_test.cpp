@@ -275,5 +275,26 @@ TEST(Canvas, SameCallsGiveTheSameBits) {
   EXPECT_TRUE(std::equal(a.image().data(), a.image().data() + bytes, b.image().data()));
 }
 
+// A dashed horizontal line: dashes of 4 pixels every 7 (4 on, 3 off) from x = 0, and the
+// pattern carried over to a second segment by the returned phase.
+TEST(Canvas, DashedLineAlternatesDashesAndGaps) {
+  Canvas canvas(40, 5, kWhite);
+  const double phase = canvas.dashed_line(0, 2, 20, 2, kInk, 1, 4.0, 3.0);
+  canvas.dashed_line(20, 2, 39, 2, kInk, 1, 4.0, 3.0, phase);
+  for (int x = 0; x < 40; ++x)
+    EXPECT_EQ(canvas.image().at(x, 2) == kInk, x % 7 < 4) << "x = " << x;
+  EXPECT_EQ(bounds(inked(canvas)).y_min, 2);
+  EXPECT_EQ(bounds(inked(canvas)).y_max, 2);
+}
+
+// Drawing over an existing image keeps its pixels where nothing is drawn.
+TEST(Canvas, DrawsOverAnExistingImage) {
+  Image photo(8, 8, Rgb8{50, 60, 70});
+  Canvas canvas(photo);
+  canvas.line(0, 0, 7, 0, kInk);
+  EXPECT_EQ(canvas.image().at(3, 0), kInk);
+  EXPECT_EQ(canvas.image().at(3, 5), (Rgb8{50, 60, 70}));
+}
+
 }  // namespace
 }  // namespace weft::render

@@ -1,0 +1,187 @@
+// weft folds: solve the tension field (sim/folds/tension_field.h), print it, render the folded
+// membrane and draw the wrinkle lines on a photo (folds_overlay.h).
+
+#include "app/folds_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "app/folds_overlay.h"
+#include "app/frame_mesh.h"
+#include "app/run_command.h"
+#include "app/scene.h"
+#include "render/renderer.h"
+
+namespace weft::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* status_name(sim::TensionFieldStatus s) {
+  switch (s) {
+    case sim::TensionFieldStatus::converged: return "converged";
+    case sim::TensionFieldStatus::tolerance_not_met: return "tolerance_not_met";
+    case sim::TensionFieldStatus::no_wrinkling: return "no_wrinkling";
+  }
+  return "?";
+}
+
+void print_text(const sim::TensionFieldInputs& in, const sim::TensionFieldResult& r) {
+  std::printf("weft folds: h = %g cm, L = %g cm, d = %g cm (span l = %g cm), t = %g mm, "
+              "E = %g MPa, w = %g N/mm^2, nu = %g, c = %g\n",
+              1e2 * in.height_m, 1e2 * in.width_m, 1e2 * in.support_shift_m, 1e2 * r.span_m,
+              1e3 * in.thickness_m, 1e-6 * in.youngs_modulus_Pa, 1e-6 * in.weight_N_m2,
+              in.poisson_ratio, in.load_constant);
+  std::printf("  sigma_cr  %.4g Pa (eq. 7)\n", r.critical_stress_Pa);
+  if (r.status == sim::TensionFieldStatus::no_wrinkling) {
+    std::printf("  status    %s\n", r.message.c_str());
+    return;
+  }
+  std::printf("  Q         %.4g (%s)\n", r.ratio, r.ratio_given ? "given" : "eq. 7 at equality");
+  std::printf("  n         %d\n", r.wrinkles);
+  std::printf("  z_max     %.3g cm\n", 1e2 * r.z_max_m);
+  std::string amplitudes;
+  for (double a : r.amplitudes_m) {
+    char cm[32];
+    std::snprintf(cm, sizeof cm, "%s%.4g", amplitudes.empty() ? "" : ", ", 1e2 * a);
+    amplitudes += cm;
+  }
+  std::printf("  a_i       %s cm (i = 0..%d)\n", amplitudes.c_str(), r.wrinkles);
+  std::printf("  L'        %.4g cm (%+.2f %% from L)\n", 1e2 * r.boundary_length_m,
+              1e2 * r.relative_error);
+  std::printf("  status    %s\n", r.message.c_str());
+}
+
+// A camera on the −y side (where positive folds bulge), a little to the right and above,
+// framing the membrane hanging from top_center.
+render::RenderSettings membrane_render_settings(const sim::FoldPattern& p, const sim::Vec3& top,
+                                                int width, int height) {
+  render::RenderSettings s;
+  s.width = width;
+  s.height = height;
+  const double extent = std::max(1.1 * p.height_m, 0.75 * p.span_m * height / width * 1.6);
+  const Eigen::Vector3d target(top.x(), top.y(), top.z() - 0.55 * p.height_m);
+  const double distance = 1.9 * extent;
+  s.camera.target = target;
+  s.camera.eye = target + Eigen::Vector3d(0.35 * distance, -distance, 0.12 * distance);
+  s.camera.far_m = 10.0 * distance;
+  s.light_direction = {0.7, -0.5, 0.6};  // grazing from the right: the folds cast shade
+  s.back_color = s.front_color;          // one fabric colour on both sides
+  return s;
+}
+
+}  // namespace
+
+std::string folds_flag(const std::string& field) {
+  if (field == "h") return "--h-cm";
+  if (field == "L") return "--L-cm";
+  if (field == "d") return "--d-cm";
+  if (field == "t") return "--t-mm";
+  if (field == "E") return "--E-MPa";
+  if (field == "w") return "--w-N-mm2";
+  return "--" + field;  // --nu, --c, --Q, --tolerance
+}
+
+nlohmann::json folds_json(const sim::TensionFieldInputs& in, const sim::TensionFieldResult& r) {
+  nlohmann::json j;
+  j["inputs"] = {{"height_m", in.height_m},
+                 {"width_m", in.width_m},
+                 {"support_shift_m", in.support_shift_m},
+                 {"thickness_m", in.thickness_m},
+                 {"youngs_modulus_Pa", in.youngs_modulus_Pa},
+                 {"poisson_ratio", in.poisson_ratio},
+                 {"weight_N_m2", in.weight_N_m2},
+                 {"load_constant", in.load_constant},
+                 {"tolerance", in.tolerance}};
+  j["span_m"] = r.span_m;
+  j["critical_stress_Pa"] = r.critical_stress_Pa;
+  j["Q"] = r.status == sim::TensionFieldStatus::no_wrinkling ? nlohmann::json() : nlohmann::json(r.ratio);
+  j["Q_given"] = r.ratio_given;
+  j["n"] = r.wrinkles;
+  j["z_max_m"] = r.z_max_m;
+  j["amplitudes_m"] = r.amplitudes_m;
+  j["boundary_length_m"] = r.boundary_length_m;
+  j["relative_error"] = r.relative_error;
+  j["status"] = status_name(r.status);
+  j["converged"] = r.converged();
+  j["message"] = r.message;
+  return j;
+}
+
+FoldedMembrane folded_membrane(const sim::FoldPattern& p, sim::MembraneShape shape,
+                               const sim::Vec3& top_center_m) {
+  // About 1 cm cells, at most 240 vertices a side: the top strips of a curtain are a few cm.
+  const double cell = std::max(0.01, std::max(p.width_m, p.height_m) / 239.0);
+  sim::GridSpec spec;
+  spec.size_u_m = p.width_m;
+  spec.size_v_m = p.height_m;
+  spec.nu = std::max<sim::Index>(2, static_cast<sim::Index>(std::lround(p.width_m / cell)) + 1);
+  spec.nv = std::max<sim::Index>(2, static_cast<sim::Index>(std::lround(p.height_m / cell)) + 1);
+  spec.origin = top_center_m - sim::Vec3(0.5 * p.width_m, 0.0, 0.0);
+  spec.warp_axis = sim::Vec3(1.0, 0.0, 0.0);   // across
+  spec.weft_axis = sim::Vec3(0.0, 0.0, -1.0);  // down
+  FoldedMembrane m{sim::make_grid(spec), {}};
+  m.x = sim::fold_rest_positions(p, m.mesh.rest_positions, top_center_m, shape);
+  return m;
+}
+
+int run_folds(const FoldsOptions& options) {
+  const sim::TensionFieldInputs& in = options.inputs;
+  sim::TensionFieldResult result;
+  try {
+    result = sim::solve_tension_field(in);
+  } catch (const sim::TensionFieldInputError& e) {
+    throw SceneError(folds_flag(e.field()) + ": " + e.what());
+  }
+  const sim::FoldPattern pattern = sim::make_fold_pattern(in, result, options.interpolation);
+
+  // Check everything the outputs need before writing anything.
+  std::optional<render::Image> photo;
+  std::optional<OverlayMapping> mapping;
+  if (options.overlay) {
+    if (!options.supports)
+      throw SceneError("--overlay needs --supports x1,y1,x2,y2: the supports' pixels in the photo");
+    if (!fs::is_regular_file(*options.overlay))
+      throw SceneError("--overlay: " + options.overlay->string() + ": no such file");
+    try {
+      photo = render::read_image(*options.overlay);
+    } catch (const std::exception& e) {
+      throw SceneError(std::string("--overlay: ") + e.what());
+    }
+    OverlayPlacement placement = parse_supports(*options.supports);
+    placement.bottom_px = options.bottom_px;
+    mapping = overlay_mapping(pattern, placement, photo->width(), photo->height());
+  } else if (options.supports || options.bottom_px) {
+    throw SceneError("--supports and --bottom place the photo of --overlay PHOTO, which is missing");
+  }
+  int width = 640, height = 480;
+  if (options.size) std::tie(width, height) = parse_size(*options.size, "--size");
+
+  if (options.json)
+    std::printf("%s\n", folds_json(in, result).dump(2).c_str());
+  else
+    print_text(in, result);
+
+  const fs::path dir = options.out.value_or(fs::path("out") / "folds");
+  if (options.out) {
+    const sim::Vec3 top(0.0, 0.0, 1.1 * in.height_m + 0.1);
+    const FoldedMembrane m = folded_membrane(pattern, options.shape, top);
+    render::RenderSettings settings = membrane_render_settings(pattern, top, width, height);
+    const std::unique_ptr<render::Renderer> renderer = render::make_renderer(settings);
+    fs::create_directories(dir);
+    render::write_png(renderer->render(to_render_mesh(m.mesh, m.x), settings, {}),
+                      dir / "folds.png");
+    std::fprintf(stderr, "weft: wrote %s\n", (dir / "folds.png").c_str());
+  }
+  if (photo) {
+    fs::create_directories(dir);
+    render::write_png(draw_fold_overlay(std::move(*photo), pattern, *mapping),
+                      dir / "folds_overlay.png");
+    std::fprintf(stderr, "weft: wrote %s\n", (dir / "folds_overlay.png").c_str());
+  }
+  return exit_ok;
+}
+
+}  // namespace weft::app
