@@ -3,6 +3,7 @@
 
 #include "app/measure_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -89,6 +90,10 @@ void print_table(const Scene& scene, const SceneMeasurement& m) {
   } else {
     lines.emplace_back("drape coefficient, folds", "not measured: no support under the cloth");
   }
+  if (m.curtain)
+    lines.emplace_back("curtain folds (bulges down the centre)",
+                       std::to_string(m.curtain->folds) +
+                           format(" (hysteresis %.3g mm)", 1e3 * m.curtain->min_prominence_m));
   lines.emplace_back("max speed at the end", format("%.3g mm/s", 1e3 * last.max_speed_m_s));
   lines.emplace_back("self-intersections at the end", std::to_string(m.self_intersections));
   std::size_t width = 0;
@@ -140,11 +145,13 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
   const auto triangles = mesh.triangles();
   const sim::DrapeMeasureSettings settings;
 
+  const double frame_dt_s = 1.0 / scene.fps;
   const auto record = [&](int frame) {
     MeasureRow row;
     row.frame = frame;
     const sim::Diagnostics d = simulator.diagnostics();
-    row.time_s = simulator.state().time_s;
+    // Without dynamics the simulator does not run: the frames' times still advance.
+    row.time_s = scene.dynamics ? simulator.state().time_s : frame * frame_dt_s;
     row.kinetic_energy_J = d.kinetic_energy_J;
     row.max_speed_m_s = d.max_speed_m_s;
     if (m.support) {
@@ -156,11 +163,11 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
     if (on_frame) on_frame(row);
   };
   record(0);
-  const double frame_dt_s = 1.0 / scene.fps;
   for (int frame = 1; frame <= scene.frames; ++frame) {
-    simulator.advance(frame * frame_dt_s - simulator.state().time_s);
+    if (scene.dynamics) simulator.advance(frame * frame_dt_s - simulator.state().time_s);
     record(frame);
   }
+  if (hangs_as_curtain(scene)) m.curtain = sim::count_curtain_folds(mesh, simulator.state().x);
   std::vector<double> time_s, speed_m_s;
   for (const MeasureRow& r : m.rows) {
     time_s.push_back(r.time_s);
@@ -172,7 +179,22 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
   return m;
 }
 
+bool hangs_as_curtain(const Scene& scene) {
+  const sim::Vec3 g = scene.sim.gravity_m_s2;
+  if (!(g.norm() > 0.0) || scene.grid.weft_axis.normalized().dot(g.normalized()) < 1.0 - 1e-9)
+    return false;
+  const sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  const std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
+  const auto is_pinned = [&](sim::Index v) {
+    return std::binary_search(pinned.begin(), pinned.end(), v);
+  };
+  return is_pinned(mesh.index(0, 0)) && is_pinned(mesh.index(mesh.nu - 1, 0));
+}
+
 std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulator& simulator) {
+  if (hangs_as_curtain(scene))
+    return std::to_string(sim::count_curtain_folds(simulator.mesh(), simulator.state().x).folds) +
+           " curtain folds (bulges down the centre column)";
   const auto support = sim::find_support(scene.sim.obstacles, cloth_center_m(simulator.mesh()));
   const double specimen_m2 = sim::specimen_rest_area_m2(simulator.mesh());
   if (!support || !(specimen_m2 > support->area_m2)) return std::nullopt;

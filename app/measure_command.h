@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/scene.h"
+#include "sim/measure/curtain_folds.h"
 #include "sim/measure/drape_measure.h"
 #include "sim/measure/settle.h"
 #include "sim/simulator.h"
@@ -42,7 +43,12 @@ struct SceneMeasurement {
   std::optional<double> settle_time_s;       // none: still moving at the end
   std::optional<sim::DrapeShape> final_drape;  // at the last frame, with a support
   int self_intersections = 0;                // edge–triangle crossings at the last frame
+  std::optional<sim::CurtainFolds> curtain;   // at the last frame, for a curtain (hangs_as_curtain)
 };
+
+// Whether the cloth hangs as a curtain: weft along gravity (its top edge at v = 0) and both
+// top corners pinned — the folds are then counted down its centre column (sim/measure/curtain_folds.h).
+bool hangs_as_curtain(const Scene& scene);
 
 // The cloth centre a support is looked for under: the mean rest position of the used vertices.
 sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh);

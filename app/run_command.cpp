@@ -140,6 +140,14 @@ int run_scene(const RunOptions& options) {
       scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
       1e3 * simulator->time_step(), 1e3 * simulator->critical_time_step(),
       renderer->description().c_str());
+  if (scene.tension_field) {
+    const sim::TensionFieldResult folds = sim::solve_tension_field(tension_field_inputs(
+        *scene.tension_field, scene.grid, scene.material, scene.sim.gravity_m_s2));
+    std::fprintf(stderr, "weft: initial shape: tension-field folds (seed 001): %s\n",
+                 folds.message.c_str());
+  }
+  if (!scene.dynamics)
+    std::fprintf(stderr, "weft: simulation.dynamics is false: every frame shows the initial shape\n");
   if (options.explain) {
     std::printf("weft: the simulation runs, per step:\n");
     for (const std::string& line : simulator->explain()) std::printf("  %s\n", line.c_str());
@@ -159,7 +167,7 @@ int run_scene(const RunOptions& options) {
     row.frame = frame;
     auto start = std::chrono::steady_clock::now();
     try {
-      simulator->advance(frame * frame_dt - simulator->state().time_s);
+      if (scene.dynamics) simulator->advance(frame * frame_dt - simulator->state().time_s);
     } catch (const sim::DivergenceError& e) {
       progress.finish();
       std::fprintf(stderr, "weft: error: frame %d: %s\n", frame, e.what());

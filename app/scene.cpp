@@ -161,6 +161,11 @@ void read_cloth(ObjectReader r, Scene& scene) {
     r.fail("weft_axis", std::string("expected a unit vector orthogonal to warp_axis, got ") + got);
   }
   scene.material = read_material(r.object("material"));
+  if (r.has("initial_shape")) {
+    ObjectReader shape = r.object("initial_shape");
+    scene.tension_field = read_tension_field_shape(shape.required_object("tension_field"));
+    shape.finish();
+  }
   for (ObjectReader& pin : r.objects("pins")) {
     sim::PinPath path;
     scene.pins.push_back(read_pin(pin, path));
@@ -367,7 +372,8 @@ sim::SelfCollisionSettings read_self_collision(ObjectReader r) {
 }
 
 // "simulation": integrator settings (sim::SimSettings).
-void read_simulation(ObjectReader r, sim::SimSettings& s) {
+void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics) {
+  dynamics = r.boolean("dynamics", dynamics);
   std::vector<std::pair<std::string, sim::ClothModel>> models;
   for (sim::ClothModel m : sim::all_cloth_models) models.emplace_back(sim::cloth_model_name(m), m);
   s.model = r.enumeration<sim::ClothModel>("model", models, s.model);
@@ -507,7 +513,10 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     scene.sim.obstacles.push_back(read_obstacle(obstacle, motion));
     scene.sim.obstacle_motions.push_back(std::move(motion));
   }
-  read_simulation(top.object("simulation"), scene.sim);
+  read_simulation(top.object("simulation"), scene.sim, scene.dynamics);
+  if (scene.tension_field)
+    check_tension_field_scene(*scene.tension_field, scene.grid, scene.material,
+                              scene.sim.gravity_m_s2, source);
   read_output(top.object("output"), scene);
   read_render(top.object("render"), scene.render);
   top.finish();
@@ -551,6 +560,10 @@ std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene.source + ": cloth.material: " + e.what());
   }
+  if (scene.tension_field)
+    simulator->set_initial_positions(folded_start(*scene.tension_field, scene.grid, scene.material,
+                                                  scene.sim.gravity_m_s2, simulator->mesh())
+                                         .x);
   for (std::size_t k = 0; k < scene.pin_paths.size(); ++k) {
     if (scene.pin_paths[k].moves())
       simulator->set_pin_path(sim::resolve_pins({scene.pins[k]}, simulator->mesh()),

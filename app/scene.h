@@ -3,10 +3,12 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "app/tension_field_scene.h"
 #include "render/raster.h"
 #include "sim/grid.h"
 #include "sim/material.h"
@@ -33,6 +35,11 @@ struct Scene {
   std::vector<sim::PinSpec> pins;
   std::vector<sim::PinPath> pin_paths;  // one per pin; empty: the pin stays put
   sim::SimSettings sim;
+  // cloth.initial_shape.tension_field: the cloth starts laid onto Conci's folds
+  // (app/tension_field_scene.h); none: it starts flat.
+  std::optional<TensionFieldShape> tension_field;
+  // simulation.dynamics: false shows the initial shape in every frame without simulating.
+  bool dynamics = true;
 
   double fps = 24.0;  // output frames per second of simulated time
   int frames = 72;    // frames written; frame k (1-based) shows time k / fps

@@ -177,6 +177,8 @@ const std::vector<NamedUnit>& unit_table() {
       {"kgf", {standard_gravity_m_s2, force}},
       {"Pa", {1.0, pressure}},
       {"kPa", {1e3, pressure}},
+      {"MPa", {1e6, pressure}},
+      {"GPa", {1e9, pressure}},
       {"rad", {1.0, none}},
       {"deg", {pi / 180.0, none}},
   };
@@ -207,6 +209,8 @@ Dimension dimension_of(Quantity kind) {
       return {0, 0, -1};
     case Quantity::angle:
       return none;
+    case Quantity::stress:
+      return pressure;
   }
   return none;
 }
@@ -231,6 +235,8 @@ std::string quantity_name(Quantity kind) {
       return "an inverse time";
     case Quantity::angle:
       return "an angle";
+    case Quantity::stress:
+      return "a stress";
   }
   return "a quantity";
 }
@@ -255,6 +261,8 @@ std::string quantity_description(Quantity kind) {
       return "an inverse time such as 1/s";
     case Quantity::angle:
       return "an angle such as deg or rad";
+    case Quantity::stress:
+      return "a stress (or modulus) such as Pa, MPa or GPa";
   }
   return quantity_name(kind);
 }
@@ -279,6 +287,8 @@ std::string si_unit_symbol(Quantity kind) {
       return "1/s";
     case Quantity::angle:
       return "rad";
+    case Quantity::stress:
+      return "Pa";
   }
   return "";
 }

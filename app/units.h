@@ -51,6 +51,7 @@ enum class Quantity {
   acceleration,      // [m/s²]
   inverse_time,      // [1/s]  e.g. mass-proportional damping α
   angle,             // [rad]
+  stress,            // [Pa]   e.g. Young's modulus
 };
 
 // Bad quantity text. what() reads "expected <kind> such as …, got '<text>' (<reason>)".

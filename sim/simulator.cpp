@@ -80,6 +80,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   }
   m_state.x = m_mesh.rest_positions;
   m_state.v = Matrix3X::Zero(n, 3);
+  m_initial_x = m_state.x;
 
   // Symplectic Euler, velocity Verlet and central difference are stable for h < 2/ω_max (RK4
   // for h < 2√2/ω_max, explicit Euler never without damping); ω_max² ≤ max_i bound_i / m_i
@@ -112,6 +113,21 @@ void Simulator::advance(double dt_s) {
   m_state.time_s = t_end;  // no drift from summing substeps
 }
 
+void Simulator::set_initial_positions(const Matrix3X& x) {
+  if (m_steps > 0)
+    throw std::invalid_argument("initial positions can only be set before the first step");
+  if (x.rows() != m_state.x.rows())
+    throw std::invalid_argument("initial positions: expected " + std::to_string(m_state.x.rows()) +
+                                " vertices, got " + std::to_string(x.rows()));
+  for (Index i = 0; i < x.rows(); ++i)
+    if (!x.row(i).allFinite())
+      throw std::invalid_argument("initial positions: vertex " + std::to_string(i) +
+                                  " has a non-finite position");
+  m_state.x = x;
+  m_state.v.setZero();
+  m_initial_x = x;
+}
+
 void Simulator::set_pin_path(const std::vector<Index>& vertices, const PinPath& path) {
   for (Index v : vertices) {
     if (std::find(m_pinned.begin(), m_pinned.end(), v) == m_pinned.end())
@@ -130,7 +146,7 @@ void Simulator::move_pins(double h_s) {
 }
 
 Eigen::RowVector3d Simulator::pin_position(const MovingPin& pin, double time_s) const {
-  return m_mesh.rest_positions.row(pin.vertex) + m_pin_paths[pin.path].offset_at(time_s).transpose();
+  return m_initial_x.row(pin.vertex) + m_pin_paths[pin.path].offset_at(time_s).transpose();
 }
 
 // Fast projection's multipliers give the constraint force to carry (carried_tension.h);

@@ -112,6 +112,11 @@ class Simulator {
   void set_pin_path(const std::vector<Index>& vertices, const PinPath& path);
   // One step of h seconds: forces → integrate → project → collide → check.
   void step(double h_s);
+  // Starts the cloth from these positions (#V×3, m) instead of its flat rest state, at rest:
+  // e.g. a tension-field fold pattern (sim/folds/). Pins hold their vertices where they are
+  // given here, and moving pins' paths are offsets from there. Throws std::invalid_argument
+  // after the first step, for a wrong size, or naming a vertex with a non-finite position.
+  void set_initial_positions(const Matrix3X& x);
 
   const State& state() const { return m_state; }
   const ClothMesh& mesh() const { return m_mesh; }
@@ -158,6 +163,7 @@ class Simulator {
   };
   std::vector<MovingPin> m_moving_pins;
   std::vector<PinPath> m_pin_paths;
+  Matrix3X m_initial_x;  // #V×3: where the cloth started, from which moving pins are offset
   Eigen::RowVector3d pin_position(const MovingPin& pin, double time_s) const;
   Eigen::VectorXd m_mass_kg;       // #V lumped masses
   Eigen::VectorXd m_inv_mass;      // #V, 0 for pinned vertices

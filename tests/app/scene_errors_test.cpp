@@ -69,7 +69,7 @@ TEST(SceneErrors, UnknownKeyNestedNamesItsPath) {
   s["cloth"]["materal"] = Json::object();
   EXPECT_EQ(error_of(s),
             "scene.json: cloth.materal: unknown key; did you mean 'material'? (known keys here: "
-            "size, resolution, shape, origin, warp_axis, weft_axis, material, pins)");
+            "size, resolution, shape, origin, warp_axis, weft_axis, material, initial_shape, pins)");
   s = valid_scene();
   s["cloth"]["material"]["densty"] = 0.2;
   EXPECT_CONTAINS(error_of(s),
