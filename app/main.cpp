@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "app/diff_command.h"
 #include "app/folds_command.h"
 #include "app/measure_command.h"
 #include "app/run_command.h"
@@ -131,6 +132,27 @@ int main(int argc, char** argv) {
   folds_cmd->add_option("--supports", folds_supports, "x1,y1,x2,y2: the supports' pixels in the photo");
   folds_cmd->add_option("--bottom", folds_bottom, "Pixel row of the cloth's bottom at the middle (default: same scale as across)");
 
+  // weft diff (issue 8): image comparison with explicit thresholds and its own exit codes.
+  DiffOptions diff;
+  std::string diff_a, diff_b, diff_heatmap;
+  CLI::App* diff_cmd = app.add_subcommand(
+      "diff", "Compare two images: mean/RMS/max difference, PSNR, SSIM, pixels over a threshold; "
+              "exit 0 pass, 1 warn, 2 fail, 3 size mismatch, 4 unreadable file, 5 bad arguments");
+  diff_cmd->add_option("a", diff_a, "First image (PNG or JPG)")->required();
+  diff_cmd->add_option("b", diff_b, "Second image (PNG or JPG)")->required();
+  diff_cmd->add_option("--heatmap", diff_heatmap, "Write a heatmap of the differences to this PNG");
+  diff_cmd->add_flag("--json", diff.json, "Print the comparison as one JSON object");
+  diff_cmd->add_option("--warn", diff.warn,
+                       "Thresholds that warn, e.g. 'psnr<40,ssim<0.99' (metrics: mean, rms, max, "
+                       "psnr, ssim, over); repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  diff_cmd->add_option("--fail", diff.fail, "Thresholds that fail, e.g. 'ssim<0.95,over>0.01'; repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  diff_cmd->add_option("--pixel-threshold", diff.pixel_threshold,
+                       "A pixel differs when a channel differs by more than this (0..255, default 8)");
+
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);
     return exit_bad_input;
@@ -140,10 +162,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::fprintf(stderr, "weft: error: %s (see weft --help)\n", e.what());
-    return exit_bad_input;
+    return diff_cmd->parsed() ? diff_bad_arguments : exit_bad_input;  // diff: 1 means "warn"
   }
 
   try {
+    if (diff_cmd->parsed()) {
+      diff.a = diff_a;
+      diff.b = diff_b;
+      if (!diff_heatmap.empty()) diff.heatmap = diff_heatmap;
+      return run_diff(diff);
+    }
     if (run_cmd->parsed()) {
       if (!scene_path.empty()) run.scene = scene_path;
       if (!out_dir.empty()) run.out = out_dir;

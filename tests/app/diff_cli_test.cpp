@@ -1,0 +1,79 @@
+// End to end through the real `weft diff`: pass, warn and fail against explicit thresholds,
+// JSON output, a heatmap PNG, and the exit codes of bad input — 3 size mismatch, 4 unreadable
+// file, 5 bad arguments.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "render/image.h"
+#include "tests/app/cli_test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using weft::app::test::run_weft;
+using weft::render::Image;
+
+class DiffCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "diff_cli";
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+    Image a(48, 32, {120, 80, 40}), b = a;
+    for (int y = 8; y < 16; ++y)
+      for (int x = 8; x < 16; ++x) b.set(x, y, {200, 80, 40});  // 64 of 1536 pixels
+    weft::render::write_png(a, m_dir / "a.png");
+    weft::render::write_png(b, m_dir / "b.png");
+    weft::render::write_png(Image(40, 32), m_dir / "small.png");
+  }
+  std::string path(const char* name) const { return (m_dir / name).string(); }
+  fs::path m_dir;
+};
+
+TEST_F(DiffCli, ThresholdsDecideTheExitCode) {
+  const std::string ab = "diff " + path("a.png") + " " + path("b.png");
+  EXPECT_EQ(run_weft("diff " + path("a.png") + " " + path("a.png") + " --fail 'psnr<99'").exit_code, 0);
+  EXPECT_EQ(run_weft(ab).exit_code, 0) << "no thresholds: pass";
+  const auto warn = run_weft(ab + " --warn 'over>0.01' --fail 'over>0.5'");
+  EXPECT_EQ(warn.exit_code, 1) << warn.output;
+  EXPECT_NE(warn.output.find("over 0.0416667 > 0.01 (warn)"), std::string::npos) << warn.output;
+  const auto fail = run_weft(ab + " --warn 'ssim<0.999' --fail 'max>50,psnr<99'");
+  EXPECT_EQ(fail.exit_code, 2) << fail.output;
+  EXPECT_NE(fail.output.find("max 80 > 50 (fail)"), std::string::npos) << fail.output;
+}
+
+TEST_F(DiffCli, JsonAndHeatmap) {
+  const auto r = run_weft("diff " + path("a.png") + " " + path("b.png") + " --json --heatmap " +
+                          path("heat.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // stdout holds the JSON object; stderr's "wrote …" line is mixed into the output.
+  const std::size_t open = r.output.find('{'), close = r.output.rfind('}');
+  ASSERT_NE(open, std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output.substr(open, close - open + 1));
+  EXPECT_EQ(j["max"], 80);
+  EXPECT_NEAR(j["over"].get<double>(), 64.0 / 1536.0, 1e-12);
+  EXPECT_NEAR(j["channels"]["r"]["mean"].get<double>(), 80.0 * 64 / 1536, 1e-9);
+  EXPECT_EQ(j["result"], "pass");
+  const Image heat = weft::render::read_image(m_dir / "heat.png");
+  EXPECT_EQ(heat.width(), 48);
+}
+
+TEST_F(DiffCli, BadInputHasItsOwnExitCode) {
+  const auto size = run_weft("diff " + path("a.png") + " " + path("small.png"));
+  EXPECT_EQ(size.exit_code, 3) << size.output;
+  EXPECT_NE(size.output.find("sizes differ"), std::string::npos);
+  const auto missing = run_weft("diff " + path("a.png") + " " + path("nope.png"));
+  EXPECT_EQ(missing.exit_code, 4) << missing.output;
+  EXPECT_NE(missing.output.find("nope.png"), std::string::npos);
+  const auto bad = run_weft("diff " + path("a.png") + " " + path("b.png") + " --warn 'sharpness<3'");
+  EXPECT_EQ(bad.exit_code, 5) << bad.output;
+  EXPECT_NE(bad.output.find("unknown metric 'sharpness'"), std::string::npos);
+  EXPECT_EQ(run_weft("diff " + path("a.png")).exit_code, 5);
+}
+
+}  // namespace
