@@ -9,6 +9,7 @@
 #include "app/scene.h"
 #include "app/stability_command.h"
 #include "app/sweep_command.h"
+#include "app/turntable_command.h"
 #include "app/version.h"
 
 namespace {
@@ -48,6 +49,11 @@ int main(int argc, char** argv) {
   int samples = 0;
   run_cmd->add_option("--samples", samples,
                       "Ray tracer samples per pixel (overrides render.raytrace.samples)");
+  std::string export_meshes;
+  run_cmd->add_option("--export-meshes", export_meshes,
+                      "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; normals, "
+                      "UVs = material coordinates in metres)")
+      ->check(CLI::IsMember({"obj", "ply", "gltf"}));
   run_cmd->add_flag("--explain", run.explain,
                     "Print the terms and phases the simulation runs, and each phase's share of its time");
 
@@ -132,6 +138,33 @@ int main(int argc, char** argv) {
   folds_cmd->add_option("--supports", folds_supports, "x1,y1,x2,y2: the supports' pixels in the photo");
   folds_cmd->add_option("--bottom", folds_bottom, "Pixel row of the cloth's bottom at the middle (default: same scale as across)");
 
+  // weft turntable (issue 7): the camera orbits a scene's final drape or a mesh file.
+  TurntableOptions turntable;
+  turntable.command_line = run.command_line;
+  std::string turntable_input, turntable_out, turntable_size, turntable_renderer;
+  int turntable_samples = 0, turntable_sim_frames = 0;
+  double turntable_elevation_deg = 0.0;
+  CLI::App* turntable_cmd = app.add_subcommand(
+      "turntable", "Orbit the camera around a scene's final drape (or a mesh file): write "
+                   "turntable_0001.png, ..., contact_sheet.png, and turntable.mp4/.gif with ffmpeg");
+  turntable_cmd->add_option("input", turntable_input,
+                            "Scene file (.json; simulated to its last frame first) or mesh file "
+                            "(.obj, .ply, .stl, .gltf, .glb, .fbx)")
+      ->required();
+  turntable_cmd->add_option("--frames", turntable.frames,
+                            "Images around the orbit; frame i at azimuth 360*i/N (default 36)");
+  turntable_cmd->add_option("--out", turntable_out, "Output folder (default: out/<input name>_turntable)");
+  turntable_cmd->add_option("--size", turntable_size, "Image size WIDTHxHEIGHT (overrides render.size)");
+  turntable_cmd->add_option("--renderer", turntable_renderer, "raster or raytrace (overrides render.renderer)")
+      ->check(CLI::IsMember({"raster", "raytrace"}));
+  turntable_cmd->add_option("--samples", turntable_samples, "Ray tracer samples per pixel");
+  turntable_cmd->add_option("--elevation-deg", turntable_elevation_deg,
+                            "Camera elevation above the cloth centre, degrees (default: the scene camera's)");
+  turntable_cmd->add_option("--distance-scale", turntable.orbit.distance_scale,
+                            "Factor on the scene camera's distance to its target (default 1)");
+  turntable_cmd->add_option("--sim-frames", turntable_sim_frames,
+                            "Simulate to this frame instead of output.frames");
+
   // weft diff (issue 8): image comparison with explicit thresholds and its own exit codes.
   DiffOptions diff;
   std::string diff_a, diff_b, diff_heatmap;
@@ -152,6 +185,7 @@ int main(int argc, char** argv) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   diff_cmd->add_option("--pixel-threshold", diff.pixel_threshold,
                        "A pixel differs when a channel differs by more than this (0..255, default 8)");
+
 
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);
@@ -180,7 +214,18 @@ int main(int argc, char** argv) {
       if (!shading.empty()) run.normals_shading = shading == "normals";
       if (!renderer.empty()) run.renderer = renderer;
       if (run_cmd->count("--samples")) run.samples = samples;
+      if (!export_meshes.empty()) run.export_meshes = parse_mesh_format(export_meshes, "--export-meshes");
       return run_scene(run);
+    }
+    if (turntable_cmd->parsed()) {
+      turntable.input = turntable_input;
+      if (!turntable_out.empty()) turntable.out = turntable_out;
+      if (!turntable_size.empty()) turntable.size = turntable_size;
+      if (!turntable_renderer.empty()) turntable.renderer = turntable_renderer;
+      if (turntable_cmd->count("--samples")) turntable.samples = turntable_samples;
+      if (turntable_cmd->count("--elevation-deg")) turntable.orbit.elevation_deg = turntable_elevation_deg;
+      if (turntable_cmd->count("--sim-frames")) turntable.sim_frames = turntable_sim_frames;
+      return run_turntable(turntable);
     }
     if (sweep_cmd->parsed()) {
       if (!sweep_scene.empty()) sweep.scene = sweep_scene;

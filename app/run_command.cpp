@@ -33,6 +33,13 @@ std::string frame_name(int frame) {
   return name;
 }
 
+// mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
+std::string mesh_name(int frame, MeshFormat format) {
+  char name[32];
+  std::snprintf(name, sizeof name, "mesh_%04d.%s", frame, mesh_extension(format));
+  return name;
+}
+
 // Removes the frames of an earlier run in the same folder, so that the folder holds one run.
 int remove_old_frames(const fs::path& dir) {
   static const std::regex pattern(R"(frame_\d{4,}\.png)");
@@ -48,6 +55,8 @@ void write_text(const fs::path& path, const std::string& text) {
   out << text;
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
+
+}  // namespace
 
 void apply_overrides(Scene& scene, const RunOptions& options) {
   if (options.frames) scene.frames = checked_frames_option(*options.frames);
@@ -73,8 +82,6 @@ void apply_overrides(Scene& scene, const RunOptions& options) {
     scene.render.raytrace.samples_per_pixel = *options.samples;
   }
 }
-
-}  // namespace
 
 int checked_frames_option(int frames) {
   if (frames < 1 || frames > 100000)
@@ -189,9 +196,11 @@ int run_scene(const RunOptions& options) {
       obstacle_objects = obstacle_render_objects(scene.sim.obstacles, scene.sim.obstacle_motions,
                                                  simulator->state().time_s, scene.render);
     }
-    const render::Image image = renderer->render(
-        to_render_mesh(simulator->mesh(), simulator->state().x), scene.render, obstacle_objects);
+    const render::RenderMesh cloth = to_render_mesh(simulator->mesh(), simulator->state().x);
+    const render::Image image = renderer->render(cloth, scene.render, obstacle_objects);
     render::write_png(image, dir / frame_name(frame));
+    if (options.export_meshes)
+      export_mesh(cloth, *options.export_meshes, dir / mesh_name(frame, *options.export_meshes));
     row.render_ms = ms_since(start);
     stats.write(row);
 

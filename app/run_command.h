@@ -5,7 +5,11 @@
 #include <optional>
 #include <string>
 
+#include "app/mesh_export.h"
+
 namespace weft::app {
+
+struct Scene;
 
 struct RunOptions {
   std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
@@ -15,6 +19,7 @@ struct RunOptions {
   std::optional<bool> normals_shading;         // overrides render.shading (true: normals)
   std::optional<std::string> renderer;         // "raster" or "raytrace", overrides render.renderer
   std::optional<int> samples;                  // overrides render.raytrace.samples
+  std::optional<MeshFormat> export_meshes;     // also write mesh_0001.<ext>, ... (mesh_export.h)
   bool explain = false;                        // print the simulated terms and phase times
   std::string command_line;                    // recorded in run.txt
 };
@@ -24,6 +29,10 @@ enum ExitCode : int { exit_ok = 0, exit_bad_input = 1, exit_failure = 2, exit_di
 
 // Runs the job; bad input throws SceneError before anything is written.
 int run_scene(const RunOptions& options);
+
+// Applies the options that override scene settings (frames, size, shading, renderer, samples);
+// throws SceneError naming the option. Also used by weft turntable.
+void apply_overrides(Scene& scene, const RunOptions& options);
 
 // The --frames option of run, measure and sweep: returns it if it is in 1..100000, else throws
 // SceneError naming the option.

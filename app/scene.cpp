@@ -13,6 +13,7 @@
 #include <optional>
 #include <utility>
 
+#include "app/cloth_surface_scene.h"
 #include "app/json_reader.h"
 #include "app/mesh_file.h"
 #include "app/units.h"
@@ -491,6 +492,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
                    {"raytrace", render::RendererKind::raytrace}},
       s.renderer);
   read_raytrace(r.object("raytrace"), s.raytrace);
+  read_cloth_surface(r, s.cloth_surface);  // subdivision, thickness, texture
   r.finish();
 }
 

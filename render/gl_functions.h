@@ -49,6 +49,7 @@ namespace weft::render::detail {
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
+  X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                                 \
   X(PFNGLCREATESHADERPROC, CreateShader)                                     \
   X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \
   X(PFNGLCOMPILESHADERPROC, CompileShader)                                   \

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -212,9 +213,10 @@ struct RasterRenderer::Impl {
   std::string description() const { return m_context->description(); }
 
  private:
-  // Vertex array and buffers of one mesh: attribute 0 position, 1 normal, 3 floats each.
+  // Vertex array and buffers of one mesh: attribute 0 position, 1 normal, 3 floats each;
+  // 2 UV (material coordinates), 2 floats, zero for meshes without UVs.
   struct MeshBuffers {
-    GLuint vao = 0, positions = 0, normals = 0, indices = 0;
+    GLuint vao = 0, positions = 0, normals = 0, uvs = 0, indices = 0;
   };
 
   void create_buffers(MeshBuffers& b);
@@ -222,6 +224,8 @@ struct RasterRenderer::Impl {
   void release_gl();
   void ensure_targets(int width, int height, int samples);
   void ensure_shadow_map();
+  // Binds the cloth texture to texture unit 1, uploading it when the image changed.
+  void bind_cloth_texture(const Image& image);
   void upload(const MeshBuffers& b, const RenderMesh& mesh);
   void draw_shadow_map(const Eigen::Matrix4f& light_matrix, GLsizei cloth_index_count,
                        GLsizei object_index_count);
@@ -231,7 +235,8 @@ struct RasterRenderer::Impl {
   // per index range with its front and back colours.
   void use_surface_program(const RenderSettings& s, const Eigen::Matrix4f& view_projection);
   void draw_surface(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-                    const Eigen::Vector3f& front, const Eigen::Vector3f& back);
+                    const Eigen::Vector3f& front, const Eigen::Vector3f& back,
+                    bool textured = false);
   Image read_back(int width, int height);
 
   GLint uniform(GLuint program, const char* name) const {
@@ -245,6 +250,9 @@ struct RasterRenderer::Impl {
   }
   void set(GLuint program, const char* name, const Eigen::Matrix4f& m) const {
     m_gl.UniformMatrix4fv(uniform(program, name), 1, GL_FALSE, m.data());  // column-major
+  }
+  void set(GLuint program, const char* name, const Eigen::Vector2f& v) const {
+    m_gl.Uniform2f(uniform(program, name), v.x(), v.y());
   }
   void set(GLuint program, const char* name, float x) const {
     m_gl.Uniform1f(uniform(program, name), x);
@@ -260,6 +268,9 @@ struct RasterRenderer::Impl {
   MeshBuffers m_cloth, m_objects;
   GLuint m_empty_vao = 0;                       // the ground needs no attributes
   GLuint m_shadow_fbo = 0, m_shadow_depth = 0;  // created on first use
+  GLuint m_cloth_texture = 0;                   // created on first use
+  const Image* m_cloth_texture_image = nullptr;  // what it holds (compared by address)
+  std::shared_ptr<const Image> m_cloth_texture_owner;  // keeps that address valid
   // Size-dependent render targets, recreated when width, height or samples change.
   int m_target_width = 0, m_target_height = 0, m_target_samples = -1;
   GLuint m_msaa_fbo = 0, m_msaa_color = 0, m_msaa_depth = 0;
@@ -303,6 +314,7 @@ void RasterRenderer::Impl::create_buffers(MeshBuffers& b) {
   m_gl.GenVertexArrays(1, &b.vao);
   m_gl.GenBuffers(1, &b.positions);
   m_gl.GenBuffers(1, &b.normals);
+  m_gl.GenBuffers(1, &b.uvs);
   m_gl.GenBuffers(1, &b.indices);
   // Attribute 0: position, attribute 1: normal; 3 floats each, tightly packed.
   m_gl.BindVertexArray(b.vao);
@@ -312,14 +324,17 @@ void RasterRenderer::Impl::create_buffers(MeshBuffers& b) {
   m_gl.BindBuffer(GL_ARRAY_BUFFER, b.normals);
   m_gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
   m_gl.EnableVertexAttribArray(1);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, b.uvs);
+  m_gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  m_gl.EnableVertexAttribArray(2);
   m_gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.indices);  // recorded in the VAO
   m_gl.BindVertexArray(0);
   m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 void RasterRenderer::Impl::release_buffers(MeshBuffers& b) {
-  const GLuint buffers[] = {b.positions, b.normals, b.indices};
-  if (m_gl.DeleteBuffers) m_gl.DeleteBuffers(3, buffers);
+  const GLuint buffers[] = {b.positions, b.normals, b.uvs, b.indices};
+  if (m_gl.DeleteBuffers) m_gl.DeleteBuffers(4, buffers);
   if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(1, &b.vao);
   b = MeshBuffers{};
 }
@@ -331,6 +346,10 @@ void RasterRenderer::Impl::release_gl() {
   if (m_gl.DeleteFramebuffers) m_gl.DeleteFramebuffers(3, framebuffers);
   if (m_gl.DeleteRenderbuffers) m_gl.DeleteRenderbuffers(3, renderbuffers);
   if (m_gl.DeleteTextures) m_gl.DeleteTextures(1, &m_shadow_depth);
+  if (m_gl.DeleteTextures) m_gl.DeleteTextures(1, &m_cloth_texture);
+  m_cloth_texture = 0;
+  m_cloth_texture_image = nullptr;
+  m_cloth_texture_owner.reset();
   release_buffers(m_cloth);
   release_buffers(m_objects);
   if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(1, &m_empty_vao);
@@ -418,6 +437,14 @@ void RasterRenderer::Impl::upload(const MeshBuffers& b, const RenderMesh& mesh) 
   m_gl.BindBuffer(GL_ARRAY_BUFFER, b.normals);
   m_gl.BufferData(GL_ARRAY_BUFFER, bytes(mesh.normals.size(), sizeof(Eigen::Vector3f)),
                   mesh.normals.data(), GL_STREAM_DRAW);
+  static_assert(sizeof(Eigen::Vector2f) == 2 * sizeof(float), "UVs are uploaded as-is");
+  const std::vector<Eigen::Vector2f> no_uvs(
+      mesh.uvs.size() == mesh.positions.size() ? 0 : mesh.positions.size(),
+      Eigen::Vector2f::Zero());
+  const std::vector<Eigen::Vector2f>& uvs = no_uvs.empty() ? mesh.uvs : no_uvs;
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, b.uvs);
+  m_gl.BufferData(GL_ARRAY_BUFFER, bytes(uvs.size(), sizeof(Eigen::Vector2f)), uvs.data(),
+                  GL_STREAM_DRAW);
   m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
   m_gl.BindVertexArray(b.vao);  // the element buffer binding belongs to the VAO
   m_gl.BufferData(GL_ELEMENT_ARRAY_BUFFER,
@@ -503,9 +530,39 @@ void RasterRenderer::Impl::use_surface_program(const RenderSettings& s,
   set(p, "u_shading", s.shading == Shading::normals ? 1 : 0);
 }
 
+void RasterRenderer::Impl::bind_cloth_texture(const Image& image) {
+  if (m_cloth_texture == 0) {
+    m_gl.GenTextures(1, &m_cloth_texture);
+    m_cloth_texture_image = nullptr;
+  }
+  m_gl.ActiveTexture(GL_TEXTURE1);
+  m_gl.BindTexture(GL_TEXTURE_2D, m_cloth_texture);
+  if (m_cloth_texture_image != &image) {
+    // GL's t = 0 is the first row uploaded: the image's bottom row goes first (texture.h).
+    const auto row_bytes = static_cast<std::size_t>(image.width()) * 3;
+    std::vector<std::uint8_t> rows(row_bytes * static_cast<std::size_t>(image.height()));
+    for (int y = 0; y < image.height(); ++y) {
+      std::copy_n(image.data() + static_cast<std::size_t>(image.height() - 1 - y) * row_bytes,
+                  row_bytes, rows.data() + static_cast<std::size_t>(y) * row_bytes);
+    }
+    m_gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    m_gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, image.width(), image.height(), 0, GL_RGB,
+                    GL_UNSIGNED_BYTE, rows.data());
+    m_gl.GenerateMipmap(GL_TEXTURE_2D);
+    m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    m_cloth_texture_image = &image;
+  }
+  m_gl.ActiveTexture(GL_TEXTURE0);
+  check_gl_error(m_gl, "uploading the cloth texture");
+}
+
 void RasterRenderer::Impl::draw_surface(const MeshBuffers& b, std::size_t first_index,
                                         GLsizei index_count, const Eigen::Vector3f& front,
-                                        const Eigen::Vector3f& back) {
+                                        const Eigen::Vector3f& back, bool textured) {
+  set(m_cloth_program, "u_use_texture", textured ? 1 : 0);
   set(m_cloth_program, "u_front_color", front);
   set(m_cloth_program, "u_back_color", back);
   m_gl.BindVertexArray(b.vao);
@@ -549,6 +606,7 @@ Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSe
                                    const std::vector<RenderObject>& objects) {
   m_context->make_current();
   validate(s, m_max_size);
+  validate(s.cloth_surface);
   validate_for_gl(cloth_input);
   // Vertex normals are required; computed on a copy when missing or stale in size.
   RenderMesh cloth_storage;
@@ -590,7 +648,17 @@ Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSe
   if (s.ground) draw_ground(s, view_projection, shadow ? &light_matrix : nullptr);
   if (cloth_count + object_count > 0) {
     use_surface_program(s, view_projection);
-    if (cloth_count > 0) draw_surface(m_cloth, 0, cloth_count, s.front_color, s.back_color);
+    const ClothTexture& texture = s.cloth_surface.texture;
+    const bool textured = texture.image && cloth.uvs.size() == cloth.positions.size();
+    if (textured) {
+      m_cloth_texture_owner = texture.image;
+      bind_cloth_texture(*texture.image);
+      set(m_cloth_program, "u_texture", 1);  // texture unit 1
+      set(m_cloth_program, "u_texture_repeat",
+          Eigen::Vector2f(texture.repeat_m.cast<float>()));
+    }
+    if (cloth_count > 0)
+      draw_surface(m_cloth, 0, cloth_count, s.front_color, s.back_color, textured);
     for (const ObjectRange& r : ranges) {
       if (r.index_count > 0)
         draw_surface(m_objects, r.first_index, r.index_count, r.color, r.color);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/cloth_surface.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/render_mesh.h"
@@ -38,6 +39,9 @@ struct RenderSettings {
   int msaa_samples = 4;
   RendererKind renderer = RendererKind::raster;
   RayTraceSettings raytrace;  // read by the ray tracer only
+  // Subdivision, thickness shell and texture of the cloth (render/cloth_surface.h): the mesh
+  // aids are applied by the Renderer interface (renderer.h), the texture by each renderer.
+  ClothSurface cloth_surface;
 };
 
 // Bad input: throws std::invalid_argument naming the field ("RenderSettings: ...") unless the

@@ -64,6 +64,7 @@ const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
   if (mesh.normals.size() == mesh.positions.size()) return mesh;
   storage.positions = mesh.positions;
   storage.triangles = mesh.triangles;
+  storage.uvs = mesh.uvs;
   compute_vertex_normals(storage);
   return storage;
 }

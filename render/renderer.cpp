@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "render/cloth_surface.h"
+
 #ifdef WEFT_WITH_EMBREE_RT
 #include "render/raytrace/ray_tracer.h"
 #endif
@@ -17,7 +19,9 @@ class Raster final : public Renderer {
   explicit Raster(const RenderSettings& s) : m_renderer(make_osmesa_context(s.width, s.height)) {}
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects) override {
-    return m_renderer.render(cloth, settings, objects);
+    RenderMesh storage;
+    return m_renderer.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
+                             objects);
   }
   std::string description() const override { return m_renderer.description(); }
 
@@ -30,7 +34,9 @@ class RayTrace final : public Renderer {
  public:
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects) override {
-    return m_tracer.render(cloth, settings, objects);
+    RenderMesh storage;
+    return m_tracer.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
+                           objects);
   }
   std::string description() const override { return m_tracer.description(); }
 

@@ -1,7 +1,8 @@
 #pragma once
 // One interface for the renderers, chosen by name: "raster" (OSMesa rasterizer, raster.h) or
 // "raytrace" (Embree ray tracer, raytrace/ray_tracer.h, CMake option WEFT_WITH_EMBREE_RT).
-// Both draw the cloth and objects of one frame from the same RenderSettings.
+// Both draw the cloth and objects of one frame from the same RenderSettings; the cloth first
+// goes through prepare_cloth_mesh (render/cloth_surface.h: subdivision, thickness shell).
 
 #include <memory>
 #include <string>

@@ -3,7 +3,9 @@
 //   1. the camera ray through a sub-pixel point (the pixel centre for 1 sample per pixel);
 //      a miss shows the background,
 //   2. at each hit: the sun, its visibility from one shadow ray into the sun's cone, times the
-//      cosine with the shading normal; diffuse reflectance plus, on the cloth, the sheen lobe,
+//      cosine with the shading normal; diffuse reflectance plus, on the cloth, the sheen lobe
+//      (a textured cloth's front takes its reflectance from the texture at the hit's material
+//      coordinates),
 //   3. bounces left: continue along a cosine-weighted direction (the sky's radiance where it
 //      escapes); none left: the sky times the unoccluded fraction of ao_samples cosine-weighted
 //      rays of length ao_distance_m (ambient occlusion),
@@ -90,6 +92,11 @@ bool intersect(const FrameView& view, const Eigen::Vector3f& origin,
                    : geometric;
   hit.geometric = geometric;
   hit.reflectance = front ? surface.front : surface.back;
+  if (front && surface.texture && surface.texture->image &&
+      mesh.uvs.size() == mesh.positions.size()) {
+    const Eigen::Vector2f uv = w * mesh.uvs[t[0]] + u * mesh.uvs[t[1]] + v * mesh.uvs[t[2]];
+    hit.reflectance = reflectance_from_color(sample_cloth_texture(*surface.texture, uv));
+  }
   return true;
 }
 

@@ -12,6 +12,7 @@
 #include "render/raster.h"
 #include "render/raytrace/ray_tracer.h"
 #include "render/render_mesh.h"
+#include "render/texture.h"
 
 namespace weft::render::rt {
 
@@ -22,6 +23,9 @@ struct SurfaceShading {
   Eigen::Vector3f back{0.0f, 0.0f, 0.0f};   // and of the back side
   bool sheen = false;                       // the cloth: diffuse + sheen
   bool ground = false;                      // the ground: grid lines and fade (camera rays)
+  // Replaces `front` by the texture's colour at the hit's material coordinates (mesh->uvs,
+  // interpolated) when set and the mesh has one UV per vertex (render/texture.h).
+  const ClothTexture* texture = nullptr;
 };
 
 // One frame's scene and settings in the units and form the inner loop wants.

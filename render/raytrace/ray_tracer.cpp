@@ -84,6 +84,7 @@ Image RayTracer::Impl::render(const RenderMesh& cloth_input, const RenderSetting
                               const std::vector<RenderObject>& objects) {
   validate(s, max_image_side);
   validate_raytrace(s.raytrace);
+  validate(s.cloth_surface);
   validate(cloth_input);
   RenderMesh cloth_storage;
   const RenderMesh& cloth = with_normals(cloth_input, cloth_storage);
@@ -122,8 +123,10 @@ Image RayTracer::Impl::render(const RenderMesh& cloth_input, const RenderSetting
     view.surfaces[g.id()] = surface;
   };
   float extent = std::max(max_abs_coordinate(cloth), max_abs_coordinate(ground));
-  add_surface(cloth_geometry, {&cloth, rt::reflectance_from_color(s.front_color),
-                               rt::reflectance_from_color(s.back_color), true, false});
+  add_surface(cloth_geometry,
+              {&cloth, rt::reflectance_from_color(s.front_color),
+               rt::reflectance_from_color(s.back_color), true, false,
+               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr});
   const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
   add_surface(ground_geometry, {&ground, ground_reflectance, ground_reflectance, false, true});
   for (std::size_t k = 0; k < objects.size(); ++k) {

@@ -14,9 +14,11 @@ struct CommandResult {
   std::string output;  // stdout and stderr
 };
 
-// Runs `weft ARGS` through the shell and collects its output and exit code.
-inline CommandResult run_weft(const std::string& args) {
-  const std::string command = std::string(WEFT_EXECUTABLE) + " " + args + " 2>&1";
+// Runs `weft ARGS` through the shell and collects its output and exit code; `env` (e.g.
+// "PATH=/dir") is put before the command.
+inline CommandResult run_weft(const std::string& args, const std::string& env = "") {
+  const std::string command =
+      (env.empty() ? "" : env + " ") + std::string(WEFT_EXECUTABLE) + " " + args + " 2>&1";
   CommandResult r;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;

@@ -1,0 +1,281 @@
+// weft turntable (see turntable_command.h): load a scene and simulate it to its last frame
+// without writing anything (or load a mesh file), then render the orbit.
+
+#include "app/turntable_command.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <regex>
+
+#include "app/contact_sheet.h"
+#include "app/ffmpeg_video.h"
+#include "app/frame_mesh.h"
+#include "app/mesh_file.h"
+#include "app/obstacle_meshes.h"
+#include "app/progress.h"
+#include "app/run_command.h"
+#include "app/scene.h"
+#include "app/version.h"
+#include "render/renderer.h"
+#include "sim/simulator.h"
+
+namespace weft::app {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double pi = 3.14159265358979323846;
+constexpr int max_turntable_frames = 3600;
+constexpr int contact_sheet_max_width_px = 960;  // thumbnails shrink to keep the sheet this wide
+
+// What is rendered at every angle: the cloth (or mesh) and the obstacles.
+struct Subject {
+  std::string name;  // for the default output folder
+  std::string text;  // the scene file's text ("" for a mesh)
+  render::RenderSettings settings;
+  render::RenderMesh mesh;
+  std::vector<render::RenderObject> objects;
+  std::unique_ptr<render::Renderer> renderer;  // made from `settings`
+};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool is_mesh_file(const fs::path& path) {
+  static const char* const extensions[] = {".obj", ".ply", ".stl", ".gltf", ".glb", ".fbx"};
+  const std::string ext = lower(path.extension().string());
+  return std::find(std::begin(extensions), std::end(extensions), ext) != std::end(extensions);
+}
+
+std::string frame_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "turntable_%04d.png", frame);
+  return name;
+}
+
+void check_options(const TurntableOptions& o) {
+  if (o.frames < 1 || o.frames > max_turntable_frames)
+    throw SceneError("--frames: expected an integer in 1.." +
+                     std::to_string(max_turntable_frames) + " (images around the orbit), got " +
+                     std::to_string(o.frames));
+  if (o.orbit.elevation_deg && !(std::fabs(*o.orbit.elevation_deg) < 90.0))
+    throw SceneError("--elevation-deg: expected degrees strictly between -90 and 90, got " +
+                     std::to_string(*o.orbit.elevation_deg));
+  if (!(o.orbit.distance_scale > 0.0) || !std::isfinite(o.orbit.distance_scale))
+    throw SceneError("--distance-scale: expected a finite factor > 0, got " +
+                     std::to_string(o.orbit.distance_scale));
+  if (o.sim_frames && (*o.sim_frames < 1 || *o.sim_frames > 100000))
+    throw SceneError("--sim-frames: expected an integer in 1..100000, got " +
+                     std::to_string(*o.sim_frames));
+  if (!fs::exists(o.input))
+    throw SceneError(o.input.string() + ": no such file (expected a scene .json or a mesh file)");
+  if (lower(o.input.extension().string()) != ".json" && !is_mesh_file(o.input))
+    throw SceneError(o.input.string() +
+                     ": expected a scene (.json) or a mesh file (.obj, .ply, .stl, .gltf, .glb, "
+                     ".fbx)");
+}
+
+// --size, --renderer and --samples, applied as `weft run` applies them.
+void apply_render_overrides(Scene& scene, const TurntableOptions& o) {
+  RunOptions run;
+  run.size = o.size;
+  run.renderer = o.renderer;
+  run.samples = o.samples;
+  apply_overrides(scene, run);
+}
+
+Subject scene_subject(const TurntableOptions& o) {
+  Scene scene = load_scene(o.input);
+  apply_render_overrides(scene, o);
+  if (o.sim_frames) scene.frames = *o.sim_frames;
+  const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+  Subject s;
+  // A renderer that cannot start fails before the simulation time is spent.
+  s.renderer = render::make_renderer(scene.render);
+
+  std::fprintf(stderr, "weft: %s — simulating %d frames at %g fps to t = %.3g s, %dx%d vertices\n",
+               scene.source.c_str(), scene.frames, scene.fps, scene.frames / scene.fps,
+               scene.grid.nu, scene.grid.nv);
+  // Frame by frame, as weft run advances, so the last frame is the one weft run writes.
+  const double frame_dt = 1.0 / scene.fps;
+  Progress progress(stderr, scene.frames, "simulate");
+  if (scene.dynamics) {
+    for (int frame = 1; frame <= scene.frames; ++frame) {
+      simulator->advance(frame * frame_dt - simulator->state().time_s);
+      char detail[64];
+      std::snprintf(detail, sizeof detail, "t = %.2f s", simulator->state().time_s);
+      progress.update(frame, detail);
+    }
+  }
+  progress.finish();
+
+  s.name = scene.name;
+  s.text = scene.text;
+  s.settings = scene.render;
+  s.mesh = to_render_mesh(simulator->mesh(), simulator->state().x);
+  s.objects = obstacle_render_objects(scene.sim.obstacles, scene.sim.obstacle_motions,
+                                      simulator->state().time_s, scene.render);
+  return s;
+}
+
+Subject mesh_subject(const TurntableOptions& o) {
+  TriangleMesh file;
+  try {
+    file = load_triangle_mesh(o.input);
+  } catch (const MeshFileError& e) {
+    throw SceneError(e.what());
+  }
+  Subject s;
+  s.name = o.input.stem().string();
+  Scene defaults = default_scene();  // the default render settings, with the overrides
+  apply_render_overrides(defaults, o);
+  s.settings = defaults.render;
+  for (Eigen::Index v = 0; v < file.vertices.rows(); ++v)
+    s.mesh.positions.push_back(file.vertices.row(v).transpose().cast<float>());
+  for (const auto& t : file.triangles)
+    s.mesh.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+                                static_cast<std::uint32_t>(t[2])});
+  try {
+    render::validate(s.mesh, o.input.string());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(e.what());
+  }
+  render::compute_vertex_normals(s.mesh);
+  const Eigen::Vector3d lo = file.vertices.colwise().minCoeff().transpose();
+  const Eigen::Vector3d hi = file.vertices.colwise().maxCoeff().transpose();
+  const render::Camera& c = s.settings.camera;
+  s.settings.camera = framing_camera(lo, hi, c.eye - c.target, c.fov_y_deg,
+                                     static_cast<double>(s.settings.width) / s.settings.height);
+  // The mesh stands on the ground.
+  s.settings.ground_z_m = lo.z();
+  s.settings.ground_half_size_m = 5.0 * std::max((hi - lo).norm(), 1e-3);
+  s.renderer = render::make_renderer(s.settings);
+  return s;
+}
+
+Eigen::Vector3d bounding_box_center(const render::RenderMesh& mesh) {
+  Eigen::Vector3f lo = mesh.positions.front(), hi = lo;
+  for (const Eigen::Vector3f& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (0.5f * (lo + hi)).cast<double>();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+int remove_old_frames(const fs::path& dir) {
+  static const std::regex pattern(R"(turntable_\d{4,}\.png)");
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
+      ++removed;
+  return removed;
+}
+
+std::string angle_label(double azimuth_deg) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g deg", azimuth_deg);
+  return text;
+}
+
+}  // namespace
+
+render::Camera framing_camera(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                              const Eigen::Vector3d& direction, double fov_y_deg, double aspect) {
+  const double radius_m = std::max(0.5 * (hi - lo).norm(), 1e-6);
+  const double half_fov_y = 0.5 * fov_y_deg * pi / 180.0;
+  const double half_fov_x = std::atan(std::tan(half_fov_y) * aspect);
+  const double half_fov = std::min(half_fov_y, half_fov_x);
+  const double distance_m = radius_m / (0.85 * std::sin(half_fov));
+  render::Camera camera;
+  camera.fov_y_deg = fov_y_deg;
+  camera.target = 0.5 * (lo + hi);
+  camera.eye = camera.target + direction.normalized() * distance_m;
+  camera.up = Eigen::Vector3d::UnitZ();
+  camera.near_m = 0.01 * distance_m;
+  camera.far_m = 100.0 * distance_m;
+  return camera;
+}
+
+int run_turntable(const TurntableOptions& options) {
+  check_options(options);
+  const bool is_scene = lower(options.input.extension().string()) == ".json";
+  Subject subject;
+  try {
+    subject = is_scene ? scene_subject(options) : mesh_subject(options);
+  } catch (const sim::DivergenceError& e) {
+    std::fprintf(stderr, "weft: error: %s: the simulation diverged: %s; nothing written\n",
+                 options.input.c_str(), e.what());
+    return exit_diverged;
+  }
+  render::Renderer& renderer = *subject.renderer;
+  const Eigen::Vector3d center = bounding_box_center(subject.mesh);
+  const render::Camera base = subject.settings.camera;
+
+  // The input is good: now the output folder.
+  const fs::path dir = options.out.value_or(fs::path("out") / (subject.name + "_turntable"));
+  fs::create_directories(dir);
+  if (const int removed = remove_old_frames(dir))
+    std::fprintf(stderr, "weft: replaced %d turntable frames of an earlier run in %s\n", removed,
+                 dir.c_str());
+  write_text(dir / "turntable.txt", "weft " + std::string(version()) + "\ncommand: " +
+                                        options.command_line + "\ninput: " +
+                                        options.input.string() + "\n");
+  if (is_scene) write_text(dir / "scene.json", subject.text);
+
+  const int n = options.frames;
+  std::fprintf(stderr,
+               "weft: turntable of %s — %d frames around (%.3g, %.3g, %.3g) m, %dx%d, %s\n",
+               options.input.c_str(), n, center.x(), center.y(), center.z(),
+               subject.settings.width, subject.settings.height, renderer.description().c_str());
+  const int columns = contact_sheet_columns(n, subject.settings.width, subject.settings.height);
+  const int thumb_width = std::min(subject.settings.width,
+                                   std::max(16, contact_sheet_max_width_px / columns - 8));
+  std::vector<render::Image> thumbnails;
+  std::vector<std::string> labels;
+  Progress progress(stderr, n, "frame");
+  for (int i = 0; i < n; ++i) {
+    render::RenderSettings settings = subject.settings;
+    settings.camera = orbit_camera(base, center, i, n, options.orbit);
+    const render::Image image = renderer.render(subject.mesh, settings, subject.objects);
+    render::write_png(image, dir / frame_name(i + 1));
+    thumbnails.push_back(thumbnail(image, thumb_width));
+    labels.push_back(angle_label(orbit_azimuth_deg(i, n)));
+    progress.update(i + 1, "azimuth " + labels.back());
+  }
+  progress.finish();
+  render::write_png(contact_sheet(thumbnails, labels, columns), dir / "contact_sheet.png");
+
+  int status = exit_ok;
+  if (const auto ffmpeg = find_on_path("ffmpeg")) {
+    for (const char* name : {"turntable.mp4", "turntable.gif"}) {
+      const VideoResult video =
+          encode_video(*ffmpeg, dir / "turntable_%04d.png", options.video_fps, dir / name);
+      if (!video.ok) {
+        std::fprintf(stderr, "weft: error: %s\n", video.message.c_str());
+        status = exit_failure;
+      }
+    }
+    if (status == exit_ok)
+      std::printf("weft: wrote %d frames, contact_sheet.png, turntable.mp4 and turntable.gif to "
+                  "%s (%s)\n",
+                  n, dir.c_str(), format_duration(progress.elapsed_s()).c_str());
+  } else {
+    std::printf("weft: ffmpeg not found: wrote PNGs and the contact sheet only; apt-get install "
+                "ffmpeg for mp4/gif\n");
+    std::printf("weft: wrote %d frames and contact_sheet.png to %s (%s)\n", n, dir.c_str(),
+                format_duration(progress.elapsed_s()).c_str());
+  }
+  return status;
+}
+
+}  // namespace weft::app

@@ -1,0 +1,39 @@
+#pragma once
+// `weft turntable SCENE|MESH`: the camera orbits the final drape of a scene (or a mesh file) and
+// writes turntable_0001.png, ..., contact_sheet.png and, with ffmpeg, turntable.mp4 and
+// turntable.gif (issue 7 item 4; camera path in orbit_camera.h).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "app/orbit_camera.h"
+
+namespace weft::app {
+
+struct TurntableOptions {
+  std::filesystem::path input;               // a scene (.json) or a mesh file (mesh_file.h)
+  std::optional<std::filesystem::path> out;  // default: out/<input stem>_turntable
+  int frames = 36;                           // images around the orbit, 1..3600
+  std::optional<std::string> size;           // "WxH", overrides render.size
+  std::optional<std::string> renderer;       // "raster" or "raytrace"
+  std::optional<int> samples;                // ray tracer samples per pixel
+  OrbitSettings orbit;                       // --elevation-deg, --distance-scale
+  std::optional<int> sim_frames;             // a scene is simulated to this frame (output.frames)
+  double video_fps = 12.0;                   // of turntable.mp4/.gif: 36 frames take 3 s
+  std::string command_line;                  // recorded in turntable.txt
+};
+
+// Runs the job. Bad input (missing or unknown file, bad option) throws SceneError before
+// anything is written; returns exit_diverged when the scene's simulation diverges (nothing
+// written) and exit_failure when ffmpeg fails (the PNGs and contact sheet are kept).
+int run_turntable(const TurntableOptions& options);
+
+// The camera that shows a mesh whose bounding box is [lo, hi] whole, looking at its centre
+// from the direction of `direction` (eye − target of the default camera), with the field of
+// view fov_y_deg and an image aspect width/height: the bounding sphere fills about 85 % of the
+// narrower field of view. Near and far planes scale with the distance.
+render::Camera framing_camera(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                              const Eigen::Vector3d& direction, double fov_y_deg, double aspect);
+
+}  // namespace weft::app

@@ -1,0 +1,42 @@
+// The cloth's rendering aids applied in one place for both renderers (cloth_surface.h).
+
+#include "render/cloth_surface.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "render/loop_subdivision.h"
+#include "render/thickness_shell.h"
+
+namespace weft::render {
+
+void validate(const ClothSurface& surface) {
+  const auto fail = [](const std::string& what) {
+    throw std::invalid_argument("RenderSettings: cloth_surface." + what);
+  };
+  if (surface.subdivision_levels < 0 || surface.subdivision_levels > max_subdivision_levels) {
+    fail("subdivision_levels must be in 0.." + std::to_string(max_subdivision_levels) + ", got " +
+         std::to_string(surface.subdivision_levels));
+  }
+  if (!(surface.thickness_m >= 0.0) || !std::isfinite(surface.thickness_m))
+    fail("thickness_m must be finite and >= 0");
+  if (surface.texture.image) {
+    if (surface.texture.image->width() < 1 || surface.texture.image->height() < 1)
+      fail("texture: the image is empty");
+    const Eigen::Vector2d& r = surface.texture.repeat_m;
+    if (!(r.minCoeff() > 0.0) || !r.allFinite())
+      fail("texture.repeat_m must be finite and > 0 along warp and weft");
+  }
+}
+
+const RenderMesh& prepare_cloth_mesh(const RenderMesh& mesh, const ClothSurface& surface,
+                                     RenderMesh& storage) {
+  validate(surface);
+  if (surface.subdivision_levels == 0 && surface.thickness_m == 0.0) return mesh;
+  storage = loop_subdivide(mesh, surface.subdivision_levels);
+  if (surface.thickness_m > 0.0) storage = make_thickness_shell(storage, surface.thickness_m);
+  return storage;
+}
+
+}  // namespace weft::render

@@ -1,0 +1,29 @@
+#pragma once
+// Rendering aids for the cloth, shared by both renderers (seed 003): Loop subdivision for a
+// smooth surface from a coarse simulation mesh, an optional thickness shell ("quilting"), and
+// a texture mapped by material coordinates. RenderSettings::cloth_surface holds them; the
+// Renderer interface (render/renderer.h) applies the mesh aids with prepare_cloth_mesh before
+// either renderer draws, and each renderer samples the texture (render/texture.h).
+
+#include "render/render_mesh.h"
+#include "render/texture.h"
+
+namespace weft::render {
+
+struct ClothSurface {
+  int subdivision_levels = 0;  // Loop levels, 0..3 (render/loop_subdivision.h)
+  double thickness_m = 0.0;    // 0: a single two-sided sheet; > 0: a closed shell this thick
+  ClothTexture texture;        // no image: the plain front colour
+};
+
+// Throws std::invalid_argument naming the field ("RenderSettings: cloth_surface.…") unless
+// levels are in 0..3 and the thickness is finite and ≥ 0, and a texture, when given, is not
+// empty and repeats over finite lengths > 0.
+void validate(const ClothSurface& surface);
+
+// The cloth as drawn: `mesh` subdivided, then thickened. Returns `mesh` itself when there is
+// nothing to do, else the result built in `storage`.
+const RenderMesh& prepare_cloth_mesh(const RenderMesh& mesh, const ClothSurface& surface,
+                                     RenderMesh& storage);
+
+}  // namespace weft::render

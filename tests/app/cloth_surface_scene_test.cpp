@@ -1,0 +1,114 @@
+// The render block's cloth aids (app/cloth_surface_scene.h): subdivision, thickness and texture
+// are read into RenderSettings::cloth_surface; a texture file is found relative to the scene
+// file; bad values and a missing or unreadable image get an error naming the key and the file.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+#include "render/image.h"
+#include "tests/app/scene_test_support.h"
+
+namespace weft::app {
+namespace {
+
+Json scene_with_render(const Json& render) {
+  Json s = Json::parse(R"({
+    "description": "test scene",
+    "cloth": {"size": ["1 m", "1 m"], "resolution": [9, 9],
+              "material": {"density": "0.019 gf/cm^2"}},
+    "output": {"fps": 24, "frames": 2}
+  })");
+  s["render"] = render;
+  return s;
+}
+
+// A folder of its own under the build tree, emptied first.
+std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::path(WEFT_BINARY_DIR) / "test_output" / "cloth_surface_scene" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string error_parsing(const Json& scene, const std::filesystem::path& source) {
+  try {
+    parse_scene(scene.dump(), source.string());
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ClothSurfaceScene, DefaultsLeaveTheClothAlone) {
+  const Scene scene = test::parse_json_scene(scene_with_render(Json::object()));
+  EXPECT_EQ(scene.render.cloth_surface.subdivision_levels, 0);
+  EXPECT_EQ(scene.render.cloth_surface.thickness_m, 0.0);
+  EXPECT_FALSE(scene.render.cloth_surface.texture.image);
+}
+
+TEST(ClothSurfaceScene, ReadsSubdivisionThicknessAndAWovenCheck) {
+  const Scene scene = test::parse_json_scene(scene_with_render(Json::parse(R"({
+    "subdivision": 2, "thickness": "3 mm",
+    "texture": {"woven_check": {"stripes": 3, "warp": [1, 0, 0]}, "scale": ["20 cm", "10 cm"]}
+  })")));
+  const render::ClothSurface& c = scene.render.cloth_surface;
+  EXPECT_EQ(c.subdivision_levels, 2);
+  EXPECT_DOUBLE_EQ(c.thickness_m, 0.003);
+  ASSERT_TRUE(c.texture.image);
+  EXPECT_GT(c.texture.image->width(), 0);
+  EXPECT_DOUBLE_EQ(c.texture.repeat_m.x(), 0.2);
+  EXPECT_DOUBLE_EQ(c.texture.repeat_m.y(), 0.1);
+}
+
+TEST(ClothSurfaceScene, TextureFileIsRelativeToTheScene) {
+  const std::filesystem::path dir = fresh_dir("relative");
+  std::filesystem::create_directories(dir / "textures");
+  render::write_png(render::Image(6, 4, {10, 20, 30}), dir / "textures" / "check.png");
+  const Scene scene = parse_scene(
+      scene_with_render(Json::parse(R"({"texture": {"file": "textures/check.png"}})")).dump(),
+      (dir / "scene.json").string());
+  ASSERT_TRUE(scene.render.cloth_surface.texture.image);
+  EXPECT_EQ(scene.render.cloth_surface.texture.image->width(), 6);
+  EXPECT_EQ(scene.render.cloth_surface.texture.image->height(), 4);
+}
+
+TEST(ClothSurfaceScene, BadTextureFileNamesKeyAndFile) {
+  const std::filesystem::path dir = fresh_dir("bad");
+  const std::filesystem::path source = dir / "scene.json";
+  const std::string missing = error_parsing(
+      scene_with_render(Json::parse(R"({"texture": {"file": "nowhere.png"}})")), source);
+  EXPECT_CONTAINS(missing, "render.texture.file");
+  EXPECT_CONTAINS(missing, "nowhere.png");
+
+  std::ofstream(dir / "not_an_image.png") << "this is text";
+  const std::string garbage = error_parsing(
+      scene_with_render(Json::parse(R"({"texture": {"file": "not_an_image.png"}})")), source);
+  EXPECT_CONTAINS(garbage, "render.texture.file");
+  EXPECT_CONTAINS(garbage, "not_an_image.png");
+}
+
+TEST(ClothSurfaceScene, BadValuesNameTheirKey) {
+  const auto error_of = [](const char* render) {
+    return test::scene_error_of(scene_with_render(Json::parse(render)));
+  };
+  EXPECT_CONTAINS(error_of(R"({"subdivision": 4})"), "render.subdivision");
+  EXPECT_CONTAINS(error_of(R"({"thickness": "-1 mm"})"), "render.thickness");
+  EXPECT_CONTAINS(error_of(R"({"texture": {}})"), "exactly one of");
+  EXPECT_CONTAINS(error_of(R"({"texture": {"file": "a.png", "woven_check": {}}})"),
+                  "exactly one of");
+  EXPECT_CONTAINS(error_of(R"({"texture": {"woven_check": {"stripes": 0}}})"),
+                  "render.texture.woven_check.stripes");
+  EXPECT_CONTAINS(error_of(R"({"texture": {"woven_check": {}, "scale": [0, 1]}})"),
+                  "render.texture.scale");
+  EXPECT_CONTAINS(error_of(R"({"texture": {"woven_check": {}, "colour": 1}})"),
+                  "render.texture.colour");
+}
+
+}  // namespace
+}  // namespace weft::app

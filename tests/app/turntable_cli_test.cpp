@@ -1,0 +1,201 @@
+// End to end through the real `weft turntable` (and `weft run --export-meshes`): a tiny scene
+// and the icosphere mesh give N frames seen from N directions and a contact sheet; without
+// ffmpeg a clear note, with it the mp4 and gif (a stand-in ffmpeg checks the call and the exit
+// status); bad input is an error naming its cause, exit code 1, nothing written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render/image.h"
+#include "tests/app/cli_test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using weft::app::test::CommandResult;
+using weft::app::test::run_weft;
+using weft::render::Image;
+
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
+
+class TurntableCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "turntable_cli" / info->name();
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  fs::path write_file(const std::string& name, const std::string& text) const {
+    const fs::path path = m_dir / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  // A PATH with only a stand-in `ffmpeg` that exits with `status` after creating its output
+  // file (its last argument) — or, for status < 0, a PATH without ffmpeg.
+  std::string path_env(int status) const {
+    const fs::path bin = m_dir / "bin";
+    fs::create_directories(bin);
+    if (status >= 0) {
+      const fs::path script = bin / "ffmpeg";
+      std::ofstream(script) << "#!/bin/sh\nfor last; do :; done\n: > \"$last\"\necho \"$@\" >> \""
+                            << (m_dir / "ffmpeg_calls.txt").string() << "\"\nexit " << status
+                            << "\n";
+      fs::permissions(script, fs::perms::owner_all);
+    }
+    return "PATH=" + bin.string();
+  }
+  fs::path m_dir;
+};
+
+// A 9×9 cloth pinned at two corners, 2 frames; images of 64×48 pixels.
+const char* const tiny_scene = R"({
+  "description": "tiny turntable test scene",
+  "cloth": {"size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
+            "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}]},
+  "output": {"fps": 24, "frames": 2},
+  "render": {"size": [64, 48], "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]}}
+}
+)";
+
+int differing_pixels(const Image& a, const Image& b) {
+  int n = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) n += !(a.at(x, y) == b.at(x, y));
+  return n;
+}
+
+TEST_F(TurntableCli, SceneGivesFourFramesFromFourSidesAndAContactSheet) {
+  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path out = m_dir / "out";
+  const CommandResult r =
+      run_weft("turntable " + scene.string() + " --frames 4 --out " + out.string(), path_env(-1));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "ffmpeg not found: wrote PNGs and the contact sheet only; apt-get "
+                            "install ffmpeg for mp4/gif");
+  std::vector<Image> frames;
+  for (int i = 1; i <= 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "turntable_%04d.png", i);
+    ASSERT_TRUE(fs::exists(out / name)) << name;
+    frames.push_back(weft::render::read_image(out / name));
+    EXPECT_EQ(frames.back().width(), 64);
+    EXPECT_EQ(frames.back().height(), 48);
+  }
+  EXPECT_FALSE(fs::exists(out / "turntable_0005.png"));
+  // Four different views (the cloth is seen from four sides, the light stays put).
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      EXPECT_GT(differing_pixels(frames[static_cast<std::size_t>(i)],
+                                 frames[static_cast<std::size_t>(j)]), 64 * 48 / 50)
+          << i << " vs " << j;
+  ASSERT_TRUE(fs::exists(out / "contact_sheet.png"));
+  const Image sheet = weft::render::read_image(out / "contact_sheet.png");
+  EXPECT_GT(sheet.width(), 2 * 64);  // 2 × 2 thumbnails of full size
+  EXPECT_GT(sheet.height(), 2 * 48);
+  EXPECT_TRUE(fs::exists(out / "turntable.txt"));
+  EXPECT_TRUE(fs::exists(out / "scene.json"));
+  EXPECT_FALSE(fs::exists(out / "turntable.mp4"));
+}
+
+TEST_F(TurntableCli, MeshFileIsFramedAndTurned) {
+  const fs::path out = m_dir / "out";
+  const CommandResult r = run_weft("turntable " + std::string(WEFT_SOURCE_DIR) +
+                                       "/assets/meshes/icosphere_3.obj --frames 3 --size 64x48 "
+                                       "--out " + out.string(),
+                                   path_env(-1));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"turntable_0001.png", "turntable_0002.png", "turntable_0003.png",
+                           "contact_sheet.png"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  // The sphere is framed: it covers a good part of the image and does not touch its border.
+  const Image first = weft::render::read_image(out / "turntable_0001.png");
+  int covered = 0;
+  bool border = false;
+  for (int y = 0; y < first.height(); ++y)
+    for (int x = 0; x < first.width(); ++x) {
+      const weft::render::Rgb8 p = first.at(x, y);
+      const bool red = p.r > p.g + 40;  // the front colour
+      covered += red;
+      if (red && (x == 0 || y == 0 || x == first.width() - 1 || y == first.height() - 1))
+        border = true;
+    }
+  EXPECT_GT(covered, 64 * 48 / 10);
+  EXPECT_FALSE(border);
+  EXPECT_FALSE(fs::exists(out / "scene.json"));
+}
+
+TEST_F(TurntableCli, FfmpegMakesTheMp4AndGifAndItsFailureIsReported) {
+  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path out = m_dir / "out";
+  const std::string args = "turntable " + scene.string() + " --frames 2 --out " + out.string();
+  const CommandResult ok = run_weft(args, path_env(0));
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(out / "turntable.mp4"));
+  EXPECT_TRUE(fs::exists(out / "turntable.gif"));
+  std::ifstream calls(m_dir / "ffmpeg_calls.txt");
+  const std::string text((std::istreambuf_iterator<char>(calls)), std::istreambuf_iterator<char>());
+  EXPECT_CONTAINS(text, (out / "turntable_%04d.png").string());
+  EXPECT_CONTAINS(text, "libx264");
+  EXPECT_CONTAINS(text, "paletteuse");
+
+  const CommandResult failed = run_weft(args, path_env(3));
+  EXPECT_EQ(failed.exit_code, 2) << failed.output;
+  EXPECT_CONTAINS(failed.output, "turntable.mp4: ffmpeg failed with exit status 3");
+  EXPECT_TRUE(fs::exists(out / "contact_sheet.png"));  // kept
+}
+
+TEST_F(TurntableCli, BadInputIsAnErrorWithNothingWritten) {
+  const fs::path out = m_dir / "out";
+  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const CommandResult missing =
+      run_weft("turntable " + (m_dir / "nope.json").string() + " --out " + out.string());
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_CONTAINS(missing.output, "nope.json: no such file");
+
+  const CommandResult zero =
+      run_weft("turntable " + scene.string() + " --frames 0 --out " + out.string());
+  EXPECT_EQ(zero.exit_code, 1) << zero.output;
+  EXPECT_CONTAINS(zero.output, "--frames: expected an integer in 1..3600");
+
+  const fs::path text = write_file("notes.txt", "hello");
+  const CommandResult unknown = run_weft("turntable " + text.string() + " --out " + out.string());
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
+  EXPECT_CONTAINS(unknown.output, "notes.txt: expected a scene (.json) or a mesh file");
+
+  const fs::path broken = write_file("broken.obj", "v 0 0 0\nf 1 2 3\n");
+  const CommandResult bad_mesh = run_weft("turntable " + broken.string() + " --out " + out.string());
+  EXPECT_EQ(bad_mesh.exit_code, 1) << bad_mesh.output;
+  EXPECT_CONTAINS(bad_mesh.output, "broken.obj");
+
+  const CommandResult steep = run_weft("turntable " + scene.string() +
+                                       " --elevation-deg 95 --out " + out.string());
+  EXPECT_EQ(steep.exit_code, 1) << steep.output;
+  EXPECT_CONTAINS(steep.output, "--elevation-deg");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(TurntableCli, RunExportsOneMeshPerFrame) {
+  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path out = m_dir / "out";
+  const CommandResult r =
+      run_weft("run " + scene.string() + " --export-meshes ply --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"mesh_0001.ply", "mesh_0002.ply"}) {
+    std::ifstream in(out / name);
+    std::string magic;
+    in >> magic;
+    EXPECT_EQ(magic, "ply") << name;
+  }
+  const CommandResult bad =
+      run_weft("run " + scene.string() + " --export-meshes stl --out " + (m_dir / "bad").string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_CONTAINS(bad.output, "--export-meshes");
+  EXPECT_FALSE(fs::exists(m_dir / "bad"));
+}
+
+}  // namespace
