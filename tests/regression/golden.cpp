@@ -1,0 +1,106 @@
+// Golden-image regression support; see golden.h.
+
+#include "tests/regression/golden.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "app/frame_mesh.h"
+#include "app/obstacle_meshes.h"
+#include "app/scene.h"
+#include "render/renderer.h"
+#include "tests/app/coarse_scene.h"
+
+namespace weft::test {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool update_mode() {
+  const char* v = std::getenv("WEFT_REGRESSION_UPDATE");
+  return v && std::string(v) == "1";
+}
+
+void write_page(const fs::path& dir, const GoldenCase& c, const render::ImageDifference& d,
+                const std::string& verdict) {
+  std::ofstream html(dir / "index.html");
+  html << "<!doctype html><meta charset=\"utf-8\"><title>weft regression: " << c.name
+       << "</title>\n<style>body{font-family:sans-serif} img{image-rendering:pixelated;"
+          "width:480px;border:1px solid #888;cursor:pointer} td{padding:6px;vertical-align:top}"
+          "</style>\n<h1>" << c.name << ": " << verdict << "</h1>\n<p>scene " << c.scene << ", "
+       << c.resolution << "² grid, " << c.frames << " frames, " << c.renderer << ", " << c.width
+       << "×" << c.height << ". PSNR " << d.psnr_db << " dB (fail below " << c.min_psnr_db
+       << "), SSIM " << d.ssim << ", max difference " << d.max_abs << ", "
+       << 100.0 * d.fraction_over << " % of pixels differ by more than " << d.pixel_threshold
+       << " (fail above " << 100.0 * c.max_over << " %).</p>\n"
+       << "<table><tr><td>actual ⇄ expected (click to swap)<br><img id=\"swap\" src=\"actual.png\""
+          " onclick=\"this.src=this.src.endsWith('actual.png')?'expected.png':'actual.png';"
+          "document.getElementById('which').textContent=this.src.endsWith('actual.png')?"
+          "'actual':'expected'\"><br><span id=\"which\">actual</span></td>"
+          "<td>difference<br><img src=\"diff.png\"></td></tr>\n"
+          "<tr><td>actual<br><img src=\"actual.png\"></td><td>expected (golden: "
+       << golden_path(c).string() << ")<br><img src=\"expected.png\"></td></tr></table>\n";
+}
+
+}  // namespace
+
+render::Image render_case(const GoldenCase& c, double density_scale) {
+  app::Scene scene = app::test::coarse_scene(c.scene, c.resolution);
+  scene.material.density_kg_m2 *= density_scale;
+  scene.render.width = c.width;
+  scene.render.height = c.height;
+  scene.render.renderer =
+      c.renderer == "raytrace" ? render::RendererKind::raytrace : render::RendererKind::raster;
+  scene.render.raytrace.samples_per_pixel = c.samples;
+  const auto simulator = app::make_simulator(scene);
+  if (scene.dynamics && c.frames > 0) simulator->advance(c.frames / scene.fps);
+  const auto renderer = render::make_renderer(scene.render);
+  return renderer->render(app::to_render_mesh(simulator->mesh(), simulator->state().x),
+                          scene.render, app::obstacle_render_objects(scene.sim.obstacles, scene.render));
+}
+
+fs::path golden_path(const GoldenCase& c) {
+  return fs::path(WEFT_SOURCE_DIR) / "tests" / "data" / "golden" / (c.name + ".png");
+}
+
+fs::path evidence_page(const GoldenCase& c) {
+  return fs::path(WEFT_BINARY_DIR) / "regression" / c.name / "index.html";
+}
+
+::testing::AssertionResult matches_golden(const GoldenCase& c, const render::Image& actual) {
+  if (update_mode()) {
+    render::write_png(actual, golden_path(c));
+    return ::testing::AssertionSuccess() << "wrote " << golden_path(c);
+  }
+  if (!fs::exists(golden_path(c)))
+    return ::testing::AssertionFailure()
+           << "no golden image " << golden_path(c)
+           << " (make it with: cmake --build build --target regress-update)";
+  const render::Image expected = render::read_image(golden_path(c));
+  const fs::path dir = evidence_page(c).parent_path();
+  fs::remove_all(dir);
+  if (expected.width() != actual.width() || expected.height() != actual.height()) {
+    fs::create_directories(dir);
+    render::write_png(actual, dir / "actual.png");
+    return ::testing::AssertionFailure() << c.name << ": size " << actual.width() << "x"
+                                         << actual.height() << ", golden " << expected.width()
+                                         << "x" << expected.height() << "; actual.png in " << dir;
+  }
+  const render::ImageDifference d = render::compare_images(actual, expected, c.pixel_threshold);
+  const bool ok = d.psnr_db >= c.min_psnr_db && d.fraction_over <= c.max_over;
+  std::ostringstream numbers;
+  numbers << "PSNR " << d.psnr_db << " dB (min " << c.min_psnr_db << "), "
+          << 100.0 * d.fraction_over << " % of pixels over " << c.pixel_threshold << " (max "
+          << 100.0 * c.max_over << " %), SSIM " << d.ssim << ", max " << d.max_abs;
+  if (ok) return ::testing::AssertionSuccess() << c.name << ": " << numbers.str();
+  fs::create_directories(dir);
+  render::write_png(actual, dir / "actual.png");
+  render::write_png(expected, dir / "expected.png");
+  render::write_png(render::difference_heatmap(actual, expected, c.pixel_threshold), dir / "diff.png");
+  write_page(dir, c, d, "FAILED");
+  return ::testing::AssertionFailure() << c.name << " differs from its golden image: "
+                                       << numbers.str() << "; see " << evidence_page(c);
+}
+
+}  // namespace weft::test
