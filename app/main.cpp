@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::fprintf(stderr, "weft: error: %s (see weft --help)\n", e.what());
-    return diff_cmd->parsed() ? diff_bad_arguments : exit_bad_input;  // diff: 1 means "warn"
+    return diff_cmd->parsed() ? int{diff_bad_arguments} : int{exit_bad_input};  // diff: 1 is "warn"
   }
 
   try {

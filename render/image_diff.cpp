@@ -95,16 +95,17 @@ double ssim(const std::vector<double>& a, const std::vector<double>& b, int widt
     throw std::invalid_argument("ssim: expected two " + std::to_string(width) + "x" +
                                 std::to_string(height) + " luminance images");
   if (width < window || height < window) {  // one window of equal weights
+    const double count = static_cast<double>(n);
     double ma = 0, mb = 0;
     for (std::size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
-    ma /= n, mb /= n;
+    ma /= count, mb /= count;
     double va = 0, vb = 0, cab = 0;
     for (std::size_t i = 0; i < n; ++i) {
       va += (a[i] - ma) * (a[i] - ma);
       vb += (b[i] - mb) * (b[i] - mb);
       cab += (a[i] - ma) * (b[i] - mb);
     }
-    return ssim_term(ma, mb, va / n, vb / n, cab / n);
+    return ssim_term(ma, mb, va / count, vb / count, cab / count);
   }
   std::vector<double> aa(n), bb(n), ab(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -132,6 +133,7 @@ ImageDifference compare_images(const Image& a, const Image& b, int pixel_thresho
   std::array<double, 3> sum_abs{}, sum_sq{};
   long over = 0;
   const std::size_t pixels = static_cast<std::size_t>(a.width()) * static_cast<std::size_t>(a.height());
+  const double count = static_cast<double>(pixels);
   const std::uint8_t* pa = a.data();
   const std::uint8_t* pb = b.data();
   for (std::size_t p = 0; p < pixels; ++p) {
@@ -149,19 +151,19 @@ ImageDifference compare_images(const Image& a, const Image& b, int pixel_thresho
   double total_abs = 0.0, total_sq = 0.0;
   for (int c = 0; c < 3; ++c) {
     auto& ch = d.channels[static_cast<std::size_t>(c)];
-    ch.mean_abs = sum_abs[static_cast<std::size_t>(c)] / pixels;
-    ch.rms = std::sqrt(sum_sq[static_cast<std::size_t>(c)] / pixels);
+    ch.mean_abs = sum_abs[static_cast<std::size_t>(c)] / count;
+    ch.rms = std::sqrt(sum_sq[static_cast<std::size_t>(c)] / count);
     d.max_abs = std::max(d.max_abs, ch.max_abs);
     total_abs += sum_abs[static_cast<std::size_t>(c)];
     total_sq += sum_sq[static_cast<std::size_t>(c)];
   }
-  d.mean_abs = total_abs / (3.0 * pixels);
-  const double mse = total_sq / (3.0 * pixels);
+  d.mean_abs = total_abs / (3.0 * count);
+  const double mse = total_sq / (3.0 * count);
   d.rms = std::sqrt(mse);
   d.psnr_db = mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse)
                         : std::numeric_limits<double>::infinity();
   d.ssim = ssim(luminance(a), luminance(b), a.width(), a.height());
-  d.fraction_over = static_cast<double>(over) / static_cast<double>(pixels);
+  d.fraction_over = static_cast<double>(over) / count;
   return d;
 }
 
