@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "app/compare_command.h"
 #include "app/diff_command.h"
 #include "app/folds_command.h"
 #include "app/measure_command.h"
@@ -165,6 +166,29 @@ int main(int argc, char** argv) {
   turntable_cmd->add_option("--sim-frames", turntable_sim_frames,
                             "Simulate to this frame instead of output.frames");
 
+  // weft compare (issue 8 item 3): a render against a photo of the real cloth.
+  CompareOptions compare;
+  std::string compare_photo, compare_render, compare_mask_photo, compare_mask_render,
+      compare_transform, compare_out;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare", "Compare a render with a photo: segment both, align, print silhouette IoU, Chamfer "
+                 "distance, fold agreement, SSIM; write DIR/overlay.png and DIR/report.html");
+  compare_cmd->add_option("photo", compare_photo, "Photo (PNG or JPG, any size)")->required();
+  compare_cmd->add_option("render", compare_render, "Render (PNG or JPG; resampled onto the photo)")
+      ->required();
+  compare_cmd->add_option("--mask-photo", compare_mask_photo,
+                          "Mask image of the photo (white = cloth), instead of segmentation");
+  compare_cmd->add_option("--mask-render", compare_mask_render,
+                          "Mask image of the render (white = cloth), instead of segmentation");
+  compare_cmd->add_option("--transform", compare_transform,
+                          "s,tx,ty[,deg]: render pixels to photo pixels, p = s R(deg) r + t, "
+                          "instead of aligning the silhouettes");
+  compare_cmd->add_option("--out", compare_out, "Output folder (default: out/compare)");
+  compare_cmd->add_flag("--json", compare.json, "Print the numbers as one JSON object");
+  compare_cmd->add_option("--fold-sigma", compare.fold_sigma_px,
+                          "Gaussian sigma in photo pixels for the fold maps (default: 1 % of the "
+                          "diagonal, at least 1.5)");
+
   // weft diff (issue 8): image comparison with explicit thresholds and its own exit codes.
   DiffOptions diff;
   std::string diff_a, diff_b, diff_heatmap;
@@ -200,6 +224,15 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (compare_cmd->parsed()) {
+      compare.photo = compare_photo;
+      compare.render = compare_render;
+      if (!compare_mask_photo.empty()) compare.mask_photo = compare_mask_photo;
+      if (!compare_mask_render.empty()) compare.mask_render = compare_mask_render;
+      if (compare_cmd->count("--transform")) compare.transform = compare_transform;
+      if (!compare_out.empty()) compare.out = compare_out;
+      return run_compare(compare);
+    }
     if (diff_cmd->parsed()) {
       diff.a = diff_a;
       diff.b = diff_b;

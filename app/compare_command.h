@@ -1,0 +1,33 @@
+#pragma once
+// `weft compare PHOTO RENDER` (issue 8 item 3): segments the cloth in a photo and a render (or
+// takes mask images), aligns the render onto the photo, prints silhouette IoU, the Chamfer
+// distance between the outlines, fold-line agreement and SSIM inside the overlap
+// (render/photo_compare/), and writes DIR/overlay.png, DIR/folds.png, DIR/render_aligned.png,
+// DIR/photo.png and DIR/report.html (relative links). Exit codes as the other commands: 0 ok,
+// 1 bad input (missing or unreadable file, empty silhouette, bad --transform), 2 failure.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "render/photo_compare/alignment.h"
+
+namespace weft::app {
+
+struct CompareOptions {
+  std::filesystem::path photo, render;
+  std::optional<std::filesystem::path> mask_photo, mask_render;  // white = cloth
+  std::optional<std::string> transform;   // "s,tx,ty[,deg]": render px → photo px
+  std::filesystem::path out = "out/compare";
+  bool json = false;
+  double fold_sigma_px = 0.0;             // ≤ 0: the default (render/photo_compare/metrics.h)
+};
+
+// "s,tx,ty[,deg]" → p = s R(deg) r + (tx, ty). Throws std::invalid_argument naming --transform
+// and what was expected.
+render::Similarity parse_transform(const std::string& text);
+
+// Returns an ExitCode (app/run_command.h); errors go to stderr naming the file.
+int run_compare(const CompareOptions& options);
+
+}  // namespace weft::app
