@@ -1,10 +1,12 @@
 // The `weft` command.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <sstream>
 
 #include "app/compare_command.h"
 #include "app/diff_command.h"
 #include "app/folds_command.h"
+#include "app/gallery_command.h"
 #include "app/measure_command.h"
 #include "app/run_command.h"
 #include "app/scene.h"
@@ -57,6 +59,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"obj", "ply", "gltf"}));
   run_cmd->add_flag("--explain", run.explain,
                     "Print the terms and phases the simulation runs, and each phase's share of its time");
+  run_cmd->add_flag("--report", run.report,
+                    "Also write report.html: contact sheet, last frame, plots of strain, energy and "
+                    "time per frame (inline SVG)");
 
   StabilityOptions stability;
   stability.command_line = run.command_line;
@@ -166,6 +171,27 @@ int main(int argc, char** argv) {
   turntable_cmd->add_option("--sim-frames", turntable_sim_frames,
                             "Simulate to this frame instead of output.frames");
 
+  // weft diff (issue 8): image comparison with explicit thresholds and its own exit codes.
+  DiffOptions diff;
+  std::string diff_a, diff_b, diff_heatmap;
+  CLI::App* diff_cmd = app.add_subcommand(
+      "diff", "Compare two images: mean/RMS/max difference, PSNR, SSIM, pixels over a threshold; "
+              "exit 0 pass, 1 warn, 2 fail, 3 size mismatch, 4 unreadable file, 5 bad arguments");
+  diff_cmd->add_option("a", diff_a, "First image (PNG or JPG)")->required();
+  diff_cmd->add_option("b", diff_b, "Second image (PNG or JPG)")->required();
+  diff_cmd->add_option("--heatmap", diff_heatmap, "Write a heatmap of the differences to this PNG");
+  diff_cmd->add_flag("--json", diff.json, "Print the comparison as one JSON object");
+  diff_cmd->add_option("--warn", diff.warn,
+                       "Thresholds that warn, e.g. 'psnr<40,ssim<0.99' (metrics: mean, rms, max, "
+                       "psnr, ssim, over); repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  diff_cmd->add_option("--fail", diff.fail, "Thresholds that fail, e.g. 'ssim<0.95,over>0.01'; repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  diff_cmd->add_option("--pixel-threshold", diff.pixel_threshold,
+                       "A pixel differs when a channel differs by more than this (0..255, default 8)");
+
   // weft compare (issue 8 item 3): a render against a photo of the real cloth.
   CompareOptions compare;
   std::string compare_photo, compare_render, compare_mask_photo, compare_mask_render,
@@ -189,27 +215,19 @@ int main(int argc, char** argv) {
                           "Gaussian sigma in photo pixels for the fold maps (default: 1 % of the "
                           "diagonal, at least 1.5)");
 
-  // weft diff (issue 8): image comparison with explicit thresholds and its own exit codes.
-  DiffOptions diff;
-  std::string diff_a, diff_b, diff_heatmap;
-  CLI::App* diff_cmd = app.add_subcommand(
-      "diff", "Compare two images: mean/RMS/max difference, PSNR, SSIM, pixels over a threshold; "
-              "exit 0 pass, 1 warn, 2 fail, 3 size mismatch, 4 unreadable file, 5 bad arguments");
-  diff_cmd->add_option("a", diff_a, "First image (PNG or JPG)")->required();
-  diff_cmd->add_option("b", diff_b, "Second image (PNG or JPG)")->required();
-  diff_cmd->add_option("--heatmap", diff_heatmap, "Write a heatmap of the differences to this PNG");
-  diff_cmd->add_flag("--json", diff.json, "Print the comparison as one JSON object");
-  diff_cmd->add_option("--warn", diff.warn,
-                       "Thresholds that warn, e.g. 'psnr<40,ssim<0.99' (metrics: mean, rms, max, "
-                       "psnr, ssim, over); repeatable")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  diff_cmd->add_option("--fail", diff.fail, "Thresholds that fail, e.g. 'ssim<0.95,over>0.01'; repeatable")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  diff_cmd->add_option("--pixel-threshold", diff.pixel_threshold,
-                       "A pixel differs when a channel differs by more than this (0..255, default 8)");
-
+  // weft gallery (issue 8 item 4): every scene's final frame and contact sheet, and README.md.
+  GalleryOptions gallery;
+  gallery.command_line = run.command_line;
+  std::string gallery_scenes, gallery_out, gallery_only;
+  CLI::App* gallery_cmd = app.add_subcommand(
+      "gallery", "Render every scene of assets/scenes into out/gallery: <scene>.png (final frame), "
+                 "<scene>_sheet.png (contact sheet), README.md with the commands");
+  gallery_cmd->add_option("--scenes", gallery_scenes, "Folder of scene files (default: assets/scenes)");
+  gallery_cmd->add_option("--out", gallery_out,
+                          "Output folder (default: out/gallery; the repository's gallery/ only if given)");
+  gallery_cmd->add_option("--frames-scale", gallery.frames_scale,
+                          "Run each scene for this fraction of its frames, e.g. 0.25 for a quick look");
+  gallery_cmd->add_option("--only", gallery_only, "Comma-separated scene names (file stems) to render");
 
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);
@@ -224,6 +242,14 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (gallery_cmd->parsed()) {
+      if (!gallery_scenes.empty()) gallery.scenes = gallery_scenes;
+      if (!gallery_out.empty()) gallery.out = gallery_out;
+      std::stringstream names(gallery_only);
+      for (std::string name; std::getline(names, name, ',');)
+        if (!name.empty()) gallery.only.push_back(name);
+      return run_gallery(gallery);
+    }
     if (compare_cmd->parsed()) {
       compare.photo = compare_photo;
       compare.render = compare_render;

@@ -8,6 +8,7 @@
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
 #include "app/progress.h"
+#include "app/run_report.h"
 #include "app/scene.h"
 #include "app/stats_csv.h"
 #include "app/version.h"
@@ -169,6 +170,7 @@ int run_scene(const RunOptions& options) {
   Progress progress(stderr, scene.frames, "frame");
   double sim_ms_total = 0.0, render_ms_total = 0.0;
   long unconverged_total = 0, steps_total = 0;
+  std::vector<FrameStats> rows;  // for --report
   for (int frame = 1; frame <= scene.frames; ++frame) {
     FrameStats row;
     row.frame = frame;
@@ -183,6 +185,9 @@ int run_scene(const RunOptions& options) {
                      dir.c_str());
       else
         std::fprintf(stderr, "weft: no frame was finished; stats.csv is in %s\n", dir.c_str());
+      if (options.report && !rows.empty())
+        std::printf("weft: report of the frames written: %s\n",
+                    write_run_report(dir, scene, options.command_line, rows).c_str());
       return exit_diverged;
     }
     row.sim_ms = ms_since(start);
@@ -203,6 +208,7 @@ int run_scene(const RunOptions& options) {
       export_mesh(cloth, *options.export_meshes, dir / mesh_name(frame, *options.export_meshes));
     row.render_ms = ms_since(start);
     stats.write(row);
+    if (options.report) rows.push_back(row);
 
     sim_ms_total += row.sim_ms;
     unconverged_total += row.steps.unconverged_steps;
@@ -226,6 +232,9 @@ int run_scene(const RunOptions& options) {
               dir.c_str(), format_duration(sim_ms_total / 1e3).c_str(),
               format_duration(render_ms_total / 1e3).c_str(),
               format_duration(progress.elapsed_s()).c_str());
+  if (options.report)
+    std::printf("weft: report: %s\n",
+                write_run_report(dir, scene, options.command_line, rows).c_str());
   if (const auto drape = drape_summary(scene, *simulator))
     std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
   return exit_ok;

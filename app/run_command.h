@@ -21,6 +21,7 @@ struct RunOptions {
   std::optional<int> samples;                  // overrides render.raytrace.samples
   std::optional<MeshFormat> export_meshes;     // also write mesh_0001.<ext>, ... (mesh_export.h)
   bool explain = false;                        // print the simulated terms and phase times
+  bool report = false;  // also write report.html (frames, plots of strain/energy/time; run_report.h)
   std::string command_line;                    // recorded in run.txt
 };
 

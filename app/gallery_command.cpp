@@ -1,0 +1,179 @@
+// weft gallery (see gallery_command.h): each scene is run with weft run into a scratch folder
+// inside the gallery, its last frame copied and its contact sheet drawn, then the scratch
+// folder removed.
+
+#include "app/gallery_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "app/progress.h"
+#include "app/run_command.h"
+#include "app/run_report.h"
+#include "app/scene.h"
+
+namespace weft::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct GalleryEntry {
+  std::string name;         // file stem
+  fs::path path;            // scene file
+  std::string description;  // empty when the scene could not be read
+  std::string commands;     // the commands that reproduce the images
+  std::string error;        // empty: rendered
+};
+
+std::vector<fs::path> scene_files(const fs::path& dir) {
+  if (!fs::is_directory(dir))
+    throw SceneError("--scenes: " + dir.string() + " is not a folder (expected a folder of scene "
+                     "files, e.g. assets/scenes)");
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw SceneError("--scenes: no *.json scene files in " + dir.string());
+  return files;
+}
+
+// The files named by --only, in folder order; an unknown name lists the known ones.
+std::vector<fs::path> selected(const std::vector<fs::path>& files,
+                               const std::vector<std::string>& only) {
+  if (only.empty()) return files;
+  std::vector<fs::path> out;
+  for (const std::string& name : only) {
+    const auto it = std::find_if(files.begin(), files.end(),
+                                 [&](const fs::path& f) { return f.stem().string() == name; });
+    if (it == files.end()) {
+      std::string known;
+      for (const fs::path& f : files) known += (known.empty() ? "" : ", ") + f.stem().string();
+      throw SceneError("--only: no scene '" + name + "' (known: " + known + ")");
+    }
+    out.push_back(*it);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::string quoted_if_needed(const std::string& s) {
+  return s.find_first_of(" \t'\"$") == std::string::npos ? s : "'" + s + "'";
+}
+
+// Runs one scene; fills the entry's description and commands, or its error.
+void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
+  const Scene scene = load_scene(entry.path);
+  entry.description = scene.description;
+  const int frames = scaled_frames(scene.frames, options.frames_scale);
+  const fs::path scratch = options.out / (".frames_" + entry.name);
+  const std::string scene_arg = quoted_if_needed(entry.path.string());
+  const std::string frames_arg = frames != scene.frames ? " --frames " + std::to_string(frames) : "";
+  const std::string run_out = "out/" + entry.name;
+  std::ostringstream commands;
+  commands << "weft run " << scene_arg << frames_arg << " --out " << run_out << "\n"
+           << "# " << entry.name << ".png is " << run_out << "/" << frame_file_name(frames)
+           << "; both images at once:\n"
+           << "weft gallery --scenes " << quoted_if_needed(options.scenes.string()) << " --only "
+           << entry.name;
+  if (options.frames_scale != 1.0) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%g", options.frames_scale);
+    commands << " --frames-scale " << scale;
+  }
+  commands << " --out " << quoted_if_needed(options.out.string());
+  entry.commands = commands.str();
+
+  RunOptions run;
+  run.scene = entry.path;
+  run.out = scratch;
+  if (frames != scene.frames) run.frames = frames;
+  run.command_line = "weft run " + scene_arg + frames_arg;
+  const int code = run_scene(run);
+  if (code != exit_ok) {
+    fs::remove_all(scratch);
+    throw std::runtime_error("weft run stopped with exit code " + std::to_string(code));
+  }
+  fs::copy_file(scratch / frame_file_name(frames), options.out / (entry.name + ".png"),
+                fs::copy_options::overwrite_existing);
+  render::write_png(frame_contact_sheet(scratch, evenly_spaced_frames(frames, report_sheet_frames),
+                                        scene.fps),
+                    options.out / (entry.name + "_sheet.png"));
+  fs::remove_all(scratch);
+}
+
+std::string readme(const std::vector<GalleryEntry>& entries, const GalleryOptions& options) {
+  std::ostringstream md;
+  md << "# Gallery\n\nEvery scene of `" << options.scenes.string()
+     << "` rendered by `weft gallery`: the final frame, a contact sheet of frames evenly spaced "
+        "in time, and the commands that reproduce them. Runs are deterministic: the same command "
+        "and build give the same bytes.\n\n```sh\n"
+     << options.command_line << "\n```\n";
+  if (options.frames_scale != 1.0)
+    md << "\nEach scene ran for --frames-scale " << options.frames_scale
+       << " of its frames: the final frames are not the scenes' rest states.\n";
+  for (const GalleryEntry& e : entries) {
+    md << "\n## " << e.name << "\n\n";
+    if (!e.description.empty()) md << e.description << "\n\n";
+    if (!e.error.empty()) {
+      md << "**Failed:** " << e.error << "\n";
+      continue;
+    }
+    md << "| final frame (`" << e.name << ".png`) | contact sheet (`" << e.name
+       << "_sheet.png`) |\n|---|---|\n| ![](" << e.name << ".png) | ![](" << e.name
+       << "_sheet.png) |\n\n```sh\n" << e.commands << "\n```\n";
+  }
+  return md.str();
+}
+
+}  // namespace
+
+int scaled_frames(int frames, double scale) {
+  return std::max(1, static_cast<int>(std::lround(frames * scale)));
+}
+
+int run_gallery(const GalleryOptions& options) {
+  if (!(options.frames_scale > 0.0 && options.frames_scale <= 10.0))
+    throw SceneError("--frames-scale: expected a number in (0, 10], e.g. 0.25, got " +
+                     std::to_string(options.frames_scale));
+  const std::vector<fs::path> files = selected(scene_files(options.scenes), options.only);
+  fs::create_directories(options.out);
+
+  std::vector<GalleryEntry> entries;
+  const int n = static_cast<int>(files.size());
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < n; ++k) {
+    GalleryEntry entry;
+    entry.path = files[static_cast<std::size_t>(k)];
+    entry.name = entry.path.stem().string();
+    std::fprintf(stderr, "weft gallery: scene %d/%d: %s\n", k + 1, n, entry.name.c_str());
+    try {
+      render_scene(entry, options);
+    } catch (const std::exception& e) {
+      entry.error = e.what();
+      std::fprintf(stderr, "weft gallery: %s failed: %s\n", entry.name.c_str(), e.what());
+    }
+    entries.push_back(std::move(entry));
+  }
+  const fs::path readme_path = options.out / "README.md";
+  std::ofstream(readme_path) << readme(entries, options);
+  if (!fs::exists(readme_path)) throw std::runtime_error(readme_path.string() + ": cannot write");
+
+  std::vector<std::string> failed;
+  for (const GalleryEntry& e : entries)
+    if (!e.error.empty()) failed.push_back(e.name + " (" + e.error + ")");
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("weft gallery: %d of %d scenes rendered into %s (README.md; %s)\n",
+              n - static_cast<int>(failed.size()), n, options.out.c_str(),
+              format_duration(elapsed_s).c_str());
+  if (failed.empty()) return exit_ok;
+  std::fprintf(stderr, "weft gallery: %zu failed:\n", failed.size());
+  for (const std::string& f : failed) std::fprintf(stderr, "  %s\n", f.c_str());
+  return exit_failure;
+}
+
+}  // namespace weft::app

@@ -1,0 +1,29 @@
+#pragma once
+// weft gallery: render every scene of a folder (assets/scenes) into one folder — per scene the
+// final frame (<scene>.png), a contact sheet (<scene>_sheet.png) and the command that
+// reproduces them — and write its README.md with a section per scene. A scene that fails is
+// reported and the others still run.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace weft::app {
+
+struct GalleryOptions {
+  std::filesystem::path scenes = "assets/scenes";  // every *.json in it, in name order
+  std::filesystem::path out = "out/gallery";       // the repository's gallery/ only if asked
+  double frames_scale = 1.0;       // each scene's output.frames × this (rounded, at least 1)
+  std::vector<std::string> only;   // scene names (file stems) to render; empty: all
+  std::string command_line;        // recorded in README.md
+};
+
+// Frames of a scene of `frames` frames under --frames-scale: round(frames × scale), at least 1.
+int scaled_frames(int frames, double scale);
+
+// Returns exit_ok when every scene rendered, exit_failure (listing the failed scenes on stderr)
+// otherwise. Bad options (missing folder, unknown --only name, scale out of range) throw
+// SceneError before anything is rendered.
+int run_gallery(const GalleryOptions& options);
+
+}  // namespace weft::app
