@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/html_escape.h"
 #include "app/run_command.h"
 #include "render/photo_compare/photo_compare.h"
 
@@ -104,18 +105,6 @@ void print_text(const nlohmann::json& j) {
               j["folds"]["recall"].get<double>(), j["folds"]["sigma_px"].get<double>(),
               j["folds"]["compared_px"].get<long>());
   std::printf("  SSIM (overlap) %.4f\n", j["ssim"].get<double>());
-}
-
-std::string html_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '<') out += "&lt;";
-    else if (ch == '>') out += "&gt;";
-    else if (ch == '&') out += "&amp;";
-    else if (ch == '"') out += "&quot;";
-    else out += ch;
-  }
-  return out;
 }
 
 void write_report(const fs::path& path, const nlohmann::json& j) {

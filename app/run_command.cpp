@@ -4,6 +4,7 @@
 #include <fstream>
 #include <regex>
 
+#include "app/output_files.h"
 #include "app/frame_mesh.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
@@ -41,20 +42,11 @@ std::string mesh_name(int frame, MeshFormat format) {
   return name;
 }
 
-// Removes the frames of an earlier run in the same folder, so that the folder holds one run.
+// Removes the frames (and exported meshes) of an earlier run in the same folder, so that the
+// folder holds one run.
 int remove_old_frames(const fs::path& dir) {
-  static const std::regex pattern(R"(frame_\d{4,}\.png)");
-  int removed = 0;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
-      ++removed;
-  return removed;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  return remove_numbered_files(dir, "frame", "png") +
+         remove_numbered_files(dir, "mesh", "(obj|ply|gltf|bin)");
 }
 
 }  // namespace

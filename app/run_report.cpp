@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "app/output_files.h"
 #include "app/contact_sheet.h"
 #include "app/html_escape.h"
 #include "app/progress.h"
@@ -52,11 +53,6 @@ std::vector<LineChart> report_charts(const std::vector<FrameStats>& rows) {
   return charts;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
 
 }  // namespace
 
@@ -105,7 +101,7 @@ fs::path write_run_report(const fs::path& dir, const Scene& scene, const std::st
   render::write_png(frame_contact_sheet(dir, shown, scene.fps), dir / kSheetName);
 
   double max_strain = 0.0, sim_ms = 0.0, render_ms = 0.0;
-  int unconverged = 0;
+  long unconverged = 0;
   for (const FrameStats& r : rows) {
     max_strain = std::max(max_strain, r.diagnostics.max_strain);
     sim_ms += r.sim_ms;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "app/output_files.h"
 #include "app/progress.h"
 #include "app/scene.h"
 #include "app/version.h"
@@ -237,12 +238,6 @@ void write_heatmap(const fs::path& path, const std::string& title, const std::ve
 }
 
 // ---- the sweep ---------------------------------------------------------------------------
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
 
 std::string format_e(double value) {
   if (!std::isfinite(value)) return "";

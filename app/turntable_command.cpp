@@ -10,6 +10,7 @@
 #include <fstream>
 #include <regex>
 
+#include "app/output_files.h"
 #include "app/contact_sheet.h"
 #include "app/ffmpeg_video.h"
 #include "app/frame_mesh.h"
@@ -166,21 +167,6 @@ Eigen::Vector3d bounding_box_center(const render::RenderMesh& mesh) {
   return (0.5f * (lo + hi)).cast<double>();
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
-
-int remove_old_frames(const fs::path& dir) {
-  static const std::regex pattern(R"(turntable_\d{4,}\.png)");
-  int removed = 0;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
-      ++removed;
-  return removed;
-}
-
 std::string angle_label(double azimuth_deg) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g deg", azimuth_deg);
@@ -224,7 +210,7 @@ int run_turntable(const TurntableOptions& options) {
   // The input is good: now the output folder.
   const fs::path dir = options.out.value_or(fs::path("out") / (subject.name + "_turntable"));
   fs::create_directories(dir);
-  if (const int removed = remove_old_frames(dir))
+  if (const int removed = remove_numbered_files(dir, "turntable", "png"))
     std::fprintf(stderr, "weft: replaced %d turntable frames of an earlier run in %s\n", removed,
                  dir.c_str());
   write_text(dir / "turntable.txt", "weft " + std::string(version()) + "\ncommand: " +

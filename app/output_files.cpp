@@ -1,0 +1,29 @@
+// Output-folder helpers; see output_files.h.
+
+#include "app/output_files.h"
+
+#include <fstream>
+#include <regex>
+#include <stdexcept>
+
+namespace weft::app {
+
+namespace fs = std::filesystem;
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+int remove_numbered_files(const fs::path& dir, const std::string& prefix,
+                          const std::string& extension) {
+  const std::regex pattern(prefix + R"(_\d{4,}\.)" + extension);
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
+      ++removed;
+  return removed;
+}
+
+}  // namespace weft::app
