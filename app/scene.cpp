@@ -491,6 +491,11 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
       "renderer", {{"raster", render::RendererKind::raster},
                    {"raytrace", render::RendererKind::raytrace}},
       s.renderer);
+  s.gl = r.enumeration<render::GlBackend>("gl",
+                                          {{"auto", render::GlBackend::automatic},
+                                           {"osmesa", render::GlBackend::osmesa},
+                                           {"egl", render::GlBackend::egl}},
+                                          s.gl);
   read_raytrace(r.object("raytrace"), s.raytrace);
   read_cloth_surface(r, s.cloth_surface);  // subdivision, thickness, texture
   r.finish();

@@ -4,13 +4,13 @@
 // - the ray tracer at 640×480 with 1, 16 and 64 samples per pixel: seconds per frame and
 //   Mrays/s per core, (a) "direct": camera and shadow rays only (ao_samples 0), (b) "default":
 //   the default settings (one AO ray per sample as well);
-// - the rasterizer (OSMesa, 4× MSAA) at 1920×1080: ms per frame (skipped with the reason when
-//   no OSMesa context can be created).
+// - the rasterizer (4× MSAA) at 1920×1080 through OSMesa and through EGL surfaceless: ms per
+//   frame (each skipped with the reason when its context cannot be created).
 // Each figure is the median over --repeats runs; threads: all hardware threads (--threads).
 // Mrays per CPU second (process CPU time, all threads) is the per-core rate even when other
 // work shares the cores; Mrays/s/core divides the wall-clock rate by the thread count.
 //
-// Run: build/bench/raytrace_bench [--repeats 3] [--threads N]
+// Run: build/bench/raytrace_bench [--repeats 3] [--threads N] [--only raster]
 
 #include <algorithm>
 #include <chrono>
@@ -92,14 +92,17 @@ double seconds(F&& f) {
 
 int main(int argc, char** argv) {
   int repeats = 3;
+  bool raster_only = false;  // --only raster: skip the ray tracer
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--repeats"))
       repeats = std::max(1, std::atoi(argv[i + 1]));
     else if (!std::strcmp(argv[i], "--threads"))
       threads = std::max(1, std::atoi(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--only") && !std::strcmp(argv[i + 1], "raster"))
+      raster_only = true;
     else {
-      std::fprintf(stderr, "usage: raytrace_bench [--repeats N] [--threads N]\n");
+      std::fprintf(stderr, "usage: raytrace_bench [--repeats N] [--threads N] [--only raster]\n");
       return 1;
     }
   }
@@ -109,44 +112,49 @@ int main(int argc, char** argv) {
   std::printf("sphere drape: %zu cloth triangles, %zu sphere triangles; %d threads, median of %d\n",
               cloth.triangles.size(), sphere[0].mesh.triangles.size(), threads, repeats);
 
-  RayTracer tracer;
-  std::printf("\n%s, 640x480\n", tracer.description().c_str());
-  std::printf("%-8s %4s %8s %9s %13s %14s %8s %8s %8s\n", "config", "spp", "s/frame", "Mrays/s",
-              "Mrays/s/core", "Mrays/cpu-s", "camera", "shadow", "AO");
-  for (const char* config : {"direct", "default"}) {
-    for (int spp : {1, 16, 64}) {
-      RenderSettings s = scene_settings(640, 480);
-      s.raytrace.samples_per_pixel = spp;
-      s.raytrace.threads = threads;
-      if (!std::strcmp(config, "direct")) s.raytrace.ao_samples = 0;
-      tracer.render(cloth, s, sphere);  // warm-up: builds the BVHs
-      std::vector<double> times, cpu_times;
-      for (int k = 0; k < repeats; ++k) {
-        const std::clock_t cpu_start = std::clock();
-        times.push_back(seconds([&] { tracer.render(cloth, s, sphere); }));
-        cpu_times.push_back(static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+  if (!raster_only) {
+    RayTracer tracer;
+    std::printf("\n%s, 640x480\n", tracer.description().c_str());
+    std::printf("%-8s %4s %8s %9s %13s %14s %8s %8s %8s\n", "config", "spp", "s/frame", "Mrays/s",
+                "Mrays/s/core", "Mrays/cpu-s", "camera", "shadow", "AO");
+    for (const char* config : {"direct", "default"}) {
+      for (int spp : {1, 16, 64}) {
+        RenderSettings s = scene_settings(640, 480);
+        s.raytrace.samples_per_pixel = spp;
+        s.raytrace.threads = threads;
+        if (!std::strcmp(config, "direct")) s.raytrace.ao_samples = 0;
+        tracer.render(cloth, s, sphere);  // warm-up: builds the BVHs
+        std::vector<double> times, cpu_times;
+        for (int k = 0; k < repeats; ++k) {
+          const std::clock_t cpu_start = std::clock();
+          times.push_back(seconds([&] { tracer.render(cloth, s, sphere); }));
+          cpu_times.push_back(static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+        }
+        const RayCounts rays = tracer.last_ray_counts();
+        const double t = median(times);
+        const auto millions = [](std::uint64_t n) { return static_cast<double>(n) / 1e6; };
+        const double mrays = millions(rays.total()) / t;
+        std::printf("%-8s %4d %8.3f %9.1f %13.1f %14.1f %7.2fM %7.2fM %7.2fM\n", config, spp, t,
+                    mrays, mrays / threads, millions(rays.total()) / median(cpu_times),
+                    millions(rays.camera), millions(rays.shadow), millions(rays.occlusion));
       }
-      const RayCounts rays = tracer.last_ray_counts();
-      const double t = median(times);
-      const auto millions = [](std::uint64_t n) { return static_cast<double>(n) / 1e6; };
-      const double mrays = millions(rays.total()) / t;
-      std::printf("%-8s %4d %8.3f %9.1f %13.1f %14.1f %7.2fM %7.2fM %7.2fM\n", config, spp, t,
-                  mrays, mrays / threads, millions(rays.total()) / median(cpu_times),
-                  millions(rays.camera), millions(rays.shadow), millions(rays.occlusion));
     }
   }
 
   std::printf("\nrasterizer, 1920x1080, 4x MSAA\n");
-  try {
-    RasterRenderer raster(make_osmesa_context(1920, 1080));
-    const RenderSettings s = scene_settings(1920, 1080);
-    raster.render(cloth, s, sphere);  // warm-up: allocates the targets
-    std::vector<double> times;
-    for (int k = 0; k < std::max(repeats, 5); ++k)
-      times.push_back(seconds([&] { raster.render(cloth, s, sphere); }));
-    std::printf("%s: %.1f ms per frame\n", raster.description().c_str(), 1e3 * median(times));
-  } catch (const std::exception& e) {
-    std::printf("skipped: %s\n", e.what());
+  for (GlBackend backend : {GlBackend::osmesa, GlBackend::egl}) {
+    try {
+      RasterRenderer raster(backend == GlBackend::egl ? make_egl_context(1920, 1080)
+                                                      : make_osmesa_context(1920, 1080));
+      const RenderSettings s = scene_settings(1920, 1080);
+      raster.render(cloth, s, sphere);  // warm-up: allocates the targets
+      std::vector<double> times;
+      for (int k = 0; k < std::max(repeats, 5); ++k)
+        times.push_back(seconds([&] { raster.render(cloth, s, sphere); }));
+      std::printf("%s: %.1f ms per frame\n", raster.description().c_str(), 1e3 * median(times));
+    } catch (const std::exception& e) {
+      std::printf("%s skipped: %s\n", gl_backend_name(backend), e.what());
+    }
   }
   return 0;
 }

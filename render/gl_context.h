@@ -2,6 +2,7 @@
 // A small interface to an off-screen OpenGL 3.3+ core context, so that the rasterizer does not
 // depend on OSMesa (gone from Mesa 25.1): an EGL surfaceless context can stand in for it.
 
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -19,5 +20,42 @@ class GlContext {
 // Creates an OSMesa context with an RGBA colour buffer of width×height and a 24-bit depth
 // buffer; throws std::runtime_error with OSMesa's reason when it cannot.
 std::unique_ptr<GlContext> make_osmesa_context(int width, int height);
+
+// Creates an EGL context on Mesa's surfaceless platform (no window system, no surface; the
+// rasterizer draws into its own framebuffer objects): OpenGL 3.3+ core, llvmpipe unless a GPU
+// render node is present. Throws std::runtime_error with EGL's reason when it cannot, or when
+// weft was built without EGL (CMake option WEFT_WITH_EGL).
+std::unique_ptr<GlContext> make_egl_context(int width, int height);
+
+// Which context the rasterizer gets (gl_context_choice.cpp). automatic: OSMesa when it was built
+// and starts, else EGL.
+enum class GlBackend { automatic, osmesa, egl };
+
+const char* gl_backend_name(GlBackend backend);  // "auto", "osmesa", "egl"
+// "auto" | "osmesa" | "egl"; otherwise throws std::invalid_argument starting with `where` and
+// listing the choices.
+GlBackend gl_backend_from_name(const std::string& name, const std::string& where);
+
+// The context `choice` names, unless the environment variable WEFT_GL (osmesa|egl|auto) is set,
+// which overrides it. Throws std::invalid_argument for a bad WEFT_GL, std::runtime_error (with
+// every reason) when no context can be created.
+std::unique_ptr<GlContext> make_gl_context(GlBackend choice, int width, int height);
+
+namespace detail {
+
+// A function pointer as the object pointer proc_address returns (POSIX guarantees they match).
+template <typename Function>
+void* function_address(Function function) {
+  void* address = nullptr;
+  static_assert(sizeof(function) == sizeof(address));
+  std::memcpy(&address, &function, sizeof(address));
+  return address;
+}
+
+// "<GL_RENDERER>, GL <GL_VERSION>" of a context that is current, read through its
+// proc_address; throws std::runtime_error starting with `who` when glGetString is missing.
+std::string renderer_and_version(const GlContext& context, const std::string& who);
+
+}  // namespace detail
 
 }  // namespace weft::render

@@ -30,6 +30,7 @@ namespace weft::render::detail {
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLREADBUFFERPROC, ReadBuffer)                                         \
   X(PFNGLDRAWBUFFERPROC, DrawBuffer)                                         \
+  X(PFNGLSCISSORPROC, Scissor)                                               \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                         \
   X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \

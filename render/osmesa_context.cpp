@@ -4,7 +4,6 @@
 
 #include <GL/osmesa.h>
 
-#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -47,7 +46,7 @@ class OsmesaContext final : public GlContext {
     m_buffer.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
     try {
       make_current();
-      m_description = query_description();
+      m_description = "OSMesa, " + detail::renderer_and_version(*this, "OSMesa");
     } catch (...) {
       destroy();
       throw;
@@ -68,31 +67,12 @@ class OsmesaContext final : public GlContext {
   }
 
   void* proc_address(const char* name) const override {
-    const OSMESAproc function = OSMesaGetProcAddress(name);
-    // Function pointer → object pointer: copy the representation (POSIX guarantees they match).
-    void* address = nullptr;
-    static_assert(sizeof(function) == sizeof(address));
-    std::memcpy(&address, &function, sizeof(address));
-    return address;
+    return detail::function_address(OSMesaGetProcAddress(name));
   }
 
   std::string description() const override { return m_description; }
 
  private:
-  // "OSMesa, <GL_RENDERER>, GL <GL_VERSION>"; needs the context current.
-  std::string query_description() const {
-    using GetStringFunction = const GLubyte* (*)(GLenum);
-    GetStringFunction get_string = nullptr;
-    void* address = proc_address("glGetString");
-    if (address == nullptr) throw std::runtime_error("OSMesa: glGetString is missing");
-    std::memcpy(&get_string, &address, sizeof(address));
-    const auto text = [&](GLenum what) {
-      const GLubyte* s = get_string(what);
-      return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
-    };
-    return "OSMesa, " + text(GL_RENDERER) + ", GL " + text(GL_VERSION);
-  }
-
   void destroy() {
     if (m_context == nullptr) return;
     // Release it first if current, so Mesa holds no pointer to our buffer.

@@ -4,7 +4,10 @@
 //   2. upload positions, normals and triangles of the cloth and of the objects (the cloth
 //      changes every frame),
 //   3. shadow pass (ground on, lit): cloth and object depth from the key light, orthographic,
-//   4. main pass into a multisampled FBO: clear to the background, ground, cloth, objects,
+//   4. main pass into a multisampled FBO: clear to the background, ground, cloth, objects;
+//      the ground runs its shadow lookup (5×5 PCF, most of a frame's cost under llvmpipe) only
+//      inside the screen rectangle where the casters' shadow can fall, and a program without
+//      it elsewhere (the same pixels: there the lookup returns 1),
 //   5. resolve (glBlitFramebuffer) into a single-sample FBO, glFinish, glReadPixels,
 //      and flip rows so that Image row 0 is the top.
 // GL entry points come from the GlContext (gl_functions.h); nothing links GL directly.
@@ -178,6 +181,63 @@ Eigen::Matrix4f light_view_projection(const std::vector<const RenderMesh*>& mesh
   return ortho.cast<float>() * light.view_matrix();
 }
 
+// Pixel rectangle [x0, x1) × [y0, y1), GL window coordinates (row 0 at the bottom).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+};
+
+// Where the casters' shadow can fall, in the light's clip x, y: their bounding box widened by
+// `margin` (clip units), within [−1, 1]² (the shadow map).
+Eigen::AlignedBox2d caster_footprint(const std::vector<const RenderMesh*>& casters,
+                                     const Eigen::Matrix4f& light_matrix, double margin) {
+  Eigen::AlignedBox2d box;  // empty
+  const Eigen::Matrix4d light = light_matrix.cast<double>();
+  for (const RenderMesh* mesh : casters) {
+    for (const Eigen::Vector3f& p : mesh->positions) {
+      box.extend((light * Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0)).head<2>());
+    }
+  }
+  if (box.isEmpty()) return box;
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  return box.intersection(Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
+}
+
+// The pixels of a width × height viewport where the ground plane z = ground_z_m lies inside
+// `footprint` (light clip x, y), widened by 2 pixels against rounding; the whole viewport when
+// that cannot be bounded (a corner behind the camera, or a light nearly parallel to the ground).
+PixelRect footprint_on_screen(const Eigen::AlignedBox2d& footprint,
+                              const Eigen::Matrix4f& light_matrix,
+                              const Eigen::Matrix4f& view_projection, double ground_z_m,
+                              int width, int height) {
+  const PixelRect whole{0, 0, width, height};
+  if (footprint.isEmpty()) return {};
+  const Eigen::Matrix4d light = light_matrix.cast<double>();
+  const Eigen::Matrix4d camera = view_projection.cast<double>();
+  // On the plane the light's clip x, y are affine in the world x, y (orthographic light).
+  const Eigen::Matrix2d a = light.topLeftCorner<2, 2>();
+  const Eigen::Vector2d b = light.block<2, 1>(0, 2) * ground_z_m + light.block<2, 1>(0, 3);
+  if (!(std::abs(a.determinant()) > 1e-12)) return whole;
+  const Eigen::Matrix2d a_inverse = a.inverse();
+  Eigen::AlignedBox2d pixels;
+  for (const auto corner : {Eigen::AlignedBox2d::BottomLeft, Eigen::AlignedBox2d::BottomRight,
+                            Eigen::AlignedBox2d::TopLeft, Eigen::AlignedBox2d::TopRight}) {
+    const Eigen::Vector2d xy = a_inverse * (footprint.corner(corner) - b);
+    const Eigen::Vector4d clip = camera * Eigen::Vector4d(xy.x(), xy.y(), ground_z_m, 1.0);
+    if (!(clip.w() > 1e-9)) return whole;
+    pixels.extend(Eigen::Vector2d((0.5 * clip.x() / clip.w() + 0.5) * width,
+                                  (0.5 * clip.y() / clip.w() + 0.5) * height));
+  }
+  const auto clamp_to = [](double v, int size) {
+    return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(size)));
+  };
+  return {clamp_to(std::floor(pixels.min().x()) - 2.0, width),
+          clamp_to(std::floor(pixels.min().y()) - 2.0, height),
+          clamp_to(std::ceil(pixels.max().x()) + 2.0, width),
+          clamp_to(std::ceil(pixels.max().y()) + 2.0, height)};
+}
+
 }  // namespace
 
 void validate(const RenderSettings& s, int max_size) {
@@ -229,8 +289,13 @@ struct RasterRenderer::Impl {
   void upload(const MeshBuffers& b, const RenderMesh& mesh);
   void draw_shadow_map(const Eigen::Matrix4f& light_matrix, GLsizei cloth_index_count,
                        GLsizei object_index_count);
+  // shadow_matrix: the light's view-projection when there is a shadow, and the casters' shadow
+  // footprint in its clip x, y (caster_footprint).
   void draw_ground(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
-                   const Eigen::Matrix4f* shadow_matrix);
+                   const Eigen::Matrix4f* shadow_matrix, const Eigen::AlignedBox2d& footprint);
+  void set_ground_uniforms(GLuint p, const RenderSettings& s,
+                           const Eigen::Matrix4f& view_projection,
+                           const Eigen::Matrix4f* shadow_matrix);
   // Lit (or normals-shaded) surfaces: the cloth program with its uniforms set, then one draw
   // per index range with its front and back colours.
   void use_surface_program(const RenderSettings& s, const Eigen::Matrix4f& view_projection);
@@ -265,6 +330,7 @@ struct RasterRenderer::Impl {
   GlFunctions m_gl;
   GLint m_max_samples = 0, m_max_size = 0;
   GLuint m_cloth_program = 0, m_ground_program = 0, m_shadow_program = 0;
+  GLuint m_unshadowed_ground_program = 0;  // the ground without the shadow lookup
   MeshBuffers m_cloth, m_objects;
   GLuint m_empty_vao = 0;                       // the ground needs no attributes
   GLuint m_shadow_fbo = 0, m_shadow_depth = 0;  // created on first use
@@ -275,6 +341,7 @@ struct RasterRenderer::Impl {
   int m_target_width = 0, m_target_height = 0, m_target_samples = -1;
   GLuint m_msaa_fbo = 0, m_msaa_color = 0, m_msaa_depth = 0;
   GLuint m_resolve_fbo = 0, m_resolve_color = 0;
+  std::vector<std::uint8_t> m_read_buffer;  // RGBA rows as glReadPixels returns them
 };
 
 RasterRenderer::Impl::Impl(std::unique_ptr<GlContext> context) : m_context(std::move(context)) {
@@ -288,6 +355,9 @@ RasterRenderer::Impl::Impl(std::unique_ptr<GlContext> context) : m_context(std::
         link_program(m_gl, detail::cloth_vertex_shader, detail::cloth_fragment_shader, "cloth");
     m_ground_program =
         link_program(m_gl, detail::ground_vertex_shader, detail::ground_fragment_shader, "ground");
+    m_unshadowed_ground_program =
+        link_program(m_gl, detail::ground_vertex_shader,
+                     detail::ground_fragment_source(false).c_str(), "unshadowed ground");
     m_shadow_program =
         link_program(m_gl, detail::shadow_vertex_shader, detail::shadow_fragment_shader, "shadow");
 
@@ -353,13 +423,14 @@ void RasterRenderer::Impl::release_gl() {
   release_buffers(m_cloth);
   release_buffers(m_objects);
   if (m_gl.DeleteVertexArrays) m_gl.DeleteVertexArrays(1, &m_empty_vao);
-  for (GLuint program : {m_cloth_program, m_ground_program, m_shadow_program}) {
+  for (GLuint program :
+       {m_cloth_program, m_ground_program, m_unshadowed_ground_program, m_shadow_program}) {
     if (m_gl.DeleteProgram && program != 0) m_gl.DeleteProgram(program);
   }
   m_msaa_fbo = m_resolve_fbo = m_shadow_fbo = 0;
   m_msaa_color = m_msaa_depth = m_resolve_color = m_shadow_depth = 0;
   m_empty_vao = 0;
-  m_cloth_program = m_ground_program = m_shadow_program = 0;
+  m_cloth_program = m_ground_program = m_unshadowed_ground_program = m_shadow_program = 0;
   m_target_width = m_target_height = 0;
   m_target_samples = -1;
 }
@@ -479,10 +550,9 @@ void RasterRenderer::Impl::draw_shadow_map(const Eigen::Matrix4f& light_matrix,
   check_gl_error(m_gl, "shadow pass");
 }
 
-void RasterRenderer::Impl::draw_ground(const RenderSettings& s,
-                                       const Eigen::Matrix4f& view_projection,
-                                       const Eigen::Matrix4f* shadow_matrix) {
-  const GLuint p = m_ground_program;
+void RasterRenderer::Impl::set_ground_uniforms(GLuint p, const RenderSettings& s,
+                                               const Eigen::Matrix4f& view_projection,
+                                               const Eigen::Matrix4f* shadow_matrix) {
   m_gl.UseProgram(p);
   set(p, "u_view_projection", view_projection);
   // Centred under the camera target, so it stays put while a turntable orbits the eye.
@@ -495,6 +565,7 @@ void RasterRenderer::Impl::draw_ground(const RenderSettings& s,
   set(p, "u_light_intensity", static_cast<float>(s.light_intensity));
   set(p, "u_ambient", static_cast<float>(s.ambient));
   set(p, "u_shading", s.shading == Shading::normals ? 1 : 0);
+  // The shadow uniforms (absent from the unshadowed program: location −1, ignored).
   set(p, "u_use_shadow", shadow_matrix ? 1 : 0);
   set(p, "u_shadow_texel", 1.0f / static_cast<float>(shadow_map_size));
   set(p, "u_shadow_map", 0);  // texture unit 0
@@ -504,17 +575,49 @@ void RasterRenderer::Impl::draw_ground(const RenderSettings& s,
     to_texture.topLeftCorner<3, 3>() *= 0.5f;
     to_texture.topRightCorner<3, 1>().setConstant(0.5f);
     set(p, "u_shadow_matrix", Eigen::Matrix4f(to_texture * *shadow_matrix));
-    m_gl.ActiveTexture(GL_TEXTURE0);
-    m_gl.BindTexture(GL_TEXTURE_2D, m_shadow_depth);
   }
+}
+
+void RasterRenderer::Impl::draw_ground(const RenderSettings& s,
+                                       const Eigen::Matrix4f& view_projection,
+                                       const Eigen::Matrix4f* shadow_matrix,
+                                       const Eigen::AlignedBox2d& footprint) {
   // Pushed back in depth so cloth lying on the ground wins.
   m_gl.Enable(GL_POLYGON_OFFSET_FILL);
   m_gl.PolygonOffset(1.0f, 4.0f);
   m_gl.BindVertexArray(m_empty_vao);
-  m_gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  // The shadow lookup runs only inside the screen rectangle of the casters' footprint; the
+  // same square is drawn without it in the bands around (up to four), where it returns 1.
+  const PixelRect in =
+      shadow_matrix ? footprint_on_screen(footprint, *shadow_matrix, view_projection,
+                                          s.ground_z_m, s.width, s.height)
+                    : PixelRect{};
+  const PixelRect bands[] = {{0, 0, s.width, in.y0},
+                             {0, in.y1, s.width, s.height},
+                             {0, in.y0, in.x0, in.y1},
+                             {in.x1, in.y0, s.width, in.y1}};
+  m_gl.Enable(GL_SCISSOR_TEST);
+  const auto draw_in = [&](const PixelRect& r) {
+    if (r.empty()) return;
+    m_gl.Scissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+    m_gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  };
+  if (!in.empty()) {
+    set_ground_uniforms(m_ground_program, s, view_projection, shadow_matrix);
+    m_gl.ActiveTexture(GL_TEXTURE0);
+    m_gl.BindTexture(GL_TEXTURE_2D, m_shadow_depth);
+    draw_in(in);
+    m_gl.BindTexture(GL_TEXTURE_2D, 0);
+  }
+  set_ground_uniforms(m_unshadowed_ground_program, s, view_projection, nullptr);
+  if (in.empty()) {
+    draw_in({0, 0, s.width, s.height});
+  } else {
+    for (const PixelRect& band : bands) draw_in(band);
+  }
+  m_gl.Disable(GL_SCISSOR_TEST);
   m_gl.BindVertexArray(0);
   m_gl.Disable(GL_POLYGON_OFFSET_FILL);
-  m_gl.BindTexture(GL_TEXTURE_2D, 0);
   check_gl_error(m_gl, "ground pass");
 }
 
@@ -583,7 +686,8 @@ Image RasterRenderer::Impl::read_back(int width, int height) {
   m_gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
   m_gl.Finish();
   const std::size_t row_bytes = static_cast<std::size_t>(width) * 4;
-  std::vector<std::uint8_t> rgba(row_bytes * static_cast<std::size_t>(height));
+  std::vector<std::uint8_t>& rgba = m_read_buffer;  // kept: no fresh pages every frame
+  rgba.resize(row_bytes * static_cast<std::size_t>(height));
   m_gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   m_gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl_error(m_gl, "reading back the image");
@@ -625,9 +729,12 @@ Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSe
   const bool shadow = s.ground && s.shading == Shading::lit && cloth_count + object_count > 0 &&
                       light_unit.z() > 1e-6 && s.light_intensity > 0.0;
   Eigen::Matrix4f light_matrix = Eigen::Matrix4f::Identity();
+  Eigen::AlignedBox2d footprint;  // of the casters' shadow, light clip x, y
   if (shadow) {
     light_matrix = light_view_projection({&cloth, &merged}, light_unit);
     draw_shadow_map(light_matrix, cloth_count, object_count);
+    // Beyond the PCF's reach (±3 texels, bilinear: under 5) of every caster texel.
+    footprint = caster_footprint({&cloth, &merged}, light_matrix, 8.0 * 2.0 / shadow_map_size);
   }
 
   const double aspect = static_cast<double>(s.width) / static_cast<double>(s.height);
@@ -645,7 +752,7 @@ Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSe
   m_gl.DepthFunc(GL_LESS);
   m_gl.Disable(GL_CULL_FACE);  // two-sided cloth
   check_gl_error(m_gl, "starting the main pass");
-  if (s.ground) draw_ground(s, view_projection, shadow ? &light_matrix : nullptr);
+  if (s.ground) draw_ground(s, view_projection, shadow ? &light_matrix : nullptr, footprint);
   if (cloth_count + object_count > 0) {
     use_surface_program(s, view_projection);
     const ClothTexture& texture = s.cloth_surface.texture;

@@ -38,6 +38,8 @@ struct RenderSettings {
   Shading shading = Shading::lit;
   int msaa_samples = 4;
   RendererKind renderer = RendererKind::raster;
+  // The rasterizer's GL context (gl_context.h): auto, osmesa or egl; WEFT_GL overrides it.
+  GlBackend gl = GlBackend::automatic;
   RayTraceSettings raytrace;  // read by the ray tracer only
   // Subdivision, thickness shell and texture of the cloth (render/cloth_surface.h): the mesh
   // aids are applied by the Renderer interface (renderer.h), the texture by each renderer.

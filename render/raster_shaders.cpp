@@ -2,6 +2,8 @@
 
 #include "render/raster_shaders.h"
 
+#include <string>
+
 namespace weft::render::detail {
 
 const char* const cloth_vertex_shader = R"glsl(
@@ -103,7 +105,13 @@ float grid(vec2 p, float spacing) {
 }
 
 // Fraction of the key light reaching this point (1 lit, 0 in the cloth's shadow), 5x5 PCF.
+// Compiled twice (ground_fragment_source): WEFT_UNSHADOWED leaves the lookup out altogether,
+// for the pixels where it would return 1 (llvmpipe runs both sides of a branch, so a uniform
+// test alone saves nothing).
 float light_visibility() {
+#ifdef WEFT_UNSHADOWED
+  return 1.0;
+#else
   if (u_use_shadow == 0) return 1.0;
   vec3 s = (u_shadow_matrix * vec4(v_world, 1.0)).xyz;
   if (any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0)))) return 1.0;
@@ -117,6 +125,7 @@ float light_visibility() {
     }
   }
   return sum / 25.0;
+#endif
 }
 
 void main() {
@@ -147,5 +156,14 @@ const char* const shadow_fragment_shader = R"glsl(
 #version 330 core
 void main() {}
 )glsl";
+
+std::string ground_fragment_source(bool shadowed) {
+  std::string source = ground_fragment_shader;
+  if (!shadowed) {
+    const std::string version = "#version 330 core\n";
+    source.insert(source.find(version) + version.size(), "#define WEFT_UNSHADOWED\n");
+  }
+  return source;
+}
 
 }  // namespace weft::render::detail

@@ -16,7 +16,8 @@ namespace {
 
 class Raster final : public Renderer {
  public:
-  explicit Raster(const RenderSettings& s) : m_renderer(make_osmesa_context(s.width, s.height)) {}
+  explicit Raster(const RenderSettings& s)
+      : m_renderer(make_gl_context(s.gl, s.width, s.height)) {}
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects) override {
     RenderMesh storage;

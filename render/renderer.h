@@ -26,8 +26,8 @@ class Renderer {
 // "raster" or "raytrace".
 const char* renderer_name(RendererKind kind);
 
-// The renderer settings.renderer names; the rasterizer gets an OSMesa context of the settings'
-// image size. Throws std::runtime_error when that back-end was not built or cannot start
+// The renderer settings.renderer names; the rasterizer gets the GL context settings.gl names
+// (OSMesa or EGL, make_gl_context: WEFT_GL overrides) of the settings' image size. Throws std::runtime_error when that back-end was not built or cannot start
 // (e.g. no OSMesa context), saying which.
 std::unique_ptr<Renderer> make_renderer(const RenderSettings& settings);
 

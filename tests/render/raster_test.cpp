@@ -1,6 +1,7 @@
 // OSMesa rasterizer, checked analytically: known quads seen from known cameras, expected colours
 // from the shading formula colour × (ambient + intensity × max(0, n·l))^(1/2.2).
-// Skipped (with the reason) when no OSMesa context can be created. On failure the rendered
+// Every test runs with each GL context (OSMesa and EGL surfaceless, parameter /osmesa and /egl),
+// and is skipped (with the reason) when that context cannot be created. On failure the rendered
 // images are written to <build>/test_output/render/ for a person to look at.
 
 #include "render/raster.h"
@@ -72,14 +73,20 @@ int max_channel_difference(Rgb8 a, Rgb8 b) {
   return result;
 }
 
-class Raster : public ::testing::Test {
+// The context the test's parameter names, of the given size.
+std::unique_ptr<GlContext> make_context(GlBackend backend, int width, int height) {
+  return backend == GlBackend::egl ? make_egl_context(width, height)
+                                   : make_osmesa_context(width, height);
+}
+
+class Raster : public ::testing::TestWithParam<GlBackend> {
  protected:
   void SetUp() override {
     std::unique_ptr<GlContext> context;
     try {
-      context = make_osmesa_context(64, 64);
+      context = make_context(GetParam(), 64, 64);
     } catch (const std::exception& e) {
-      GTEST_SKIP() << "no OSMesa context: " << e.what();
+      GTEST_SKIP() << "no " << gl_backend_name(GetParam()) << " context: " << e.what();
     }
     // Past this point a failure is a real failure, not a missing back-end.
     m_renderer = std::make_unique<RasterRenderer>(std::move(context));
@@ -105,12 +112,13 @@ class Raster : public ::testing::Test {
   test::FailureEvidence m_rendered{"render"};
 };
 
-TEST_F(Raster, DescriptionNamesTheContext) {
-  EXPECT_NE(m_renderer->description().find("OSMesa"), std::string::npos)
+TEST_P(Raster, DescriptionNamesTheContext) {
+  const char* name = GetParam() == GlBackend::egl ? "EGL" : "OSMesa";
+  EXPECT_NE(m_renderer->description().find(name), std::string::npos)
       << m_renderer->description();
 }
 
-TEST_F(Raster, FrontFaceIsLitFrontColourOnBackground) {
+TEST_P(Raster, FrontFaceIsLitFrontColourOnBackground) {
   const RenderSettings s = view_from_above(160, 120);
   const Image image = render(unit_square(), s, "front");
   ASSERT_EQ(image.width(), 160);
@@ -124,7 +132,7 @@ TEST_F(Raster, FrontFaceIsLitFrontColourOnBackground) {
   }
 }
 
-TEST_F(Raster, BackFaceGetsBackColourAndFlippedNormal) {
+TEST_P(Raster, BackFaceGetsBackColourAndFlippedNormal) {
   RenderSettings s = view_from_above(120, 120);
   s.camera.eye = {0, 0, -2};  // below the square: sees its back
   // Default light is above: the back face gets ambient only.
@@ -142,7 +150,7 @@ TEST_F(Raster, BackFaceGetsBackColourAndFlippedNormal) {
       colour_at(image, centre, expected_lit(s.back_color, s, {0, 0, -1}), colour_tolerance));
 }
 
-TEST_F(Raster, NormalsShadingShowsTheFacingNormal) {
+TEST_P(Raster, NormalsShadingShowsTheFacingNormal) {
   RenderSettings s = view_from_above(100, 100);
   s.shading = Shading::normals;
   Image image = render(unit_square(), s, "normals_front");
@@ -154,7 +162,7 @@ TEST_F(Raster, NormalsShadingShowsTheFacingNormal) {
   EXPECT_TRUE(colour_at(image, project(s, {0, 0, 0.5}), expected_normal_colour({0, 0, -1}), 1));
 }
 
-TEST_F(Raster, ImageHasTheRequestedSizeAcrossResizes) {
+TEST_P(Raster, ImageHasTheRequestedSizeAcrossResizes) {
   RenderSettings s = view_from_above(64, 48);
   const Image first = render(unit_square(), s, "64x48");
   EXPECT_EQ(first.width(), 64);
@@ -174,7 +182,7 @@ TEST_F(Raster, ImageHasTheRequestedSizeAcrossResizes) {
   EXPECT_TRUE(same_bytes(render(unit_square(), s, "64x48_again"), first));
 }
 
-TEST_F(Raster, RowsRunTopToBottomAndColumnsLeftToRight) {
+TEST_P(Raster, RowsRunTopToBottomAndColumnsLeftToRight) {
   // A rectangle in the +x, +y quadrant must appear in the image's top-right quarter only.
   const RenderSettings s = view_from_above(120, 90);
   const Image image = render(rectangle(0.15, 0.65, 0.15, 0.65, 0.5), s, "top_right");
@@ -192,7 +200,7 @@ TEST_F(Raster, RowsRunTopToBottomAndColumnsLeftToRight) {
                         expected_lit(s.front_color, s, {0, 0, 1}), colour_tolerance));
 }
 
-TEST_F(Raster, MultisamplingBlendsEdgesAndIsDeterministic) {
+TEST_P(Raster, MultisamplingBlendsEdgesAndIsDeterministic) {
   // A slanted triangle: its edges cross pixels at every fraction.
   RenderMesh triangle;
   triangle.positions = {{-0.6f, -0.5f, 0.5f}, {0.6f, -0.3f, 0.5f}, {0.1f, 0.6f, 0.5f}};
@@ -223,23 +231,23 @@ TEST_F(Raster, MultisamplingBlendsEdgesAndIsDeterministic) {
       << "without multisampling every pixel is cloth or background";
 }
 
-TEST_F(Raster, FreshRendererGivesTheSameBytes) {
+TEST_P(Raster, FreshRendererGivesTheSameBytes) {
   RenderSettings s = view_from_above(96, 80);
   s.ground = true;
   s.camera.eye = {1.5, -2.0, 1.5};
   const Image first = render(unit_square(), s, "first");
-  RasterRenderer other(make_osmesa_context(16, 16));
+  RasterRenderer other(make_context(GetParam(), 16, 16));
   EXPECT_TRUE(same_bytes(other.render(unit_square(), s), first));
 }
 
-TEST_F(Raster, MissingNormalsAreComputed) {
+TEST_P(Raster, MissingNormalsAreComputed) {
   const RenderSettings s = view_from_above(80, 60);
   RenderMesh without = unit_square();
   without.normals.clear();
   EXPECT_TRUE(same_bytes(render(without, s, "computed"), render(unit_square(), s, "given")));
 }
 
-TEST_F(Raster, GroundIsLitAndShadowedByTheCloth) {
+TEST_P(Raster, GroundIsLitAndShadowedByTheCloth) {
   RenderSettings s;  // default oblique camera, ground on at z = 0
   s.width = 200;
   s.height = 150;
@@ -259,7 +267,7 @@ TEST_F(Raster, GroundIsLitAndShadowedByTheCloth) {
                         expected_lit(s.front_color, s, {0, 0, 1}), colour_tolerance));
 }
 
-TEST_F(Raster, EmptyMeshDrawsOnlyTheBackground) {
+TEST_P(Raster, EmptyMeshDrawsOnlyTheBackground) {
   RenderSettings s = view_from_above(40, 30);
   const Image image = render(RenderMesh{}, s, "empty");
   const Rgb8 background = to_rgb8(s.background);
@@ -268,7 +276,7 @@ TEST_F(Raster, EmptyMeshDrawsOnlyTheBackground) {
   }
 }
 
-TEST_F(Raster, GroundWithoutClothIsLit) {
+TEST_P(Raster, GroundWithoutClothIsLit) {
   // No cloth, so no shadow pass: the ground alone, seen from straight above (10 cm grid lines
   // are too dense at this size and fade out; the points are away from the 1 m lines).
   RenderSettings s = view_from_above(40, 30);
@@ -284,7 +292,7 @@ TEST_F(Raster, GroundWithoutClothIsLit) {
                         colour_tolerance));
 }
 
-TEST_F(Raster, BadInputThrows) {
+TEST_P(Raster, BadInputThrows) {
   RenderSettings s = view_from_above(32, 32);
   s.width = 0;
   EXPECT_THROW(m_renderer->render(unit_square(), s), std::invalid_argument);
@@ -315,7 +323,7 @@ RenderObject sphere_object(const Eigen::Vector3d& centre, double radius,
   return {make_sphere_mesh(centre, radius), colour};
 }
 
-TEST_F(Raster, SphereObjectIsLitInItsOwnColour) {
+TEST_P(Raster, SphereObjectIsLitInItsOwnColour) {
   const RenderSettings s = sphere_view(160, 120);
   const Eigen::Vector3f colour(0.3f, 0.7f, 0.4f);
   const Eigen::Vector3d centre(0, 0, 0.5);
@@ -334,7 +342,7 @@ TEST_F(Raster, SphereObjectIsLitInItsOwnColour) {
   }
 }
 
-TEST_F(Raster, ClothAndObjectsOccludeEachOtherByDepth) {
+TEST_P(Raster, ClothAndObjectsOccludeEachOtherByDepth) {
   const RenderSettings s = sphere_view(160, 120);
   const Eigen::Vector3f sphere_colour(0.3f, 0.7f, 0.4f);
   const RenderObject sphere = sphere_object({0, 0, 0.5}, 0.3, sphere_colour);
@@ -363,7 +371,7 @@ TEST_F(Raster, ClothAndObjectsOccludeEachOtherByDepth) {
                         colour_tolerance));
 }
 
-TEST_F(Raster, ObjectsCastShadowsOnTheGround) {
+TEST_P(Raster, ObjectsCastShadowsOnTheGround) {
   RenderSettings s;  // default oblique camera, ground on at z = 0
   s.width = 200;
   s.height = 150;
@@ -377,7 +385,7 @@ TEST_F(Raster, ObjectsCastShadowsOnTheGround) {
                         expected_lit(s.ground_color, s, {0, 0, 1}), colour_tolerance));
 }
 
-TEST_F(Raster, NoObjectsIsTheClothAlone) {
+TEST_P(Raster, NoObjectsIsTheClothAlone) {
   RenderSettings s = view_from_above(96, 80);
   s.ground = true;
   s.camera.eye = {1.5, -2.0, 1.5};
@@ -385,7 +393,7 @@ TEST_F(Raster, NoObjectsIsTheClothAlone) {
                          render(unit_square(), s, "cloth_only")));
 }
 
-TEST_F(Raster, BadObjectThrowsNamingIt) {
+TEST_P(Raster, BadObjectThrowsNamingIt) {
   const RenderSettings s = sphere_view(32, 32);
   RenderObject bad = sphere_object({0, 0, 0.5}, 0.2, {0.5f, 0.5f, 0.5f});
   bad.mesh.triangles.push_back({0, 1, 100000});
@@ -402,6 +410,11 @@ TEST_F(Raster, BadObjectThrowsNamingIt) {
   EXPECT_TRUE(colour_at(computed, project(s, {0, 0, 0.7}),
                         expected_lit({0.5f, 0.5f, 0.5f}, s, {0, 0, 1}), colour_tolerance));
 }
+
+INSTANTIATE_TEST_SUITE_P(Contexts, Raster, ::testing::Values(GlBackend::osmesa, GlBackend::egl),
+                         [](const ::testing::TestParamInfo<GlBackend>& param) {
+                           return std::string(gl_backend_name(param.param));
+                         });
 
 }  // namespace
 }  // namespace weft::render

@@ -1,0 +1,77 @@
+// What the GL contexts share (gl_context.h): choosing one by name — OSMesa or EGL surfaceless,
+// or "auto" (OSMesa first, EGL when OSMesa is not built or cannot start), WEFT_GL overriding —
+// and the renderer/version text of their descriptions.
+
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "render/gl_context.h"
+
+namespace weft::render {
+
+const char* gl_backend_name(GlBackend backend) {
+  switch (backend) {
+    case GlBackend::osmesa:
+      return "osmesa";
+    case GlBackend::egl:
+      return "egl";
+    case GlBackend::automatic:
+      break;
+  }
+  return "auto";
+}
+
+GlBackend gl_backend_from_name(const std::string& name, const std::string& where) {
+  for (GlBackend b : {GlBackend::automatic, GlBackend::osmesa, GlBackend::egl}) {
+    if (name == gl_backend_name(b)) return b;
+  }
+  throw std::invalid_argument(where + ": expected 'auto', 'osmesa' or 'egl', got '" + name + "'");
+}
+
+std::unique_ptr<GlContext> make_gl_context(GlBackend choice, int width, int height) {
+  if (const char* variable = std::getenv("WEFT_GL"); variable != nullptr && *variable != '\0') {
+    choice = gl_backend_from_name(variable, "environment variable WEFT_GL");
+  }
+  switch (choice) {
+    case GlBackend::osmesa:
+      return make_osmesa_context(width, height);
+    case GlBackend::egl:
+      return make_egl_context(width, height);
+    case GlBackend::automatic:
+      break;
+  }
+  std::string osmesa_reason;
+  try {
+    return make_osmesa_context(width, height);
+  } catch (const std::runtime_error& e) {
+    osmesa_reason = e.what();
+  }
+  try {
+    return make_egl_context(width, height);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("no OpenGL context for the rasterizer: " + osmesa_reason + "; " +
+                             e.what());
+  }
+}
+
+namespace detail {
+
+std::string renderer_and_version(const GlContext& context, const std::string& who) {
+  using GetStringFunction = const unsigned char* (*)(unsigned int);
+  GetStringFunction get_string = nullptr;
+  void* address = context.proc_address("glGetString");
+  if (address == nullptr) throw std::runtime_error(who + ": glGetString is missing");
+  std::memcpy(&get_string, &address, sizeof(address));
+  const auto text = [&](unsigned int what) {
+    const unsigned char* s = get_string(what);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+  };
+  constexpr unsigned int gl_renderer = 0x1F01, gl_version = 0x1F02;  // GL_RENDERER, GL_VERSION
+  return text(gl_renderer) + ", GL " + text(gl_version);
+}
+
+}  // namespace detail
+
+}  // namespace weft::render
