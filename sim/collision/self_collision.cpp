@@ -43,6 +43,21 @@ double edge_edge_distance(const Matrix3X& x, const std::array<Index, 2>& e,
   return ((p0 + s * (p1 - p0)) - (q0 + t * (q1 - q0))).norm();
 }
 
+// Whether the bounding boxes of point sets a and b of x come within limit_m of each other along
+// every axis: a cheap test that rules out pairs farther apart than limit_m (a gap of g along
+// one axis puts every point of one set at least g from every point of the other).
+template <std::size_t N, std::size_t M>
+bool boxes_within(const Matrix3X& x, const std::array<Index, N>& a, const std::array<Index, M>& b,
+                  double limit_m) {
+  for (int k = 0; k < 3; ++k) {
+    double lo_a = x(a[0], k), hi_a = lo_a, lo_b = x(b[0], k), hi_b = lo_b;
+    for (std::size_t i = 1; i < N; ++i) lo_a = std::min(lo_a, x(a[i], k)), hi_a = std::max(hi_a, x(a[i], k));
+    for (std::size_t i = 1; i < M; ++i) lo_b = std::min(lo_b, x(b[i], k)), hi_b = std::max(hi_b, x(b[i], k));
+    if (lo_a - hi_b >= limit_m || lo_b - hi_a >= limit_m) return false;
+  }
+  return true;
+}
+
 bool shares_vertex(const std::array<Index, 2>& e, const std::array<Index, 2>& f) {
   return e[0] == f[0] || e[0] == f[1] || e[1] == f[0] || e[1] == f[1];
 }
@@ -141,14 +156,18 @@ void SelfCollision::select_active(const Matrix3X& x) {
   m_active.vt.clear();
   m_active.ee.clear();
   m_active.vv.clear();
-  for (const auto& pair : m_candidates.vt)
-    if (point_triangle_distance(x, pair[0], m_triangles[static_cast<std::size_t>(pair[1])]) <
-        t + band_m)
+  for (const auto& pair : m_candidates.vt) {
+    const auto& tri = m_triangles[static_cast<std::size_t>(pair[1])];
+    if (boxes_within(x, std::array<Index, 1>{pair[0]}, tri, t + band_m) &&
+        point_triangle_distance(x, pair[0], tri) < t + band_m)
       m_active.vt.push_back(pair);
-  for (const auto& pair : m_candidates.ee)
-    if (edge_edge_distance(x, m_edges[static_cast<std::size_t>(pair[0])],
-                           m_edges[static_cast<std::size_t>(pair[1])]) < t + band_m)
+  }
+  for (const auto& pair : m_candidates.ee) {
+    const auto& e = m_edges[static_cast<std::size_t>(pair[0])];
+    const auto& f = m_edges[static_cast<std::size_t>(pair[1])];
+    if (boxes_within(x, e, f, t + band_m) && edge_edge_distance(x, e, f) < t + band_m)
       m_active.ee.push_back(pair);
+  }
   const double marble2 = std::pow(2.0 * m_marble_radius_m + band_m, 2);
   for (const auto& pair : m_candidates.vv)
     if ((x.row(pair[0]) - x.row(pair[1])).squaredNorm() < marble2) m_active.vv.push_back(pair);
