@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "sim/collision/obstacle.h"
+#include "sim/pin_motion.h"
 #include "sim/pins.h"
 
 namespace weft::sim {
@@ -61,6 +62,36 @@ TEST(Simulator, PinnedVerticesDoNotMoveAtAll) {
     EXPECT_EQ(Vec3(sim.state().v.row(p)), Vec3::Zero());
   }
   EXPECT_LT(sim.state().x.col(2).minCoeff(), 1.5);  // the rest has fallen
+}
+
+// A cloth started from given positions (e.g. tension-field folds): pins hold their vertices
+// there, a moving pin's path is an offset from there, and bad positions or a late call are errors.
+TEST(Simulator, InitialPositionsAreWherePinsHoldAndPathsStart) {
+  const ClothMesh mesh = square(11);
+  const auto pinned = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
+  Simulator sim(mesh, fabric(300.0), pinned, SimSettings{});
+  Matrix3X start = mesh.rest_positions;
+  start.col(1) *= 0.5;  // squeezed along weft
+  start.col(2).array() += 0.25;
+  sim.set_initial_positions(start);
+  EXPECT_EQ(sim.state().x, start);
+  const PinPath path({{0.0, Vec3::Zero()}, {0.5, Vec3(0.1, 0.0, 0.0)}});
+  sim.set_pin_path({pinned.front()}, path);
+  sim.advance(0.5);
+  EXPECT_NEAR((Vec3(sim.state().x.row(pinned.front())) - (Vec3(start.row(pinned.front())) + Vec3(0.1, 0, 0))).norm(), 0.0, 1e-12);
+  EXPECT_EQ(Vec3(sim.state().x.row(pinned.back())), Vec3(start.row(pinned.back())));
+  EXPECT_THROW(sim.set_initial_positions(start), std::invalid_argument);  // after a step
+
+  Simulator fresh(mesh, fabric(300.0), pinned, SimSettings{});
+  EXPECT_THROW(fresh.set_initial_positions(start.topRows(5)), std::invalid_argument);
+  Matrix3X bad = start;
+  bad(7, 2) = std::nan("");
+  try {
+    fresh.set_initial_positions(bad);
+    ADD_FAILURE() << "a NaN position was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 7"), std::string::npos) << e.what();
+  }
 }
 
 // Without damping the swinging cloth exchanges kinetic, elastic and gravitational energy;
