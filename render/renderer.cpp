@@ -3,6 +3,7 @@
 #include "render/renderer.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include "render/cloth_surface.h"
 
@@ -14,37 +15,24 @@ namespace weft::render {
 
 namespace {
 
-class Raster final : public Renderer {
+// Either back-end behind the interface, the cloth's rendering aids (subdivision, thickness;
+// render/cloth_surface.h) applied first.
+template <class Backend>
+class WithClothSurface final : public Renderer {
  public:
-  explicit Raster(const RenderSettings& s)
-      : m_renderer(make_gl_context(s.gl, s.width, s.height)) {}
+  template <class... Args>
+  explicit WithClothSurface(Args&&... args) : m_backend(std::forward<Args>(args)...) {}
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects) override {
     RenderMesh storage;
-    return m_renderer.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
-                             objects);
+    return m_backend.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
+                            objects);
   }
-  std::string description() const override { return m_renderer.description(); }
+  std::string description() const override { return m_backend.description(); }
 
  private:
-  RasterRenderer m_renderer;
+  Backend m_backend;
 };
-
-#ifdef WEFT_WITH_EMBREE_RT
-class RayTrace final : public Renderer {
- public:
-  Image render(const RenderMesh& cloth, const RenderSettings& settings,
-               const std::vector<RenderObject>& objects) override {
-    RenderMesh storage;
-    return m_tracer.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
-                           objects);
-  }
-  std::string description() const override { return m_tracer.description(); }
-
- private:
-  RayTracer m_tracer;
-};
-#endif
 
 }  // namespace
 
@@ -55,10 +43,11 @@ const char* renderer_name(RendererKind kind) {
 std::unique_ptr<Renderer> make_renderer(const RenderSettings& settings) {
   switch (settings.renderer) {
     case RendererKind::raster:
-      return std::make_unique<Raster>(settings);
+      return std::make_unique<WithClothSurface<RasterRenderer>>(
+          make_gl_context(settings.gl, settings.width, settings.height));
     case RendererKind::raytrace:
 #ifdef WEFT_WITH_EMBREE_RT
-      return std::make_unique<RayTrace>();
+      return std::make_unique<WithClothSurface<RayTracer>>();
 #else
       throw std::runtime_error(
           "renderer 'raytrace': weft was built without the ray tracer (CMake option "

@@ -191,6 +191,11 @@ TEST_F(TurntableCli, RunExportsOneMeshPerFrame) {
     in >> magic;
     EXPECT_EQ(magic, "ply") << name;
   }
+  // A later run in the same folder replaces the earlier run's meshes as it does its frames.
+  const CommandResult again = run_weft("run " + scene.string() + " --frames 1 --out " + out.string());
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_FALSE(fs::exists(out / "mesh_0001.ply"));
+  EXPECT_FALSE(fs::exists(out / "mesh_0002.ply"));
   const CommandResult bad =
       run_weft("run " + scene.string() + " --export-meshes stl --out " + (m_dir / "bad").string());
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
