@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -16,17 +17,7 @@ Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
 
 Aabb merged(const Aabb& a, const Aabb& b) { return {a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)}; }
 
-double angle_between_unit(const Vec3& a, const Vec3& b) {
-  return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
-}
-
 }  // namespace
-
-double cone_angle_about(const SurfacePatch& p, const Vec3& axis) {
-  const double length = p.normal_sum.norm();
-  if (!(p.cone_angle_rad < pi) || !(length > 0.0)) return pi;
-  return std::min(pi, angle_between_unit(axis, p.normal_sum / length) + p.cone_angle_rad);
-}
 
 SurfacePatches::SurfacePatches(const ClothMesh& mesh,
                                const std::vector<std::array<Index, 3>>& triangles,
@@ -129,53 +120,87 @@ bool SurfacePatches::neighbours(Index p, Index q) const {
   return p != q && std::abs(a[0] - b[0]) <= 1 && std::abs(a[1] - b[1]) <= 1;
 }
 
-double SurfacePatches::union_cone_angle(Index p, Index q) const {
+bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& cos_limits) const {
   const auto& a = (*this)[p].grid;
   const auto& b = (*this)[q].grid;
-  std::array<const SurfacePatch*, 4> members{};  // neighbours span at most 2 × 2 patches
+  std::array<Index, 4> members{};  // neighbours span at most 2 × 2 patches
   std::size_t count = 0;
   Vec3 sum = Vec3::Zero();
   for (Index j = std::min(a[1], b[1]); j <= std::max(a[1], b[1]); ++j)
     for (Index i = std::min(a[0], b[0]); i <= std::max(a[0], b[0]); ++i) {
       const Index k = m_patch_of_grid[static_cast<std::size_t>(j * m_patches_u + i)];
-      if (k < 0) return pi;
-      members[count++] = &(*this)[k];
+      if (k < 0) return false;
+      members[count++] = k;
       sum += (*this)[k].normal_sum;
     }
-  if (!(sum.squaredNorm() > 0.0)) return pi;
-  const Vec3 axis = sum.normalized();
-  double angle = 0.0;
-  for (std::size_t m = 0; m < count; ++m) angle = std::max(angle, cone_angle_about(*members[m], axis));
-  return angle;
+  const double length = sum.norm();
+  if (!(length > 0.0)) return false;
+  // A member's normals lie within θ_axis + θ_cone of the union's axis, θ_axis the angle
+  // between the two axes: below the flat angle when cos θ_axis > cos(flat − θ_cone).
+  for (std::size_t m = 0; m < count; ++m) {
+    const SurfacePatch& member = (*this)[members[m]];
+    const double member_length = member.normal_sum.norm();
+    const double cos_limit = cos_limits[static_cast<std::size_t>(members[m])];
+    if (!(member_length > 0.0) || !(sum.dot(member.normal_sum) > cos_limit * length * member_length))
+      return false;
+  }
+  return true;
 }
 
 void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
                                 std::vector<std::array<Index, 2>>& pairs) const {
   pairs.clear();
+  if (m_patches.empty()) return;
+  // Sort and sweep (Baraff 1992) along the axis the boxes spread most: the patches are few
+  // and of one size, so this beats hashing them.
   std::vector<Aabb> boxes;
   boxes.reserve(m_patches.size());
-  double extent_sum_m = 0.0;
+  Vec3 lowest = Vec3::Constant(std::numeric_limits<double>::infinity()), highest = -lowest;
   for (const SurfacePatch& patch : m_patches) {
     boxes.push_back(inflated(patch.box, 0.5 * reach_m));
-    extent_sum_m += (boxes.back().hi - boxes.back().lo).maxCoeff();
+    lowest = lowest.cwiseMin(boxes.back().lo);
+    highest = highest.cwiseMax(boxes.back().lo);
   }
-  if (boxes.empty()) return;
-  const SpatialHash hash(extent_sum_m / static_cast<double>(boxes.size()), boxes);
+  int axis = 0;
+  (highest - lowest).maxCoeff(&axis);
+  std::vector<Index> order(m_patches.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Index>(i);
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+    const double la = boxes[static_cast<std::size_t>(a)].lo[axis];
+    const double lb = boxes[static_cast<std::size_t>(b)].lo[axis];
+    return la < lb || (la == lb && a < b);
+  });
   const bool culling = flat_angle_rad > 0.0;
-  std::vector<Index> ids;
-  for (std::size_t i = 0; i < m_patches.size(); ++i) {
-    const auto p = static_cast<Index>(i);
-    const SurfacePatch& a = m_patches[i];
-    hash.query(boxes[i], ids);
-    for (const Index q : ids) {
-      if (q < p) continue;
-      if (culling) {
-        if (q == p && a.cone_angle_rad < flat_angle_rad) continue;
-        if (neighbours(p, q) && union_cone_angle(p, q) < flat_angle_rad) continue;
-      }
-      pairs.push_back({p, q});
+  // Per patch: the cosine a neighbouring union's axis must stay within (union_flat); above
+  // 1 (never) when its own cone is no narrower than the flat angle.
+  std::vector<double> cos_limits(m_patches.size(), 2.0);
+  for (std::size_t i = 0; i < m_patches.size(); ++i)
+    if (m_patches[i].cone_angle_rad < flat_angle_rad)
+      cos_limits[i] = std::cos(flat_angle_rad - m_patches[i].cone_angle_rad);
+  // The boxes in sweep order, one array per bound: the inner loop reads them in sequence.
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  std::array<std::vector<double>, 6> bound;
+  for (auto& b : bound) b.resize(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Aabb& box = boxes[static_cast<std::size_t>(order[i])];
+    bound[0][i] = box.lo[axis], bound[1][i] = box.hi[axis];
+    bound[2][i] = box.lo[u], bound[3][i] = box.hi[u];
+    bound[4][i] = box.lo[v], bound[5][i] = box.hi[v];
+  }
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Index p = order[i];
+    if (!(culling && m_patches[static_cast<std::size_t>(p)].cone_angle_rad < flat_angle_rad))
+      pairs.push_back({p, p});
+    for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
+      if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
+          bound[4][i] > bound[5][j])
+        continue;
+      const Index q = order[j];
+      if (culling && neighbours(p, q) && union_flat(p, q, cos_limits)) continue;
+      pairs.push_back({std::min(p, q), std::max(p, q)});
     }
   }
+  std::sort(pairs.begin(), pairs.end());
 }
 
 }  // namespace weft::sim

@@ -4,8 +4,8 @@
 // vertex and every edge is owned by exactly one patch (the patch of the first triangle that
 // has it). Each rebuild gives a patch its bounding box and its normal cone — the axis of its
 // summed area-weighted normals and the largest angle between that axis and a triangle's
-// normal — then finds the patch pairs that can hold a contact with a spatial hash of the
-// boxes (spatial_hash.h), and drops the pairs the normal cones rule out:
+// normal — then finds the patch pairs that can hold a contact by sorting and sweeping the
+// boxes along one axis, and drops the pairs the normal cones rule out:
 //
 //  - a patch whose cone is narrower than `flat_angle` cannot come near itself, and
 //  - neither can two neighbouring patches (sharing a side or a corner) when the union of the
@@ -70,10 +70,12 @@ class SurfacePatches {
   const SurfacePatch& operator[](Index p) const { return m_patches[static_cast<std::size_t>(p)]; }
   // Whether patches p ≠ q share a grid side or corner.
   bool neighbours(Index p, Index q) const;
-  // The widest angle between the axis of the union of the patches in the grid rectangle
-  // spanned by neighbours p and q and its patches' normals; π when one of them is missing
-  // (cut away, as at a disc's edge) or its cone is undefined.
-  double union_cone_angle(Index p, Index q) const;
+  // Whether every normal of the union of the patches in the grid rectangle spanned by
+  // neighbours p and q lies within the flat angle of the union's axis, given for each patch
+  // the cosine of the flat angle less its cone's half-angle (> 1 when its cone is not
+  // narrower). False when one of them is missing (cut away, as at a disc's edge) or a cone
+  // is undefined.
+  bool union_flat(Index p, Index q, const std::vector<double>& cos_limits) const;
 
  private:
   std::vector<std::array<Index, 3>> m_triangles;
@@ -82,9 +84,5 @@ class SurfacePatches {
   std::vector<Index> m_patch_of_grid; // patch at grid (i, j): [j · m_patches_u + i], −1 if none
   std::vector<Vec3> m_normals;  // refit's scratch: each triangle's area-weighted normal
 };
-
-// Largest angle between unit axis `axis` and the cone of patch p (its axis's angle plus its
-// half-angle), used to bound the cone of a union. Radians, at most π.
-double cone_angle_about(const SurfacePatch& p, const Vec3& axis);
 
 }  // namespace weft::sim
