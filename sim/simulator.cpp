@@ -250,8 +250,8 @@ void Simulator::record_projection(const ProjectionResult& r) {
 }
 
 // Obstacle push-out, with Coulomb friction against the displacement since the start of the
-// step; then the cloth against itself, and the obstacles once more (frictionless) if that
-// pushed anything, so that no vertex is left inside an obstacle.
+// step; then the cloth against itself, and the obstacles once more (frictionless) for the
+// vertices that moved, so that no vertex is left inside an obstacle.
 bool Simulator::collide(bool with_friction) {
   const std::vector<Obstacle>& obstacles = m_posed_obstacles;
   const double thickness = m_settings.collision_thickness_m;
@@ -268,7 +268,9 @@ bool Simulator::collide(bool with_friction) {
     const long contacts = m_self->resolve(m_x_start, m_inv_mass, m_state.x).total();
     m_stats.max_self_contacts = std::max(m_stats.max_self_contacts, contacts);
     if (contacts > 0) {
-      push_out(false);
+      // Only the vertices self-collision moved can have been pushed into an obstacle.
+      if (!obstacles.empty())
+        push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_self->moved_vertices(), m_state.x);
       moved = true;
     }
   }

@@ -219,12 +219,16 @@ std::size_t contact_obstacle(const std::vector<Obstacle>& obstacles, const Vec3&
 
 // Every push_out_of_obstacles overload; x_start is null without friction, step_motions null or
 // empty when no obstacle moves.
+// `vertices`: those to check, or null for all.
 int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
              const Eigen::VectorXd& inv_mass, const Matrix3X* x_start, double friction,
-             const std::vector<RigidPose>* step_motions, Matrix3X& x) {
+             const std::vector<RigidPose>* step_motions, const std::vector<Index>* vertices,
+             Matrix3X& x) {
   int moved = 0;
   if (obstacles.empty()) return moved;
-  for (Index i = 0; i < x.rows(); ++i) {
+  const auto count = static_cast<Index>(vertices ? vertices->size() : static_cast<std::size_t>(x.rows()));
+  for (Index k = 0; k < count; ++k) {
+    const Index i = vertices ? (*vertices)[static_cast<std::size_t>(k)] : k;
     if (!(inv_mass[i] > 0.0)) continue;  // pinned
     const Vec3 predicted = x.row(i).transpose();
     if (clear_of_all(obstacles, thickness_m, predicted)) continue;  // left exactly as it was
@@ -292,7 +296,18 @@ void check_obstacles(const std::vector<Obstacle>& obstacles) {
 int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
                           const Eigen::VectorXd& inv_mass, Matrix3X& x) {
   check_arguments(obstacles, thickness_m, inv_mass, x);
-  return push_out(obstacles, thickness_m, inv_mass, nullptr, 0.0, nullptr, x);
+  return push_out(obstacles, thickness_m, inv_mass, nullptr, 0.0, nullptr, nullptr, x);
+}
+
+int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
+                          const Eigen::VectorXd& inv_mass, const std::vector<Index>& vertices,
+                          Matrix3X& x) {
+  check_arguments(obstacles, thickness_m, inv_mass, x);
+  for (const Index v : vertices)
+    if (v < 0 || v >= x.rows())
+      throw std::invalid_argument("push_out_of_obstacles: vertex " + std::to_string(v) +
+                                  " is not one of the " + std::to_string(x.rows()) + " vertices");
+  return push_out(obstacles, thickness_m, inv_mass, nullptr, 0.0, nullptr, &vertices, x);
 }
 
 int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
@@ -319,7 +334,7 @@ int push_out_of_obstacles(const std::vector<Obstacle>& obstacles,
     throw std::invalid_argument("push_out_of_obstacles: friction must be finite and >= 0, got " +
                                 std::to_string(friction));
   }
-  return push_out(obstacles, thickness_m, inv_mass, &x_start, friction, &step_motions, x);
+  return push_out(obstacles, thickness_m, inv_mass, &x_start, friction, &step_motions, nullptr, x);
 }
 
 }  // namespace weft::sim

@@ -64,6 +64,12 @@ void check_obstacles(const std::vector<Obstacle>& obstacles);
 int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
                           const Eigen::VectorXd& inv_mass, Matrix3X& x);
 
+// As above, for the listed vertices only (the others are not looked at): e.g. the ones a
+// later correction moved. Throws std::invalid_argument as above, and for an index out of range.
+int push_out_of_obstacles(const std::vector<Obstacle>& obstacles, double thickness_m,
+                          const Eigen::VectorXd& inv_mass, const std::vector<Index>& vertices,
+                          Matrix3X& x);
+
 // As above, with Coulomb friction against the obstacles, position-based (Macklin et al. 2014,
 // "Unified particle physics for real-time applications", §6.1). x_start: #V×3 positions at
 // the start of the step, m. A vertex pushed out by a distance d along n has its displacement

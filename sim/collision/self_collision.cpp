@@ -67,14 +67,20 @@ bool shares_vertex(const std::array<Index, 2>& e, const std::array<Index, 2>& f)
 // whether it moved anything.
 template <int N>
 bool push_apart(const std::array<Index, N>& v, const std::array<double, N>& w, const Vec3& n,
-                double gap_m, double distance_m, const Eigen::VectorXd& inv_mass, Matrix3X& x) {
+                double gap_m, double distance_m, const Eigen::VectorXd& inv_mass, Matrix3X& x,
+                std::vector<Index>& moved) {
   const double c = gap_m - distance_m;
   if (!(c < 0.0)) return false;
   double denominator = 0.0;
   for (int k = 0; k < N; ++k) denominator += w[k] * w[k] * inv_mass[v[k]];
   if (!(denominator > 0.0)) return false;  // every vertex involved is pinned
   const double lambda = -c / denominator;
-  for (int k = 0; k < N; ++k) x.row(v[k]) += (lambda * w[k] * inv_mass[v[k]]) * n.transpose();
+  for (int k = 0; k < N; ++k) {
+    const double step = lambda * w[k] * inv_mass[v[k]];
+    if (step == 0.0) continue;
+    x.row(v[k]) += step * n.transpose();
+    moved.push_back(v[k]);
+  }
   return true;
 }
 
@@ -310,7 +316,7 @@ bool SelfCollision::rest_distance_below(const std::array<Index, 2>& e,
 // undefined (degenerate triangle, coincident points) has an infinite gap.
 double SelfCollision::project_vertex_triangle(const std::array<Index, 2>& pair,
                                               const Matrix3X& x_start,
-                                              const Eigen::VectorXd& inv_mass, Matrix3X& x) const {
+                                              const Eigen::VectorXd& inv_mass, Matrix3X& x) {
   constexpr double none = std::numeric_limits<double>::infinity();
   const double t = m_settings.thickness_m;
   const Index v = pair[0];
@@ -337,12 +343,12 @@ double SelfCollision::project_vertex_triangle(const std::array<Index, 2>& pair,
     if (!(gap_m > 0.0)) return none;
     n = (p - q) / gap_m;
   }
-  push_apart<4>({v, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n, gap_m, t, inv_mass, x);
+  push_apart<4>({v, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n, gap_m, t, inv_mass, x, m_moved);
   return gap_m;
 }
 
 double SelfCollision::project_edge_edge(const std::array<Index, 2>& pair, const Matrix3X& x_start,
-                                        const Eigen::VectorXd& inv_mass, Matrix3X& x) const {
+                                        const Eigen::VectorXd& inv_mass, Matrix3X& x) {
   constexpr double none = std::numeric_limits<double>::infinity();
   const auto& e = m_edges[static_cast<std::size_t>(pair[0])];
   const auto& f = m_edges[static_cast<std::size_t>(pair[1])];
@@ -364,16 +370,17 @@ double SelfCollision::project_edge_edge(const std::array<Index, 2>& pair, const 
   }
   const double gap_m = d.dot(n);
   push_apart<4>({e[0], e[1], f[0], f[1]}, {1.0 - s, s, u - 1.0, -u}, n, gap_m,
-                m_settings.thickness_m, inv_mass, x);
+                m_settings.thickness_m, inv_mass, x, m_moved);
   return gap_m;
 }
 
 double SelfCollision::project_marbles(const std::array<Index, 2>& pair,
-                                      const Eigen::VectorXd& inv_mass, Matrix3X& x) const {
+                                      const Eigen::VectorXd& inv_mass, Matrix3X& x) {
   const Vec3 d = row(x, pair[0]) - row(x, pair[1]);
   const double length = d.norm();
   if (!(length > 0.0)) return std::numeric_limits<double>::infinity();
-  push_apart<2>(pair, {1.0, -1.0}, d / length, length, 2.0 * m_marble_radius_m, inv_mass, x);
+  push_apart<2>(pair, {1.0, -1.0}, d / length, length, 2.0 * m_marble_radius_m, inv_mass, x,
+                m_moved);
   return length;
 }
 
@@ -383,7 +390,7 @@ double SelfCollision::project_marbles(const std::array<Index, 2>& pair,
 // next step's first sweep sees every candidate again).
 int SelfCollision::sweep(const PairLists& lists, const Matrix3X& x_start,
                          const Eigen::VectorXd& inv_mass, Matrix3X& x, SelfContactCounts* counts,
-                         PairLists* near) const {
+                         PairLists* near) {
   const double t = m_settings.thickness_m, marble_contact_m = 2.0 * m_marble_radius_m;
   int contacts = 0;
   const auto record = [&](double gap_m, double contact_m, long* count,
@@ -425,12 +432,15 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
     select_active(x);
   }
   const auto start = Clock::now();
+  m_moved.clear();
   m_near.vt.clear();
   m_near.ee.clear();
   m_near.vv.clear();
   int contacts = sweep(m_active, x_start, inv_mass, x, &counts, &m_near);
   for (int i = 1; i < m_settings.iterations && contacts > 0; ++i)
     contacts = sweep(m_near, x_start, inv_mass, x, nullptr, nullptr);
+  std::sort(m_moved.begin(), m_moved.end());
+  m_moved.erase(std::unique(m_moved.begin(), m_moved.end()), m_moved.end());
   m_narrow_s += seconds_since(start);
   return counts;
 }

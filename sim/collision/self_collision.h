@@ -72,6 +72,9 @@ class SelfCollision {
   // (the step's start positions). inv_mass: #V, 0 for pinned vertices. Returns the contacts of
   // the first sweep.
   SelfContactCounts resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass, Matrix3X& x);
+  // The vertices the last resolve() moved, ascending: the only ones it can have pushed into
+  // an obstacle.
+  const std::vector<Index>& moved_vertices() const { return m_moved; }
 
   double marble_radius_m() const { return m_marble_radius_m; }
   double thickness_m() const { return m_settings.thickness_m; }
@@ -115,13 +118,13 @@ class SelfCollision {
   bool rest_distance_below(const std::array<Index, 2>& e, const std::array<Index, 2>& f,
                            double limit_m) const;
   int sweep(const PairLists& lists, const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
-            Matrix3X& x, SelfContactCounts* counts, PairLists* near) const;
+            Matrix3X& x, SelfContactCounts* counts, PairLists* near);
   double project_vertex_triangle(const std::array<Index, 2>& pair, const Matrix3X& x_start,
-                                 const Eigen::VectorXd& inv_mass, Matrix3X& x) const;
+                                 const Eigen::VectorXd& inv_mass, Matrix3X& x);
   double project_edge_edge(const std::array<Index, 2>& pair, const Matrix3X& x_start,
-                           const Eigen::VectorXd& inv_mass, Matrix3X& x) const;
+                           const Eigen::VectorXd& inv_mass, Matrix3X& x);
   double project_marbles(const std::array<Index, 2>& pair, const Eigen::VectorXd& inv_mass,
-                         Matrix3X& x) const;
+                         Matrix3X& x);
 
   SelfCollisionSettings m_settings;
   double m_marble_radius_m;
@@ -145,6 +148,7 @@ class SelfCollision {
   PairLists m_active;
   Matrix3X m_x_active;
   PairLists m_near;
+  std::vector<Index> m_moved;  // the vertices the current call moved
   bool m_built = false;
   long m_rebuilds = 0;
   double m_broad_s = 0.0;

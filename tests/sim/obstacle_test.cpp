@@ -231,6 +231,25 @@ TEST(Obstacle, ReturnsTheNumberOfVerticesMoved) {
   EXPECT_EQ(push_out_of_obstacles({}, 0.1, free_vertices(3), x), 0);
 }
 
+TEST(Obstacle, PushesOutOnlyTheListedVertices) {
+  const std::vector<Obstacle> obstacles{SphereObstacle{{0.0, 0.0, 0.0}, 1.0}};
+  const Matrix3X start = positions({{0.0, 0.0, 0.5}, {0.5, 0.0, 0.0}, {0.0, 0.2, 0.0}});
+  Matrix3X x = start;
+  EXPECT_EQ(push_out_of_obstacles(obstacles, 0.01, free_vertices(3), std::vector<Index>{0, 2}, x), 2);
+  EXPECT_NEAR(x.row(0).norm(), 1.01, tolerance);
+  EXPECT_NEAR(x.row(2).norm(), 1.01, tolerance);
+  EXPECT_EQ(x.row(1), start.row(1)) << "vertex 1 was not listed";
+  Matrix3X all = start;
+  push_out_of_obstacles(obstacles, 0.01, free_vertices(3), all);
+  EXPECT_EQ(x.row(0), all.row(0)) << "a listed vertex moves as with the whole list";
+  try {
+    push_out_of_obstacles(obstacles, 0.01, free_vertices(3), std::vector<Index>{3}, x);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 3"), std::string::npos) << e.what();
+  }
+}
+
 // Friction: a vertex that was at x_start (on the ground, at the thickness) and was predicted
 // at x, slightly into the ground and sideways.
 TEST(ObstacleFriction, KineticFrictionTakesBackFrictionTimesThePushDistance) {
