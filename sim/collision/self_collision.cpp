@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "sim/collision/proximity.h"
@@ -101,6 +104,11 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   if (settings.iterations < 1)
     throw std::invalid_argument("self_collision.iterations must be >= 1, got " +
                                 std::to_string(settings.iterations));
+  if (settings.threads < 0)
+    throw std::invalid_argument("self_collision.threads must be >= 0 (0: all hardware threads), got " +
+                                std::to_string(settings.threads));
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  m_expansions.resize(settings.threads > 0 ? static_cast<std::size_t>(settings.threads) : hardware);
   m_marble_radius_m =
       settings.marble_radius_m > 0.0 ? settings.marble_radius_m : 0.5 * settings.thickness_m;
   for (const auto& t : m_triangles) m_vertices.insert(m_vertices.end(), t.begin(), t.end());
@@ -200,19 +208,22 @@ void SelfCollision::rebuild(const Matrix3X& x) {
   m_edge_boxes.clear();
   for (const auto& e : m_edges)
     m_edge_boxes.push_back(inflated(bounding_box(row(x, e[0]), row(x, e[1])), 0.5 * reach_m));
+  // The patch pairs in contiguous shares, one per thread; the shares' pairs are then joined
+  // and sorted, so the list does not depend on the number of threads.
+  const std::size_t shares = std::clamp<std::size_t>(m_patch_pairs.size() / min_pairs_per_thread, 1,
+                                                      m_expansions.size());
+  run_shares(shares, [&](std::size_t k) {
+    expand(m_patch_pairs.size() * k / shares, m_patch_pairs.size() * (k + 1) / shares, x,
+           m_expansions[k]);
+  });
   m_candidates.vt.clear();
   m_candidates.ee.clear();
   m_candidates.vv.clear();
-  for (const auto& [p, q] : m_patch_pairs) {
-    const SurfacePatch& a = m_patches[p];
-    const SurfacePatch& b = m_patches[q];
-    // Pairs of patches farther apart at rest than the exclusion radius hold no neighbours.
-    const Aabb rest_a = inflated(a.rest_box, exclusion_radius_m());
-    const bool rest_near = boxes_overlap(rest_a, b.rest_box);
-    add_vertex_triangle_candidates(a, b, x, rest_near);
-    if (p != q) add_vertex_triangle_candidates(b, a, x, rest_near);
-    add_edge_edge_candidates(a, b, p == q, x, rest_near);
-    add_marble_candidates(a, b, p == q, x);
+  for (std::size_t k = 0; k < shares; ++k) {
+    const PairLists& found = m_expansions[k].found;
+    m_candidates.vt.insert(m_candidates.vt.end(), found.vt.begin(), found.vt.end());
+    m_candidates.ee.insert(m_candidates.ee.end(), found.ee.begin(), found.ee.end());
+    m_candidates.vv.insert(m_candidates.vv.end(), found.vv.begin(), found.vv.end());
   }
   // Sorted, so that the Gauss–Seidel order follows the vertex and edge numbering.
   std::sort(m_candidates.vt.begin(), m_candidates.vt.end());
@@ -224,9 +235,52 @@ void SelfCollision::rebuild(const Matrix3X& x) {
   m_broad_s += seconds_since(start);
 }
 
+// The feature pairs within reach at x of patch pairs [begin, end) into expansion.found.
+void SelfCollision::expand(std::size_t begin, std::size_t end, const Matrix3X& x,
+                           Expansion& expansion) const {
+  PairLists& found = expansion.found;
+  found.vt.clear();
+  found.ee.clear();
+  found.vv.clear();
+  for (std::size_t i = begin; i < end; ++i) {
+    const auto [p, q] = m_patch_pairs[i];
+    const SurfacePatch& a = m_patches[p];
+    const SurfacePatch& b = m_patches[q];
+    // Pairs of patches farther apart at rest than the exclusion radius hold no neighbours.
+    const Aabb rest_a = inflated(a.rest_box, exclusion_radius_m());
+    const bool rest_near = boxes_overlap(rest_a, b.rest_box);
+    add_vertex_triangle_candidates(a, b, x, rest_near, found);
+    if (p != q) add_vertex_triangle_candidates(b, a, x, rest_near, found);
+    add_edge_edge_candidates(a, b, p == q, x, rest_near, expansion);
+    add_marble_candidates(a, b, p == q, x, found);
+  }
+}
+
+// Runs task(k) for k in [0, shares): share 0 on this thread, the others on threads of their
+// own; rethrows the first exception (by share) once all have finished.
+void SelfCollision::run_shares(std::size_t shares,
+                               const std::function<void(std::size_t)>& task) const {
+  std::vector<std::exception_ptr> errors(shares);
+  const auto guarded = [&](std::size_t k) {
+    try {
+      task(k);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  threads.reserve(shares);
+  for (std::size_t k = 1; k < shares; ++k) threads.emplace_back(guarded, k);
+  guarded(0);
+  for (std::thread& t : threads) t.join();
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+}
+
 // Vertices owned by patch a, those within reach of patch b's box, against b's triangles.
 void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const SurfacePatch& b,
-                                                   const Matrix3X& x, bool rest_near) {
+                                                   const Matrix3X& x, bool rest_near,
+                                                   PairLists& out) const {
   const double reach_m = m_settings.thickness_m + m_margin_m;
   const double exclusion_m = exclusion_radius_m();
   const Aabb target = inflated(b.box, reach_m);
@@ -238,7 +292,7 @@ void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const 
       if (!boxes_overlap(Aabb{p, p}, m_triangle_boxes[static_cast<std::size_t>(k)])) continue;
       if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
       if (rest_near && rest_distance_below(v, tri, exclusion_m)) continue;
-      if (point_triangle_distance(x, v, tri) < reach_m) m_candidates.vt.push_back({v, k});
+      if (point_triangle_distance(x, v, tri) < reach_m) out.vt.push_back({v, k});
     }
   }
 }
@@ -246,7 +300,8 @@ void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const 
 // Edges owned by patch a against those owned by patch b (each unordered pair once): first
 // the edges of each whose box reaches the other patch's box.
 void SelfCollision::add_edge_edge_candidates(const SurfacePatch& a, const SurfacePatch& b,
-                                             bool same, const Matrix3X& x, bool rest_near) {
+                                             bool same, const Matrix3X& x, bool rest_near,
+                                             Expansion& expansion) const {
   const double reach_m = m_settings.thickness_m + m_margin_m;
   const double exclusion_m = exclusion_radius_m();
   const auto reaching = [&](const SurfacePatch& from, const SurfacePatch& to,
@@ -256,13 +311,15 @@ void SelfCollision::add_edge_edge_candidates(const SurfacePatch& a, const Surfac
     for (const Index e : from.owned_edges)
       if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)], target)) out.push_back(e);
   };
-  reaching(a, b, m_edges_a);
-  if (same) m_edges_b = m_edges_a;
-  else reaching(b, a, m_edges_b);
-  for (std::size_t i = 0; i < m_edges_a.size(); ++i) {
-    for (std::size_t j = same ? i + 1 : 0; j < m_edges_b.size(); ++j) {
-      const Index ei = std::min(m_edges_a[i], m_edges_b[j]);
-      const Index ej = std::max(m_edges_a[i], m_edges_b[j]);
+  std::vector<Index>& edges_a = expansion.edges_a;
+  std::vector<Index>& edges_b = expansion.edges_b;
+  reaching(a, b, edges_a);
+  if (same) edges_b = edges_a;
+  else reaching(b, a, edges_b);
+  for (std::size_t i = 0; i < edges_a.size(); ++i) {
+    for (std::size_t j = same ? i + 1 : 0; j < edges_b.size(); ++j) {
+      const Index ei = std::min(edges_a[i], edges_b[j]);
+      const Index ej = std::max(edges_a[i], edges_b[j]);
       const auto& e = m_edges[static_cast<std::size_t>(ei)];
       const auto& f = m_edges[static_cast<std::size_t>(ej)];
       if (!boxes_overlap(m_edge_boxes[static_cast<std::size_t>(ei)],
@@ -270,14 +327,14 @@ void SelfCollision::add_edge_edge_candidates(const SurfacePatch& a, const Surfac
           shares_vertex(e, f))
         continue;
       if (rest_near && rest_distance_below(e, f, exclusion_m)) continue;
-      if (edge_edge_distance(x, e, f) < reach_m) m_candidates.ee.push_back({ei, ej});
+      if (edge_edge_distance(x, e, f) < reach_m) expansion.found.ee.push_back({ei, ej});
     }
   }
 }
 
 // Vertices owned by patch a against those owned by patch b (each unordered pair once).
 void SelfCollision::add_marble_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
-                                          const Matrix3X& x) {
+                                          const Matrix3X& x, PairLists& out) const {
   const double marble_contact_m = 2.0 * m_marble_radius_m;
   const double reach2 = std::pow(marble_contact_m + m_margin_m, 2);
   const double exclusion2 = std::pow(marble_contact_m + m_neighbourhood_m, 2);
@@ -287,7 +344,7 @@ void SelfCollision::add_marble_candidates(const SurfacePatch& a, const SurfacePa
       const Index w = std::max(a.owned_vertices[i], b.owned_vertices[j]);
       if ((x.row(u) - x.row(w)).squaredNorm() < reach2 &&
           (m_rest.row(u) - m_rest.row(w)).squaredNorm() >= exclusion2)
-        m_candidates.vv.push_back({u, w});
+        out.vv.push_back({u, w});
     }
   }
 }

@@ -25,10 +25,11 @@
 // edges whose closest points swapped sides during the step likewise. Faster crossings are
 // missed; the per-frame intersection count (self_intersection.h) reports them.
 //
-// Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by a
-// spatial hash of their boxes; normal cones drop flat patches and flat pairs of neighbouring
-// patches (flat_angle_rad() says when that is safe, and is 0 when it is not); the remaining
-// patch pairs give the candidate pairs within the contact distance plus a margin. Two nested
+// Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by
+// sorting and sweeping their boxes; normal cones drop flat patches and flat pairs of
+// neighbouring patches (flat_angle_rad() says when that is safe, and is 0 when it is not); the
+// remaining patch pairs give the candidate pairs within the contact distance plus a margin,
+// shared out in contiguous runs among `threads` threads and then sorted. Two nested
 // Verlet lists, both measured relative to the cloth's common translation: the candidates stay
 // valid until some vertex has moved half the margin since they were built, and the active
 // pairs — the candidates within the contact distance plus a narrower band, which the steps
@@ -38,6 +39,7 @@
 // near contact — ending early when no pair is in contact.
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "sim/collision/surface_patches.h"
@@ -51,6 +53,8 @@ struct SelfCollisionSettings {
   double thickness_m = 2e-3;     // vertex–triangle and edge–edge contact distance, > 0
   double marble_radius_m = 0.0;  // vertex–vertex: 0 gives thickness_m / 2
   int iterations = 4;            // Gauss–Seidel sweeps over the contacts per call, ≥ 1
+  int threads = 0;  // threads that build the candidate list; 0: all hardware threads. Never
+                    // changes a bit of the result.
 };
 
 // Contacts found in the first sweep of one resolve() call.
@@ -88,6 +92,8 @@ class SelfCollision {
     return m_candidates.vt.size() + m_candidates.ee.size() + m_candidates.vv.size();
   }
   long rebuilds() const { return m_rebuilds; }
+  // Patch pairs the last rebuild expanded into candidates (shared among the threads).
+  std::size_t patch_pair_count() const { return m_patch_pairs.size(); }
   // Wall time spent building candidate lists (broad phase) and projecting contacts (narrow).
   double broad_phase_s() const { return m_broad_s; }
   double narrow_phase_s() const { return m_narrow_s; }
@@ -97,6 +103,8 @@ class SelfCollision {
 
   // Grid cells per side of a broad-phase patch (surface_patches.h).
   static constexpr Index cells_per_patch_side = 2;
+  // Fewer patch pairs than this per thread are not worth a thread of their own.
+  static constexpr std::size_t min_pairs_per_thread = 256;
   std::size_t edge_count() const { return m_edges.size(); }
 
  private:
@@ -108,12 +116,19 @@ class SelfCollision {
   bool moved_beyond(const Matrix3X& x, const Matrix3X& reference, double limit_m) const;
   void select_active(const Matrix3X& x);
   void rebuild(const Matrix3X& x);
+  // One thread's share of a rebuild: the pairs it found, and its scratch.
+  struct Expansion {
+    PairLists found;
+    std::vector<Index> edges_a, edges_b;
+  };
+  void expand(std::size_t begin, std::size_t end, const Matrix3X& x, Expansion& expansion) const;
+  void run_shares(std::size_t shares, const std::function<void(std::size_t)>& task) const;
   void add_vertex_triangle_candidates(const SurfacePatch& a, const SurfacePatch& b,
-                                      const Matrix3X& x, bool rest_near);
+                                      const Matrix3X& x, bool rest_near, PairLists& out) const;
   void add_edge_edge_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
-                                const Matrix3X& x, bool rest_near);
+                                const Matrix3X& x, bool rest_near, Expansion& expansion) const;
   void add_marble_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
-                             const Matrix3X& x);
+                             const Matrix3X& x, PairLists& out) const;
   bool rest_distance_below(Index v, const std::array<Index, 3>& tri, double limit_m) const;
   bool rest_distance_below(const std::array<Index, 2>& e, const std::array<Index, 2>& f,
                            double limit_m) const;
@@ -140,7 +155,7 @@ class SelfCollision {
   // Rebuild scratch: the near patch pairs, triangle boxes grown by the reach, edge boxes by half.
   std::vector<std::array<Index, 2>> m_patch_pairs;
   std::vector<Aabb> m_triangle_boxes, m_edge_boxes;
-  std::vector<Index> m_edges_a, m_edges_b;
+  std::vector<Expansion> m_expansions;  // one per thread
   // The candidate list and the positions it was built at; the active pairs and the positions
   // they were selected at; the pairs near contact in the current call's first sweep.
   PairLists m_candidates;

@@ -15,6 +15,7 @@
 #include "sim/collision/self_intersection.h"
 #include "sim/simulator.h"
 #include "test_cloth.h"
+#include "tests/sim/rolled_sheet.h"
 
 namespace weft::sim {
 namespace {
@@ -242,6 +243,40 @@ TEST(SelfCollision, BadSettingsThrowNamingTheKey) {
   bad = SelfCollisionSettings{};
   bad.marble_radius_m = -1.0;
   EXPECT_THROW(SelfCollision(mesh, bad), std::invalid_argument);
+  bad = SelfCollisionSettings{};
+  bad.threads = -1;
+  EXPECT_THROW(SelfCollision(mesh, bad), std::invalid_argument);
+}
+
+// A 65² sheet rolled into a spiral with layers 2 mm apart, inside the 3 mm thickness: the
+// layers are pushed apart the same way, to the bit, whatever the number of threads that
+// build the candidate list.
+TEST(SelfCollision, TheResultDoesNotDependOnTheThreadCount) {
+  const ClothMesh mesh = sheet(65);
+  const Matrix3X start = rolled(mesh, 0.12, 0.002);
+  const Eigen::VectorXd inv_mass = Eigen::VectorXd::Ones(mesh.vertex_count());
+  Matrix3X reference;
+  std::size_t reference_candidates = 0;
+  for (const int threads : {1, 2, 3}) {
+    SelfCollisionSettings settings;
+    settings.enabled = true;
+    settings.thickness_m = 3e-3;
+    settings.threads = threads;
+    SelfCollision self(mesh, settings);
+    Matrix3X x = start;
+    const SelfContactCounts counts = self.resolve(start, inv_mass, x);
+    EXPECT_GT(counts.total(), 1000) << threads << " threads";
+    EXPECT_GT(self.patch_pair_count(), 3 * SelfCollision::min_pairs_per_thread)
+        << "too few patch pairs to share among " << threads << " threads";
+    if (threads == 1) {
+      reference = x;
+      reference_candidates = self.candidate_count();
+      continue;
+    }
+    EXPECT_EQ(self.candidate_count(), reference_candidates) << threads << " threads";
+    EXPECT_TRUE(x == reference) << threads << " threads: largest difference "
+                                << (x - reference).cwiseAbs().maxCoeff() << " m";
+  }
 }
 
 // Seed 002's sphere drape, coarse (assets/scenes/sphere_drape.json at 17×17): a 1 m sheet
