@@ -5,16 +5,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "sim/collision/proximity.h"
 #include "sim/collision/self_intersection.h"
+#include "sim/parallel_shares.h"
 
 namespace weft::sim {
 namespace {
@@ -44,6 +42,29 @@ double edge_edge_distance(const Matrix3X& x, const std::array<Index, 2>& e,
   const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
   const auto [s, t] = closest_segment_parameters(p0, p1, q0, q1);
   return ((p0 + s * (p1 - p0)) - (q0 + t * (q1 - q0))).norm();
+}
+
+// Whether vertex p is on the other side of the plane of triangle t at x than at x_start.
+bool sides_swapped(const Matrix3X& x_start, const Matrix3X& x, Index p,
+                   const std::array<Index, 3>& t) {
+  const auto side = [&](const Matrix3X& m) {
+    const Vec3 a = row(m, t[0]);
+    return (row(m, p) - a).dot((row(m, t[1]) - a).cross(row(m, t[2]) - a));
+  };
+  return side(x) * side(x_start) < 0.0;
+}
+
+// The distance between edges e and f at x, and whether their closest points there have
+// swapped sides since x_start (the same material points, as project_edge_edge compares).
+std::pair<double, bool> edge_edge_distance_and_swap(const Matrix3X& x_start, const Matrix3X& x,
+                                                    const std::array<Index, 2>& e,
+                                                    const std::array<Index, 2>& f) {
+  const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
+  const auto [s, u] = closest_segment_parameters(p0, p1, q0, q1);
+  const Vec3 d = (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0));
+  const Vec3 d0 = (row(x_start, e[0]) + s * (row(x_start, e[1]) - row(x_start, e[0]))) -
+                  (row(x_start, f[0]) + u * (row(x_start, f[1]) - row(x_start, f[0])));
+  return {d.norm(), d.dot(d0) < 0.0};
 }
 
 // Whether the bounding boxes of point sets a and b of x come within limit_m of each other along
@@ -107,8 +128,8 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   if (settings.threads < 0)
     throw std::invalid_argument("self_collision.threads must be >= 0 (0: all hardware threads), got " +
                                 std::to_string(settings.threads));
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  m_expansions.resize(settings.threads > 0 ? static_cast<std::size_t>(settings.threads) : hardware);
+  m_expansions.resize(thread_count(settings.threads));
+  m_moved_since_built_m.assign(static_cast<std::size_t>(m_rest.rows()), 0.0);
   m_marble_radius_m =
       settings.marble_radius_m > 0.0 ? settings.marble_radius_m : 0.5 * settings.thickness_m;
   for (const auto& t : m_triangles) m_vertices.insert(m_vertices.end(), t.begin(), t.end());
@@ -116,16 +137,17 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   m_vertices.erase(std::unique(m_vertices.begin(), m_vertices.end()), m_vertices.end());
   // Neighbours: pairs closer at rest than the contact distance plus the mean rest edge are
   // never in contact, so a flat sheet has no candidates. Margin: half the mean rest edge, and
-  // no less than the contact distance, plus the active band, a quarter of the contact
-  // distance (a wider margin rebuilds less often but leaves normal-cone culling less room, a
-  // wider band selects less often but keeps more pairs active; both measured at 64² with
+  // no less than the contact distance, plus the active band, a sixteenth of the contact
+  // distance. A wider margin rebuilds less often but leaves normal-cone culling less room
+  // (0.3 to 0.5 edges all cost the same at 64²); a wider band selects less often but keeps
+  // more pairs active (a quarter of the contact distance cost 4 % more at 64²: measured with
   // bench/self_collision_bench).
   double edge_sum_m = 0.0;
   for (const auto& e : m_edges) edge_sum_m += (row(m_rest, e[0]) - row(m_rest, e[1])).norm();
   const double mean_edge_m = m_edges.empty() ? 0.0 : edge_sum_m / static_cast<double>(m_edges.size());
   const double contact_m = std::max(settings.thickness_m, 2.0 * m_marble_radius_m);
   m_neighbourhood_m = mean_edge_m;
-  m_band_m = 0.25 * contact_m;
+  m_band_m = contact_m / 16.0;
   m_margin_m = std::max(contact_m, 0.5 * mean_edge_m) + m_band_m;
   // Normal-cone culling (surface_patches.h) drops a pair inside a patch whose normals lie
   // within θ of an axis; the pair was then at least cos θ · g apart, g its distance along the
@@ -140,51 +162,77 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   m_flat_angle_rad = cos_flat < 1.0 ? std::min(std::acos(cos_flat), max_flat_angle_rad) : 0.0;
 }
 
-// Distances between features do not change when the whole cloth translates, so a list built
-// at `reference` holds while every vertex's displacement since then differs from one common
-// vector c by at most `limit_m`: each side of a pair has then moved at most limit_m relative to
-// c, and their distance has changed by at most twice that. c: the centre of the displacements'
-// bounding box, which makes a falling cloth rebuild only as it deforms.
-bool SelfCollision::moved_beyond(const Matrix3X& x, const Matrix3X& reference,
-                                 double limit_m) const {
-  if (reference.rows() != x.rows()) return true;
-  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Array3d hi = -lo;
+// Distances between features do not change when the whole cloth translates, so what a list
+// built at some reference positions has to allow for is how far each vertex's displacement
+// since then differs from one common vector c: that difference, δ_v, bounds how far vertex v
+// has moved relative to c, and so a pair's distance can have changed by at most the largest δ
+// of one side plus that of the other. c: the centre of the displacements' bounding box, which
+// makes a falling cloth rebuild only as it deforms. One pass for both lists: the largest δ
+// since the active pairs were selected, and each δ since the candidates were built.
+void SelfCollision::measure_displacements(const Matrix3X& x) {
+  Eigen::Array3d lo_active = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Array3d hi_active = -lo_active, lo_built = lo_active, hi_built = hi_active;
   for (const Index v : m_vertices) {
-    const Eigen::Array3d d = (x.row(v) - reference.row(v)).transpose().array();
-    lo = lo.min(d);
-    hi = hi.max(d);
+    const Eigen::Array3d a = (x.row(v) - m_x_active.row(v)).transpose().array();
+    const Eigen::Array3d b = (x.row(v) - m_x_built.row(v)).transpose().array();
+    lo_active = lo_active.min(a);
+    hi_active = hi_active.max(a);
+    lo_built = lo_built.min(b);
+    hi_built = hi_built.max(b);
   }
-  const Eigen::RowVector3d c = (0.5 * (lo + hi)).matrix().transpose();
-  const double limit2 = limit_m * limit_m;
-  for (const Index v : m_vertices)
-    if ((x.row(v) - reference.row(v) - c).squaredNorm() > limit2) return true;
-  return false;
+  const Eigen::RowVector3d c_active = (0.5 * (lo_active + hi_active)).matrix().transpose();
+  const Eigen::RowVector3d c_built = (0.5 * (lo_built + hi_built)).matrix().transpose();
+  double active2 = 0.0, built2 = 0.0;
+  for (const Index v : m_vertices) {
+    active2 = std::max(active2, (x.row(v) - m_x_active.row(v) - c_active).squaredNorm());
+    const double d2 = (x.row(v) - m_x_built.row(v) - c_built).squaredNorm();
+    built2 = std::max(built2, d2);
+    m_moved_since_built_m[static_cast<std::size_t>(v)] = std::sqrt(d2);
+  }
+  m_moved_since_active_m = std::sqrt(active2);
+  m_most_moved_since_built_m = std::sqrt(built2);
 }
 
 // The pairs of the candidate list within the contact distance plus the active band at x: no
-// other candidate can come into contact before some vertex has moved half the band.
-void SelfCollision::select_active(const Matrix3X& x) {
+// other candidate can come into contact before some vertex has moved half the band. And,
+// so that a pair that passed through each other within the step goes back (see the header),
+// those within the contact distance plus the crossing depth whose sides have swapped since
+// x_start. A candidate whose distance at the rebuild, less how far its sides can have moved
+// since (measure_displacements), is farther than that is left out without looking at it.
+void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
   const auto start = Clock::now();
   const double t = m_settings.thickness_m, band_m = active_band_m();
+  const double reach_m = t + crossing_depth_m();
+  const auto moved = [&](Index v) { return m_moved_since_built_m[static_cast<std::size_t>(v)]; };
   m_active.vt.clear();
   m_active.ee.clear();
   m_active.vv.clear();
-  for (const auto& pair : m_candidates.vt) {
-    const auto& tri = m_triangles[static_cast<std::size_t>(pair[1])];
-    if (boxes_within(x, std::array<Index, 1>{pair[0]}, tri, t + band_m) &&
-        point_triangle_distance(x, pair[0], tri) < t + band_m)
-      m_active.vt.push_back(pair);
+  for (const Candidate& candidate : m_candidates.vt) {
+    const auto& [v, k] = candidate.ids;
+    const auto& tri = m_triangles[static_cast<std::size_t>(k)];
+    const double moved_m = moved(v) + std::max({moved(tri[0]), moved(tri[1]), moved(tri[2])});
+    if (candidate.distance_m - moved_m >= reach_m || !boxes_within(x, std::array<Index, 1>{v}, tri, reach_m))
+      continue;
+    const double distance_m = point_triangle_distance(x, v, tri);
+    if (distance_m < t + band_m || (distance_m < reach_m && sides_swapped(x_start, x, v, tri)))
+      m_active.vt.push_back(candidate.ids);
   }
-  for (const auto& pair : m_candidates.ee) {
-    const auto& e = m_edges[static_cast<std::size_t>(pair[0])];
-    const auto& f = m_edges[static_cast<std::size_t>(pair[1])];
-    if (boxes_within(x, e, f, t + band_m) && edge_edge_distance(x, e, f) < t + band_m)
-      m_active.ee.push_back(pair);
+  for (const Candidate& candidate : m_candidates.ee) {
+    const auto& e = m_edges[static_cast<std::size_t>(candidate.ids[0])];
+    const auto& f = m_edges[static_cast<std::size_t>(candidate.ids[1])];
+    const double moved_m = std::max(moved(e[0]), moved(e[1])) + std::max(moved(f[0]), moved(f[1]));
+    if (candidate.distance_m - moved_m >= reach_m || !boxes_within(x, e, f, reach_m)) continue;
+    const auto [distance_m, swapped] = edge_edge_distance_and_swap(x_start, x, e, f);
+    if (distance_m < t + band_m || (distance_m < reach_m && swapped))
+      m_active.ee.push_back(candidate.ids);
   }
-  const double marble2 = std::pow(2.0 * m_marble_radius_m + band_m, 2);
-  for (const auto& pair : m_candidates.vv)
-    if ((x.row(pair[0]) - x.row(pair[1])).squaredNorm() < marble2) m_active.vv.push_back(pair);
+  const double marble_m = 2.0 * m_marble_radius_m + band_m;
+  for (const Candidate& candidate : m_candidates.vv) {
+    const auto& [u, w] = candidate.ids;
+    if (candidate.distance_m - (moved(u) + moved(w)) >= marble_m) continue;
+    if ((x.row(u) - x.row(w)).squaredNorm() < marble_m * marble_m)
+      m_active.vv.push_back(candidate.ids);
+  }
   m_x_active = x;
   m_broad_s += seconds_since(start);
 }
@@ -199,36 +247,49 @@ void SelfCollision::rebuild(const Matrix3X& x) {
   const auto start = Clock::now();
   const double reach_m = m_settings.thickness_m + m_margin_m;
   const double marble_reach_m = 2.0 * m_marble_radius_m + m_margin_m;
-  m_patches.refit(x);
-  m_patches.near_pairs(std::max(reach_m, marble_reach_m), m_flat_angle_rad, m_patch_pairs);
-  m_triangle_boxes.clear();
-  for (const auto& tri : m_triangles)
-    m_triangle_boxes.push_back(
-        inflated(bounding_box(row(x, tri[0]), row(x, tri[1]), row(x, tri[2])), reach_m));
-  m_edge_boxes.clear();
-  for (const auto& e : m_edges)
-    m_edge_boxes.push_back(inflated(bounding_box(row(x, e[0]), row(x, e[1])), 0.5 * reach_m));
-  // The patch pairs in contiguous shares, one per thread; the shares' pairs are then joined
-  // and sorted, so the list does not depend on the number of threads.
-  const std::size_t shares = std::clamp<std::size_t>(m_patch_pairs.size() / min_pairs_per_thread, 1,
-                                                      m_expansions.size());
-  run_shares(shares, [&](std::size_t k) {
-    expand(m_patch_pairs.size() * k / shares, m_patch_pairs.size() * (k + 1) / shares, x,
-           m_expansions[k]);
+  const std::size_t threads = m_expansions.size();
+  // The patches' boxes and cones, and the features' boxes, a contiguous share per thread.
+  const std::size_t patches = m_patches.patches().size();
+  m_triangle_boxes.resize(m_triangles.size());
+  m_edge_boxes.resize(m_edges.size());
+  const std::size_t box_shares = std::clamp<std::size_t>(patches / 64, 1, threads);
+  run_in_shares(box_shares, [&](std::size_t k) {
+    m_patches.refit(x, share_begin(patches, box_shares, k), share_begin(patches, box_shares, k + 1));
+    const std::size_t triangles_end = share_begin(m_triangles.size(), box_shares, k + 1);
+    for (std::size_t t = share_begin(m_triangles.size(), box_shares, k); t < triangles_end; ++t) {
+      const auto& tri = m_triangles[t];
+      m_triangle_boxes[t] =
+          inflated(bounding_box(row(x, tri[0]), row(x, tri[1]), row(x, tri[2])), reach_m);
+    }
+    const std::size_t edges_end = share_begin(m_edges.size(), box_shares, k + 1);
+    for (std::size_t e = share_begin(m_edges.size(), box_shares, k); e < edges_end; ++e)
+      m_edge_boxes[e] =
+          inflated(bounding_box(row(x, m_edges[e][0]), row(x, m_edges[e][1])), 0.5 * reach_m);
+  });
+  m_patches.near_pairs(std::max(reach_m, marble_reach_m), m_flat_angle_rad, m_patch_pairs, threads);
+  // The patch pairs in contiguous shares, one per thread, each sorting the pairs it found
+  // (so that the Gauss–Seidel order follows the vertex and edge numbering); the shares are
+  // then merged, so the list does not depend on the number of threads.
+  const std::size_t shares =
+      std::clamp<std::size_t>(m_patch_pairs.size() / min_pairs_per_thread, 1, threads);
+  run_in_shares(shares, [&](std::size_t k) {
+    expand(share_begin(m_patch_pairs.size(), shares, k),
+           share_begin(m_patch_pairs.size(), shares, k + 1), x, m_expansions[k]);
   });
   m_candidates.vt.clear();
   m_candidates.ee.clear();
   m_candidates.vv.clear();
+  const auto merge = [](const auto& share, auto& list) {
+    const auto middle = static_cast<std::ptrdiff_t>(list.size());
+    list.insert(list.end(), share.begin(), share.end());
+    std::inplace_merge(list.begin(), list.begin() + middle, list.end());
+  };
   for (std::size_t k = 0; k < shares; ++k) {
-    const PairLists& found = m_expansions[k].found;
-    m_candidates.vt.insert(m_candidates.vt.end(), found.vt.begin(), found.vt.end());
-    m_candidates.ee.insert(m_candidates.ee.end(), found.ee.begin(), found.ee.end());
-    m_candidates.vv.insert(m_candidates.vv.end(), found.vv.begin(), found.vv.end());
+    const CandidateLists& found = m_expansions[k].found;
+    merge(found.vt, m_candidates.vt);
+    merge(found.ee, m_candidates.ee);
+    merge(found.vv, m_candidates.vv);
   }
-  // Sorted, so that the Gauss–Seidel order follows the vertex and edge numbering.
-  std::sort(m_candidates.vt.begin(), m_candidates.vt.end());
-  std::sort(m_candidates.ee.begin(), m_candidates.ee.end());
-  std::sort(m_candidates.vv.begin(), m_candidates.vv.end());
   m_x_built = x;
   m_built = true;
   ++m_rebuilds;
@@ -238,7 +299,7 @@ void SelfCollision::rebuild(const Matrix3X& x) {
 // The feature pairs within reach at x of patch pairs [begin, end) into expansion.found.
 void SelfCollision::expand(std::size_t begin, std::size_t end, const Matrix3X& x,
                            Expansion& expansion) const {
-  PairLists& found = expansion.found;
+  CandidateLists& found = expansion.found;
   found.vt.clear();
   found.ee.clear();
   found.vv.clear();
@@ -254,33 +315,15 @@ void SelfCollision::expand(std::size_t begin, std::size_t end, const Matrix3X& x
     add_edge_edge_candidates(a, b, p == q, x, rest_near, expansion);
     add_marble_candidates(a, b, p == q, x, found);
   }
-}
-
-// Runs task(k) for k in [0, shares): share 0 on this thread, the others on threads of their
-// own; rethrows the first exception (by share) once all have finished.
-void SelfCollision::run_shares(std::size_t shares,
-                               const std::function<void(std::size_t)>& task) const {
-  std::vector<std::exception_ptr> errors(shares);
-  const auto guarded = [&](std::size_t k) {
-    try {
-      task(k);
-    } catch (...) {
-      errors[k] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> threads;
-  threads.reserve(shares);
-  for (std::size_t k = 1; k < shares; ++k) threads.emplace_back(guarded, k);
-  guarded(0);
-  for (std::thread& t : threads) t.join();
-  for (const std::exception_ptr& error : errors)
-    if (error) std::rethrow_exception(error);
+  std::sort(found.vt.begin(), found.vt.end());
+  std::sort(found.ee.begin(), found.ee.end());
+  std::sort(found.vv.begin(), found.vv.end());
 }
 
 // Vertices owned by patch a, those within reach of patch b's box, against b's triangles.
 void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const SurfacePatch& b,
                                                    const Matrix3X& x, bool rest_near,
-                                                   PairLists& out) const {
+                                                   CandidateLists& out) const {
   const double reach_m = m_settings.thickness_m + m_margin_m;
   const double exclusion_m = exclusion_radius_m();
   const Aabb target = inflated(b.box, reach_m);
@@ -292,7 +335,8 @@ void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const 
       if (!boxes_overlap(Aabb{p, p}, m_triangle_boxes[static_cast<std::size_t>(k)])) continue;
       if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
       if (rest_near && rest_distance_below(v, tri, exclusion_m)) continue;
-      if (point_triangle_distance(x, v, tri) < reach_m) out.vt.push_back({v, k});
+      const double distance_m = point_triangle_distance(x, v, tri);
+      if (distance_m < reach_m) out.vt.push_back({{v, k}, distance_m});
     }
   }
 }
@@ -327,14 +371,15 @@ void SelfCollision::add_edge_edge_candidates(const SurfacePatch& a, const Surfac
           shares_vertex(e, f))
         continue;
       if (rest_near && rest_distance_below(e, f, exclusion_m)) continue;
-      if (edge_edge_distance(x, e, f) < reach_m) expansion.found.ee.push_back({ei, ej});
+      const double distance_m = edge_edge_distance(x, e, f);
+      if (distance_m < reach_m) expansion.found.ee.push_back({{ei, ej}, distance_m});
     }
   }
 }
 
 // Vertices owned by patch a against those owned by patch b (each unordered pair once).
 void SelfCollision::add_marble_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
-                                          const Matrix3X& x, PairLists& out) const {
+                                          const Matrix3X& x, CandidateLists& out) const {
   const double marble_contact_m = 2.0 * m_marble_radius_m;
   const double reach2 = std::pow(marble_contact_m + m_margin_m, 2);
   const double exclusion2 = std::pow(marble_contact_m + m_neighbourhood_m, 2);
@@ -342,9 +387,9 @@ void SelfCollision::add_marble_candidates(const SurfacePatch& a, const SurfacePa
     for (std::size_t j = same ? i + 1 : 0; j < b.owned_vertices.size(); ++j) {
       const Index u = std::min(a.owned_vertices[i], b.owned_vertices[j]);
       const Index w = std::max(a.owned_vertices[i], b.owned_vertices[j]);
-      if ((x.row(u) - x.row(w)).squaredNorm() < reach2 &&
-          (m_rest.row(u) - m_rest.row(w)).squaredNorm() >= exclusion2)
-        out.vv.push_back({u, w});
+      const double distance2 = (x.row(u) - x.row(w)).squaredNorm();
+      if (distance2 < reach2 && (m_rest.row(u) - m_rest.row(w)).squaredNorm() >= exclusion2)
+        out.vv.push_back({{u, w}, std::sqrt(distance2)});
     }
   }
 }
@@ -391,8 +436,12 @@ double SelfCollision::project_vertex_triangle(const std::array<Index, 2>& pair,
     const Vec3 a0 = row(x_start, tri[0]), b0 = row(x_start, tri[1]), c0 = row(x_start, tri[2]);
     const Vec3 p0 = row(x_start, v);
     const double side0 = (p0 - a0).dot((b0 - a0).cross(c0 - a0));
-    const bool was_over = over_face(closest_point_on_triangle_weights(p0, a0, b0, c0));
-    const double side = was_over && side0 != 0.0 ? side0 : (p - q).dot(n);
+    const double side_now = (p - q).dot(n);
+    // Whether it was over the face matters only when the two sides differ.
+    const bool same_side = side0 == 0.0 || (side_now != 0.0 && (side0 > 0.0) == (side_now > 0.0));
+    const bool was_over =
+        !same_side && over_face(closest_point_on_triangle_weights(p0, a0, b0, c0));
+    const double side = was_over ? side0 : side_now;
     if (side < 0.0) n = -n;
     gap_m = (p - q).dot(n);
   } else {
@@ -480,13 +529,21 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
                                 " inverse masses for a mesh of " + std::to_string(m_rest.rows()) +
                                 " vertices");
   SelfContactCounts counts;
-  // Two Verlet lists: the candidates within the margin, rebuilt when some vertex has moved
-  // (margin − band)/2 — checked only when the active pairs are reselected, after at most
-  // band/2 more, so the candidates never miss a pair — and the active pairs within the band,
-  // reselected from the candidates when some vertex has moved band/2.
-  if (!m_built || moved_beyond(x, m_x_active, 0.5 * active_band_m())) {
-    if (!m_built || moved_beyond(x, m_x_built, 0.5 * (m_margin_m - active_band_m()))) rebuild(x);
-    select_active(x);
+  // Two Verlet lists, checked at every call: the candidates within the margin, rebuilt when
+  // some vertex has moved (margin − crossing depth)/2, so that every pair within the contact
+  // distance plus the crossing depth is a candidate; and the active pairs, reselected from
+  // the candidates when some vertex has moved half the band.
+  if (m_built) {
+    const auto check_start = Clock::now();
+    measure_displacements(x);
+    m_broad_s += seconds_since(check_start);
+  }
+  if (!m_built || m_most_moved_since_built_m > 0.5 * (m_margin_m - crossing_depth_m())) {
+    rebuild(x);
+    std::fill(m_moved_since_built_m.begin(), m_moved_since_built_m.end(), 0.0);
+    select_active(x, x_start);
+  } else if (m_moved_since_active_m > 0.5 * active_band_m()) {
+    select_active(x, x_start);
   }
   const auto start = Clock::now();
   m_moved.clear();

@@ -21,25 +21,29 @@
 //
 // Which side: a vertex that was over a triangle (its projection inside it) at the start of the
 // step is kept on the side it was on then, so a vertex that passed through the sheet within one
-// step, by less than the contact distance plus the broad phase's margin, is brought back; two
-// edges whose closest points swapped sides during the step likewise. Faster crossings are
-// missed; the per-frame intersection count (self_intersection.h) reports them.
+// step, by less than the contact distance plus the crossing depth (a quarter of the contact
+// distance), is brought back; two edges whose closest points swapped sides during the step
+// likewise. Faster crossings are missed; the per-frame intersection count
+// (self_intersection.h) reports them.
 //
 // Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by
 // sorting and sweeping their boxes; normal cones drop flat patches and flat pairs of
 // neighbouring patches (flat_angle_rad() says when that is safe, and is 0 when it is not); the
 // remaining patch pairs give the candidate pairs within the contact distance plus a margin,
-// shared out in contiguous runs among `threads` threads and then sorted. Two nested
-// Verlet lists, both measured relative to the cloth's common translation: the candidates stay
-// valid until some vertex has moved half the margin since they were built, and the active
-// pairs — the candidates within the contact distance plus a narrower band, which the steps
-// project — until some vertex has moved half the band since they were selected.
+// shared out in contiguous runs among `threads` threads and then merged in order. Two
+// nested Verlet lists, both measured relative to the cloth's common translation at every
+// call: the candidates stay valid until some vertex has moved half the margin less the
+// crossing depth since they were built, and the active pairs — the candidates within the
+// contact distance plus a narrow band, and those that swapped sides within the crossing
+// depth, which the steps project — until some vertex has moved half the band since they were
+// selected. Selecting skips a candidate whose distance at the rebuild, less how far its
+// vertices have moved since, keeps it out of reach.
 // Deterministic: candidates are sorted and contacts are projected in that fixed order
 // (Gauss–Seidel), in up to `iterations` sweeps — after the first only over the pairs it found
 // near contact — ending early when no pair is in contact.
 
+#include <algorithm>
 #include <array>
-#include <functional>
 #include <vector>
 
 #include "sim/collision/surface_patches.h"
@@ -85,6 +89,9 @@ class SelfCollision {
   double margin_m() const { return m_margin_m; }
   // Active pairs: the candidates within the contact distance plus this band.
   double active_band_m() const { return m_band_m; }
+  // Pairs that passed through each other within a step by less than the contact distance
+  // plus this are brought back (a quarter of the contact distance).
+  double crossing_depth_m() const { return 0.25 * std::max(m_settings.thickness_m, 2.0 * m_marble_radius_m); }
   // Pairs closer than this at rest are never in contact (marbles: 2·radius + mean rest edge).
   double exclusion_radius_m() const { return m_settings.thickness_m + m_neighbourhood_m; }
   // Candidate pairs of the current list, and how often it was rebuilt.
@@ -108,27 +115,36 @@ class SelfCollision {
   std::size_t edge_count() const { return m_edges.size(); }
 
  private:
-  struct PairLists {
-    std::vector<std::array<Index, 2>> vt;  // (vertex, triangle)
-    std::vector<std::array<Index, 2>> ee;  // (edge, edge), first < second
-    std::vector<std::array<Index, 2>> vv;  // (vertex, vertex), first < second
+  template <class T>
+  struct Lists {
+    std::vector<T> vt;  // (vertex, triangle)
+    std::vector<T> ee;  // (edge, edge), first < second
+    std::vector<T> vv;  // (vertex, vertex), first < second
   };
-  bool moved_beyond(const Matrix3X& x, const Matrix3X& reference, double limit_m) const;
-  void select_active(const Matrix3X& x);
+  using PairLists = Lists<std::array<Index, 2>>;
+  // A candidate pair and its distance when the list was built, ordered by the pair.
+  struct Candidate {
+    std::array<Index, 2> ids;
+    double distance_m;
+    bool operator<(const Candidate& other) const { return ids < other.ids; }
+  };
+  using CandidateLists = Lists<Candidate>;
+  void measure_displacements(const Matrix3X& x);
+  void select_active(const Matrix3X& x, const Matrix3X& x_start);
   void rebuild(const Matrix3X& x);
   // One thread's share of a rebuild: the pairs it found, and its scratch.
   struct Expansion {
-    PairLists found;
+    CandidateLists found;
     std::vector<Index> edges_a, edges_b;
   };
   void expand(std::size_t begin, std::size_t end, const Matrix3X& x, Expansion& expansion) const;
-  void run_shares(std::size_t shares, const std::function<void(std::size_t)>& task) const;
   void add_vertex_triangle_candidates(const SurfacePatch& a, const SurfacePatch& b,
-                                      const Matrix3X& x, bool rest_near, PairLists& out) const;
+                                      const Matrix3X& x, bool rest_near,
+                                      CandidateLists& out) const;
   void add_edge_edge_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
                                 const Matrix3X& x, bool rest_near, Expansion& expansion) const;
   void add_marble_candidates(const SurfacePatch& a, const SurfacePatch& b, bool same,
-                             const Matrix3X& x, PairLists& out) const;
+                             const Matrix3X& x, CandidateLists& out) const;
   bool rest_distance_below(Index v, const std::array<Index, 3>& tri, double limit_m) const;
   bool rest_distance_below(const std::array<Index, 2>& e, const std::array<Index, 2>& f,
                            double limit_m) const;
@@ -158,12 +174,17 @@ class SelfCollision {
   std::vector<Expansion> m_expansions;  // one per thread
   // The candidate list and the positions it was built at; the active pairs and the positions
   // they were selected at; the pairs near contact in the current call's first sweep.
-  PairLists m_candidates;
+  CandidateLists m_candidates;
   Matrix3X m_x_built;
   PairLists m_active;
   Matrix3X m_x_active;
   PairLists m_near;
   std::vector<Index> m_moved;  // the vertices the current call moved
+  // measure_displacements: per vertex since the candidates were built, and the largest of
+  // those and since the active pairs were selected.
+  std::vector<double> m_moved_since_built_m;
+  double m_most_moved_since_built_m = 0.0;
+  double m_moved_since_active_m = 0.0;
   bool m_built = false;
   long m_rebuilds = 0;
   double m_broad_s = 0.0;

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/parallel_shares.h"
+
 namespace weft::sim {
 namespace {
 
@@ -80,13 +82,16 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
     std::sort(patch.owned_vertices.begin(), patch.owned_vertices.end());
     std::sort(patch.owned_edges.begin(), patch.owned_edges.end());
   }
+  m_normals.resize(m_triangles.size());
   refit(mesh.rest_positions);
   for (SurfacePatch& patch : m_patches) patch.rest_box = patch.box;
 }
 
-void SurfacePatches::refit(const Matrix3X& x) {
-  m_normals.resize(m_triangles.size());
-  for (SurfacePatch& patch : m_patches) {
+void SurfacePatches::refit(const Matrix3X& x) { refit(x, 0, m_patches.size()); }
+
+void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end) {
+  for (std::size_t i = first; i < end; ++i) {
+    SurfacePatch& patch = m_patches[i];
     patch.normal_sum.setZero();
     bool degenerate = false;
     for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
@@ -148,7 +153,8 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& cos
 }
 
 void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
-                                std::vector<std::array<Index, 2>>& pairs) const {
+                                std::vector<std::array<Index, 2>>& pairs,
+                                std::size_t shares) const {
   pairs.clear();
   if (m_patches.empty()) return;
   // Sort and sweep (Baraff 1992) along the axis the boxes spread most: the patches are few
@@ -187,20 +193,32 @@ void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
     bound[2][i] = box.lo[u], bound[3][i] = box.hi[u];
     bound[4][i] = box.lo[v], bound[5][i] = box.hi[v];
   }
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Index p = order[i];
-    if (!(culling && m_patches[static_cast<std::size_t>(p)].cone_angle_rad < flat_angle_rad))
-      pairs.push_back({p, p});
-    for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
-      if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
-          bound[4][i] > bound[5][j])
-        continue;
-      const Index q = order[j];
-      if (culling && neighbours(p, q) && union_flat(p, q, cos_limits)) continue;
-      pairs.push_back({std::min(p, q), std::max(p, q)});
+  // The sweep's outer loop in contiguous shares, each sorting what it found; then merged.
+  shares = std::clamp<std::size_t>(shares, 1, std::max<std::size_t>(1, order.size() / 64));
+  std::vector<std::vector<std::array<Index, 2>>> found(shares);
+  run_in_shares(shares, [&](std::size_t k) {
+    std::vector<std::array<Index, 2>>& out = found[k];
+    const std::size_t end = share_begin(order.size(), shares, k + 1);
+    for (std::size_t i = share_begin(order.size(), shares, k); i < end; ++i) {
+      const Index p = order[i];
+      if (!(culling && m_patches[static_cast<std::size_t>(p)].cone_angle_rad < flat_angle_rad))
+        out.push_back({p, p});
+      for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
+        if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
+            bound[4][i] > bound[5][j])
+          continue;
+        const Index q = order[j];
+        if (culling && neighbours(p, q) && union_flat(p, q, cos_limits)) continue;
+        out.push_back({std::min(p, q), std::max(p, q)});
+      }
     }
+    std::sort(out.begin(), out.end());
+  });
+  for (const auto& share : found) {
+    const auto middle = static_cast<std::ptrdiff_t>(pairs.size());
+    pairs.insert(pairs.end(), share.begin(), share.end());
+    std::inplace_merge(pairs.begin(), pairs.begin() + middle, pairs.end());
   }
-  std::sort(pairs.begin(), pairs.end());
 }
 
 }  // namespace weft::sim

@@ -58,13 +58,15 @@ class SurfacePatches {
 
   // Boxes and normal cones at positions x (#V×3, m).
   void refit(const Matrix3X& x);
+  // The same for patches [first, end) only; calls for disjoint ranges may run at once.
+  void refit(const Matrix3X& x, std::size_t first, std::size_t end);
 
   // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
   // within reach_m of each other and that the normal cones do not rule out, where a cone
   // narrower than flat_angle_rad counts as flat (0: no pair is ruled out). Sorted. Call
-  // refit first.
+  // refit first. Up to `shares` threads (parallel_shares.h) sweep; the pairs are the same.
   void near_pairs(double reach_m, double flat_angle_rad,
-                  std::vector<std::array<Index, 2>>& pairs) const;
+                  std::vector<std::array<Index, 2>>& pairs, std::size_t shares = 1) const;
 
   const std::vector<SurfacePatch>& patches() const { return m_patches; }
   const SurfacePatch& operator[](Index p) const { return m_patches[static_cast<std::size_t>(p)]; }
