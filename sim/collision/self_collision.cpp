@@ -149,6 +149,7 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   m_neighbourhood_m = mean_edge_m;
   m_band_m = contact_m / 16.0;
   m_margin_m = std::max(contact_m, 0.5 * mean_edge_m) + m_band_m;
+  m_watch_m = contact_m + watch_margins * m_margin_m;
   // Normal-cone culling (surface_patches.h) drops a pair inside a patch whose normals lie
   // within θ of an axis; the pair was then at least cos θ · g apart, g its distance along the
   // cloth, which is at least (1 − c) times its rest distance — c the compression allowed —
@@ -191,6 +192,44 @@ void SelfCollision::measure_displacements(const Matrix3X& x) {
   }
   m_moved_since_active_m = std::sqrt(active2);
   m_most_moved_since_built_m = std::sqrt(built2);
+}
+
+bool SelfCollision::is_vertex_triangle_candidate(Index v, Index t) const {
+  return std::binary_search(m_candidates.vt.begin(), m_candidates.vt.end(), Candidate{{v, t}, 0.0});
+}
+
+bool SelfCollision::is_edge_edge_candidate(Index e, Index f) const {
+  return std::binary_search(m_candidates.ee.begin(), m_candidates.ee.end(), Candidate{{e, f}, 0.0});
+}
+
+// Whether every pair of features left out of the candidates is still farther apart than the
+// contact distance plus the crossing depth, by the patches' motions since the rebuild
+// (surface_patches.h): a watched patch pair's features were at least max(gap, reach) apart
+// then, and any other pair's farther than the watch distance, which bounds it by the
+// patches' motions relative to the centre of all their centres.
+bool SelfCollision::candidates_hold(const Matrix3X& x) {
+  const auto start = Clock::now();
+  m_patches.motions(x, m_x_built, m_motions);
+  const double contact_m = std::max(m_settings.thickness_m, 2.0 * m_marble_radius_m);
+  const double closest_m = contact_m + crossing_depth_m();
+  const double reach_m = contact_m + m_margin_m;
+  bool hold = std::all_of(m_watched.begin(), m_watched.end(), [&](const PatchPair& pair) {
+    const PatchMotion& a = m_motions[static_cast<std::size_t>(pair.ids[0])];
+    const PatchMotion& b = m_motions[static_cast<std::size_t>(pair.ids[1])];
+    return a.spread_m + b.spread_m + (a.centre - b.centre).norm() <=
+           std::max(pair.gap_m, reach_m) - closest_m;
+  });
+  if (hold && !m_motions.empty()) {
+    Vec3 lo = m_motions.front().centre, hi = lo;
+    for (const PatchMotion& m : m_motions) lo = lo.cwiseMin(m.centre), hi = hi.cwiseMax(m.centre);
+    const Vec3 common = 0.5 * (lo + hi);
+    double farthest_m = 0.0;
+    for (const PatchMotion& m : m_motions)
+      farthest_m = std::max(farthest_m, m.spread_m + (m.centre - common).norm());
+    hold = 2.0 * farthest_m <= m_watch_m - closest_m;
+  }
+  m_broad_s += seconds_since(start);
+  return hold;
 }
 
 // The pairs of the candidate list within the contact distance plus the active band at x: no
@@ -266,7 +305,11 @@ void SelfCollision::rebuild(const Matrix3X& x) {
       m_edge_boxes[e] =
           inflated(bounding_box(row(x, m_edges[e][0]), row(x, m_edges[e][1])), 0.5 * reach_m);
   });
-  m_patches.near_pairs(std::max(reach_m, marble_reach_m), m_flat_angle_rad, m_patch_pairs, threads);
+  const double patch_reach_m = std::max(reach_m, marble_reach_m);
+  m_patches.pairs_within(m_watch_m, patch_reach_m, m_flat_angle_rad, m_watched, threads);
+  m_patch_pairs.clear();
+  for (const PatchPair& pair : m_watched)
+    if (!pair.culled && pair.gap_m <= patch_reach_m) m_patch_pairs.push_back(pair.ids);
   // The patch pairs in contiguous shares, one per thread, each sorting the pairs it found
   // (so that the Gauss–Seidel order follows the vertex and edge numbering); the shares are
   // then merged, so the list does not depend on the number of threads.
@@ -530,15 +573,17 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
                                 " vertices");
   SelfContactCounts counts;
   // Two Verlet lists, checked at every call: the candidates within the margin, rebuilt when
-  // some vertex has moved (margin − crossing depth)/2, so that every pair within the contact
-  // distance plus the crossing depth is a candidate; and the active pairs, reselected from
-  // the candidates when some vertex has moved half the band.
+  // a pair left out may have come within the contact distance plus the crossing depth, so
+  // that every such pair is a candidate — surely not while no vertex has moved (margin −
+  // crossing depth)/2, and else as candidates_hold() tells patch pair by patch pair; and the
+  // active pairs, reselected from the candidates when some vertex has moved half the band.
   if (m_built) {
     const auto check_start = Clock::now();
     measure_displacements(x);
     m_broad_s += seconds_since(check_start);
   }
-  if (!m_built || m_most_moved_since_built_m > 0.5 * (m_margin_m - crossing_depth_m())) {
+  if (!m_built || (m_most_moved_since_built_m > 0.5 * (m_margin_m - crossing_depth_m()) &&
+                   !candidates_hold(x))) {
     rebuild(x);
     std::fill(m_moved_since_built_m.begin(), m_moved_since_built_m.end(), 0.0);
     select_active(x, x_start);

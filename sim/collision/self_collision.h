@@ -99,6 +99,10 @@ class SelfCollision {
     return m_candidates.vt.size() + m_candidates.ee.size() + m_candidates.vv.size();
   }
   long rebuilds() const { return m_rebuilds; }
+  // Whether the candidate list holds vertex v against triangle t (an index into the mesh's
+  // triangles), resp. edges e < f (indices into unique_edges of them).
+  bool is_vertex_triangle_candidate(Index v, Index t) const;
+  bool is_edge_edge_candidate(Index e, Index f) const;
   // Patch pairs the last rebuild expanded into candidates (shared among the threads).
   std::size_t patch_pair_count() const { return m_patch_pairs.size(); }
   // Wall time spent building candidate lists (broad phase) and projecting contacts (narrow).
@@ -112,6 +116,9 @@ class SelfCollision {
   static constexpr Index cells_per_patch_side = 2;
   // Fewer patch pairs than this per thread are not worth a thread of their own.
   static constexpr std::size_t min_pairs_per_thread = 256;
+  // Patch pairs within the contact distance plus this many margins are watched one by one
+  // for a rebuild (candidates_hold); the others together.
+  static constexpr double watch_margins = 2.0;
   std::size_t edge_count() const { return m_edges.size(); }
 
  private:
@@ -130,6 +137,7 @@ class SelfCollision {
   };
   using CandidateLists = Lists<Candidate>;
   void measure_displacements(const Matrix3X& x);
+  bool candidates_hold(const Matrix3X& x);
   void select_active(const Matrix3X& x, const Matrix3X& x_start);
   void rebuild(const Matrix3X& x);
   // One thread's share of a rebuild: the pairs it found, and its scratch.
@@ -170,6 +178,10 @@ class SelfCollision {
   double m_flat_angle_rad = 0.0;
   // Rebuild scratch: the near patch pairs, triangle boxes grown by the reach, edge boxes by half.
   std::vector<std::array<Index, 2>> m_patch_pairs;
+  // The patch pairs within the watch distance at the last rebuild; the patches' motions since.
+  double m_watch_m = 0.0;
+  std::vector<PatchPair> m_watched;
+  std::vector<PatchMotion> m_motions;
   std::vector<Aabb> m_triangle_boxes, m_edge_boxes;
   std::vector<Expansion> m_expansions;  // one per thread
   // The candidate list and the positions it was built at; the active pairs and the positions

@@ -81,6 +81,13 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
   for (SurfacePatch& patch : m_patches) {
     std::sort(patch.owned_vertices.begin(), patch.owned_vertices.end());
     std::sort(patch.owned_edges.begin(), patch.owned_edges.end());
+    for (const Index t : patch.triangles) {
+      const auto& tri = triangles[static_cast<std::size_t>(t)];
+      patch.vertices.insert(patch.vertices.end(), tri.begin(), tri.end());
+    }
+    std::sort(patch.vertices.begin(), patch.vertices.end());
+    patch.vertices.erase(std::unique(patch.vertices.begin(), patch.vertices.end()),
+                         patch.vertices.end());
   }
   m_normals.resize(m_triangles.size());
   refit(mesh.rest_positions);
@@ -155,6 +162,15 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& cos
 void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
                                 std::vector<std::array<Index, 2>>& pairs,
                                 std::size_t shares) const {
+  std::vector<PatchPair> within;
+  pairs_within(reach_m, reach_m, flat_angle_rad, within, shares);
+  pairs.clear();
+  for (const PatchPair& pair : within)
+    if (!pair.culled) pairs.push_back(pair.ids);
+}
+
+void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_angle_rad,
+                                  std::vector<PatchPair>& pairs, std::size_t shares) const {
   pairs.clear();
   if (m_patches.empty()) return;
   // Sort and sweep (Baraff 1992) along the axis the boxes spread most: the patches are few
@@ -163,7 +179,7 @@ void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
   boxes.reserve(m_patches.size());
   Vec3 lowest = Vec3::Constant(std::numeric_limits<double>::infinity()), highest = -lowest;
   for (const SurfacePatch& patch : m_patches) {
-    boxes.push_back(inflated(patch.box, 0.5 * reach_m));
+    boxes.push_back(inflated(patch.box, 0.5 * watch_m));
     lowest = lowest.cwiseMin(boxes.back().lo);
     highest = highest.cwiseMax(boxes.back().lo);
   }
@@ -195,21 +211,25 @@ void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
   }
   // The sweep's outer loop in contiguous shares, each sorting what it found; then merged.
   shares = std::clamp<std::size_t>(shares, 1, std::max<std::size_t>(1, order.size() / 64));
-  std::vector<std::vector<std::array<Index, 2>>> found(shares);
+  std::vector<std::vector<PatchPair>> found(shares);
   run_in_shares(shares, [&](std::size_t k) {
-    std::vector<std::array<Index, 2>>& out = found[k];
+    std::vector<PatchPair>& out = found[k];
     const std::size_t end = share_begin(order.size(), shares, k + 1);
     for (std::size_t i = share_begin(order.size(), shares, k); i < end; ++i) {
       const Index p = order[i];
-      if (!(culling && m_patches[static_cast<std::size_t>(p)].cone_angle_rad < flat_angle_rad))
-        out.push_back({p, p});
+      const SurfacePatch& a = m_patches[static_cast<std::size_t>(p)];
+      out.push_back({{p, p}, 0.0, culling && a.cone_angle_rad < flat_angle_rad});
       for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
         if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
             bound[4][i] > bound[5][j])
           continue;
         const Index q = order[j];
-        if (culling && neighbours(p, q) && union_flat(p, q, cos_limits)) continue;
-        out.push_back({std::min(p, q), std::max(p, q)});
+        const SurfacePatch& b = m_patches[static_cast<std::size_t>(q)];
+        const double gap_m =
+            std::max(0.0, (b.box.lo - a.box.hi).cwiseMax(a.box.lo - b.box.hi).maxCoeff());
+        const bool culled = culling && gap_m <= reach_m && neighbours(p, q) &&
+                            union_flat(p, q, cos_limits);
+        out.push_back({{std::min(p, q), std::max(p, q)}, gap_m, culled});
       }
     }
     std::sort(out.begin(), out.end());
@@ -218,6 +238,26 @@ void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
     const auto middle = static_cast<std::ptrdiff_t>(pairs.size());
     pairs.insert(pairs.end(), share.begin(), share.end());
     std::inplace_merge(pairs.begin(), pairs.begin() + middle, pairs.end());
+  }
+}
+
+void SurfacePatches::motions(const Matrix3X& x, const Matrix3X& reference,
+                             std::vector<PatchMotion>& motions) const {
+  motions.resize(m_patches.size());
+  for (std::size_t i = 0; i < m_patches.size(); ++i) {
+    const std::vector<Index>& vertices = m_patches[i].vertices;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Index v : vertices) {
+      const Vec3 d = (x.row(v) - reference.row(v)).transpose();
+      lo = lo.cwiseMin(d);
+      hi = hi.cwiseMax(d);
+    }
+    PatchMotion& m = motions[i];
+    m.centre = 0.5 * (lo + hi);
+    double spread2 = 0.0;
+    for (const Index v : vertices)
+      spread2 = std::max(spread2, (x.row(v) - reference.row(v) - m.centre.transpose()).squaredNorm());
+    m.spread_m = std::sqrt(spread2);
   }
 }
 

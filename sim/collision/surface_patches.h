@@ -46,6 +46,26 @@ struct SurfacePatch {
   Aabb box;
   Vec3 normal_sum = Vec3::Zero();      // Σ of the triangles' area-weighted normals
   double cone_angle_rad = 0.0;         // π when undefined (a degenerate triangle)
+  std::vector<Index> vertices;         // of its triangles (owned or not), ascending
+};
+
+// Two patches within some distance of each other (SurfacePatches::pairs_within).
+struct PatchPair {
+  std::array<Index, 2> ids{0, 0};  // first ≤ second
+  double gap_m = 0.0;   // largest separation of their boxes along an axis: no point of one is
+                        // nearer than this to a point of the other
+  bool culled = false;  // within reach, and the normal cones rule out contact
+  bool operator<(const PatchPair& other) const { return ids < other.ids; }
+};
+
+// A patch's displacement since reference positions: the centre of the box of its vertices'
+// displacements, and the largest deviation of one of them from it (the spread). Two points
+// of patches p and q have changed their distance by at most spread_p + spread_q +
+// |centre_p − centre_q|: small for a piece of cloth that swings or falls as a whole, however
+// fast, growing only with how the two patches move relative to each other.
+struct PatchMotion {
+  Vec3 centre = Vec3::Zero();
+  double spread_m = 0.0;
 };
 
 class SurfacePatches {
@@ -67,6 +87,15 @@ class SurfacePatches {
   // refit first. Up to `shares` threads (parallel_shares.h) sweep; the pairs are the same.
   void near_pairs(double reach_m, double flat_angle_rad,
                   std::vector<std::array<Index, 2>>& pairs, std::size_t shares = 1) const;
+  // Every patch pair whose boxes are at most watch_m apart along each axis (a pair left out
+  // is farther apart than watch_m), with its gap; those within reach_m (≤ watch_m) that the
+  // cones rule out, as near_pairs() drops them, are marked culled. Sorted.
+  void pairs_within(double watch_m, double reach_m, double flat_angle_rad,
+                    std::vector<PatchPair>& pairs, std::size_t shares = 1) const;
+
+  // Each patch's motion from `reference` to x (both #V×3), one per patch.
+  void motions(const Matrix3X& x, const Matrix3X& reference,
+               std::vector<PatchMotion>& motions) const;
 
   const std::vector<SurfacePatch>& patches() const { return m_patches; }
   const SurfacePatch& operator[](Index p) const { return m_patches[static_cast<std::size_t>(p)]; }
