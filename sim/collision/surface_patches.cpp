@@ -167,6 +167,7 @@ void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
   pairs.clear();
   for (const PatchPair& pair : within)
     if (!pair.culled) pairs.push_back(pair.ids);
+  std::sort(pairs.begin(), pairs.end());
 }
 
 void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_angle_rad,
@@ -209,7 +210,7 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_an
     bound[2][i] = box.lo[u], bound[3][i] = box.hi[u];
     bound[4][i] = box.lo[v], bound[5][i] = box.hi[v];
   }
-  // The sweep's outer loop in contiguous shares, each sorting what it found; then merged.
+  // The sweep's outer loop in contiguous shares; their pairs joined in order.
   shares = std::clamp<std::size_t>(shares, 1, std::max<std::size_t>(1, order.size() / 64));
   std::vector<std::vector<PatchPair>> found(shares);
   run_in_shares(shares, [&](std::size_t k) {
@@ -232,13 +233,8 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_an
         out.push_back({{std::min(p, q), std::max(p, q)}, gap_m, culled});
       }
     }
-    std::sort(out.begin(), out.end());
   });
-  for (const auto& share : found) {
-    const auto middle = static_cast<std::ptrdiff_t>(pairs.size());
-    pairs.insert(pairs.end(), share.begin(), share.end());
-    std::inplace_merge(pairs.begin(), pairs.begin() + middle, pairs.end());
-  }
+  for (const auto& share : found) pairs.insert(pairs.end(), share.begin(), share.end());
 }
 
 void SurfacePatches::motions(const Matrix3X& x, const Matrix3X& reference,

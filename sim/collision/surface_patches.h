@@ -55,7 +55,6 @@ struct PatchPair {
   double gap_m = 0.0;   // largest separation of their boxes along an axis: no point of one is
                         // nearer than this to a point of the other
   bool culled = false;  // within reach, and the normal cones rule out contact
-  bool operator<(const PatchPair& other) const { return ids < other.ids; }
 };
 
 // A patch's displacement since reference positions: the centre of the box of its vertices'
@@ -89,7 +88,8 @@ class SurfacePatches {
                   std::vector<std::array<Index, 2>>& pairs, std::size_t shares = 1) const;
   // Every patch pair whose boxes are at most watch_m apart along each axis (a pair left out
   // is farther apart than watch_m), with its gap; those within reach_m (≤ watch_m) that the
-  // cones rule out, as near_pairs() drops them, are marked culled. Sorted.
+  // cones rule out, as near_pairs() drops them, are marked culled. In the order of a sweep
+  // along one axis, the same for any number of shares.
   void pairs_within(double watch_m, double reach_m, double flat_angle_rad,
                     std::vector<PatchPair>& pairs, std::size_t shares = 1) const;
 
