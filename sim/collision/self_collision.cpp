@@ -150,17 +150,12 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   m_band_m = contact_m / 16.0;
   m_margin_m = std::max(contact_m, 0.5 * mean_edge_m) + m_band_m;
   m_watch_m = contact_m + watch_margins * m_margin_m;
-  // Normal-cone culling (surface_patches.h) drops a pair inside a patch whose normals lie
-  // within θ of an axis; the pair was then at least cos θ · g apart, g its distance along the
-  // cloth, which is at least (1 − c) times its rest distance — c the compression allowed —
-  // and that is at least the exclusion radius. It stays out of contact until the next rebuild
-  // while cos θ · (1 − c) · exclusion ≥ reach (the contact distance plus the margin), which
-  // gives the widest θ to count as flat, capped at 60°. None when the margin is too wide.
-  constexpr double compression = 0.25;
-  const double exclusion_m = std::min(settings.thickness_m, 2.0 * m_marble_radius_m) + mean_edge_m;
-  const double cos_flat = (contact_m + m_margin_m) / ((1.0 - compression) * exclusion_m);
-  constexpr double max_flat_angle_rad = 60.0 * 3.14159265358979323846 / 180.0;
-  m_flat_angle_rad = cos_flat < 1.0 ? std::min(std::acos(cos_flat), max_flat_angle_rad) : 0.0;
+  // Normal-cone culling (surface_patches.h) drops a pair of features inside a piece of cloth
+  // whose normals lie within its flat angle of an axis: they were then at least the reach
+  // apart, since every pair that can be in contact is at least the smaller contact distance
+  // plus the mean rest edge apart at rest (the exclusion below), and stay out of contact
+  // until the next rebuild like any pair left out.
+  m_culling.exclusion_m = std::min(settings.thickness_m, 2.0 * m_marble_radius_m) + mean_edge_m;
 }
 
 // Distances between features do not change when the whole cloth translates, so what a list
@@ -308,7 +303,7 @@ void SelfCollision::rebuild(const Matrix3X& x) {
           inflated(bounding_box(row(x, m_edges[e][0]), row(x, m_edges[e][1])), 0.5 * reach_m);
   });
   const double patch_reach_m = std::max(reach_m, marble_reach_m);
-  m_patches.pairs_within(m_watch_m, patch_reach_m, m_flat_angle_rad, m_watched, threads);
+  m_patches.pairs_within(m_watch_m, patch_reach_m, m_culling, m_watched, threads);
   m_patch_pairs.clear();
   for (const PatchPair& pair : m_watched)
     if (!pair.culled && pair.gap_m <= patch_reach_m) m_patch_pairs.push_back(pair.ids);

@@ -28,7 +28,7 @@
 //
 // Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by
 // sorting and sweeping their boxes; normal cones drop flat patches and flat pairs of
-// neighbouring patches (flat_angle_rad() says when that is safe, and is 0 when it is not); the
+// neighbouring patches (cone_culling() says how flat, by how much each is stretched); the
 // remaining patch pairs give the candidate pairs within the contact distance plus a margin,
 // shared out in contiguous runs among `threads` threads and then merged in order. Two
 // nested Verlet lists, both measured relative to the cloth's common translation at every
@@ -109,8 +109,8 @@ class SelfCollision {
   double broad_phase_s() const { return m_broad_s; }
   double narrow_phase_s() const { return m_narrow_s; }
   std::size_t triangle_count() const { return m_triangles.size(); }
-  // Patches whose normals lie within this angle of an axis count as flat (0: no culling).
-  double flat_angle_rad() const { return m_flat_angle_rad; }
+  // When the patches' normal cones rule pairs out (surface_patches.h).
+  const ConeCulling& cone_culling() const { return m_culling; }
 
   // Grid cells per side of a broad-phase patch (surface_patches.h).
   static constexpr Index cells_per_patch_side = 2;
@@ -175,7 +175,7 @@ class SelfCollision {
   std::vector<std::array<Index, 2>> m_edges;
   std::vector<Index> m_vertices;  // the vertices of some triangle, ascending
   SurfacePatches m_patches;
-  double m_flat_angle_rad = 0.0;
+  ConeCulling m_culling;
   // Rebuild scratch: the near patch pairs, triangle boxes grown by the reach, edge boxes by half.
   std::vector<std::array<Index, 2>> m_patch_pairs;
   // The patch pairs within the watch distance at the last rebuild; the patches' motions since.

@@ -90,6 +90,19 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
                          patch.vertices.end());
   }
   m_normals.resize(m_triangles.size());
+  m_rest_inverse.resize(m_triangles.size());
+  for (std::size_t t = 0; t < m_triangles.size(); ++t) {
+    const auto& tri = m_triangles[t];
+    const Vec3 e1 = row(mesh.rest_positions, tri[1]) - row(mesh.rest_positions, tri[0]);
+    const Vec3 e2 = row(mesh.rest_positions, tri[2]) - row(mesh.rest_positions, tri[0]);
+    const Vec3 u = e1.normalized(), v = (e1.cross(e2)).cross(e1).normalized();
+    Eigen::Matrix2d rest;
+    rest << u.dot(e1), u.dot(e2), v.dot(e1), v.dot(e2);
+    // A degenerate rest triangle gets a zero inverse: least stretch 0, nothing culled.
+    m_rest_inverse[t] = std::abs(rest.determinant()) > 0.0 && rest.allFinite()
+                            ? Eigen::Matrix2d(rest.inverse())
+                            : Eigen::Matrix2d::Zero();
+  }
   refit(mesh.rest_positions);
   for (SurfacePatch& patch : m_patches) patch.rest_box = patch.box;
 }
@@ -100,6 +113,7 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
   for (std::size_t i = first; i < end; ++i) {
     SurfacePatch& patch = m_patches[i];
     patch.normal_sum.setZero();
+    patch.least_stretch = std::numeric_limits<double>::infinity();
     bool degenerate = false;
     for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
       const auto t = static_cast<std::size_t>(patch.triangles[k]);
@@ -110,6 +124,13 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
       m_normals[t] = (b - a).cross(c - a);
       degenerate = degenerate || !(m_normals[t].squaredNorm() > 0.0);
       patch.normal_sum += m_normals[t];
+      // The smallest singular value of F: the root of the smaller eigenvalue of FᵀF.
+      Eigen::Matrix<double, 3, 2> edges;
+      edges << b - a, c - a;
+      const Eigen::Matrix<double, 3, 2> f = edges * m_rest_inverse[t];
+      const double p = f.col(0).squaredNorm(), q = f.col(1).squaredNorm(), r = f.col(0).dot(f.col(1));
+      const double least = 0.5 * (p + q) - std::hypot(0.5 * (p - q), r);
+      patch.least_stretch = std::min(patch.least_stretch, std::sqrt(std::max(0.0, least)));
     }
     const double length = patch.normal_sum.norm();
     if (degenerate || !(length > 0.0)) {
@@ -126,24 +147,32 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
   }
 }
 
+double ConeCulling::flat_angle_rad(double reach_m, double least_stretch) const {
+  const double cos_flat = reach_m / (least_stretch * exclusion_m);
+  if (!(exclusion_m > 0.0) || !(cos_flat < 1.0)) return 0.0;  // also for a stretch of 0
+  return std::min(std::acos(cos_flat), max_angle_rad);
+}
+
 bool SurfacePatches::neighbours(Index p, Index q) const {
   const auto& a = (*this)[p].grid;
   const auto& b = (*this)[q].grid;
   return p != q && std::abs(a[0] - b[0]) <= 1 && std::abs(a[1] - b[1]) <= 1;
 }
 
-bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& cos_limits) const {
+bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& flat_angles_rad) const {
   const auto& a = (*this)[p].grid;
   const auto& b = (*this)[q].grid;
   std::array<Index, 4> members{};  // neighbours span at most 2 × 2 patches
   std::size_t count = 0;
   Vec3 sum = Vec3::Zero();
+  double flat_rad = pi;
   for (Index j = std::min(a[1], b[1]); j <= std::max(a[1], b[1]); ++j)
     for (Index i = std::min(a[0], b[0]); i <= std::max(a[0], b[0]); ++i) {
       const Index k = m_patch_of_grid[static_cast<std::size_t>(j * m_patches_u + i)];
       if (k < 0) return false;
       members[count++] = k;
       sum += (*this)[k].normal_sum;
+      flat_rad = std::min(flat_rad, flat_angles_rad[static_cast<std::size_t>(k)]);
     }
   const double length = sum.norm();
   if (!(length > 0.0)) return false;
@@ -152,25 +181,26 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& cos
   for (std::size_t m = 0; m < count; ++m) {
     const SurfacePatch& member = (*this)[members[m]];
     const double member_length = member.normal_sum.norm();
-    const double cos_limit = cos_limits[static_cast<std::size_t>(members[m])];
-    if (!(member_length > 0.0) || !(sum.dot(member.normal_sum) > cos_limit * length * member_length))
+    const double room_rad = flat_rad - member.cone_angle_rad;
+    if (!(room_rad > 0.0) || !(member_length > 0.0) ||
+        !(sum.dot(member.normal_sum) > std::cos(room_rad) * length * member_length))
       return false;
   }
   return true;
 }
 
-void SurfacePatches::near_pairs(double reach_m, double flat_angle_rad,
+void SurfacePatches::near_pairs(double reach_m, const ConeCulling& culling,
                                 std::vector<std::array<Index, 2>>& pairs,
                                 std::size_t shares) const {
   std::vector<PatchPair> within;
-  pairs_within(reach_m, reach_m, flat_angle_rad, within, shares);
+  pairs_within(reach_m, reach_m, culling, within, shares);
   pairs.clear();
   for (const PatchPair& pair : within)
     if (!pair.culled) pairs.push_back(pair.ids);
   std::sort(pairs.begin(), pairs.end());
 }
 
-void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_angle_rad,
+void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
                                   std::vector<PatchPair>& pairs, std::size_t shares) const {
   pairs.clear();
   if (m_patches.empty()) return;
@@ -193,13 +223,13 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_an
     const double lb = boxes[static_cast<std::size_t>(b)].lo[axis];
     return la < lb || (la == lb && a < b);
   });
-  const bool culling = flat_angle_rad > 0.0;
-  // Per patch: the cosine a neighbouring union's axis must stay within (union_flat); above
-  // 1 (never) when its own cone is no narrower than the flat angle.
-  std::vector<double> cos_limits(m_patches.size(), 2.0);
-  for (std::size_t i = 0; i < m_patches.size(); ++i)
-    if (m_patches[i].cone_angle_rad < flat_angle_rad)
-      cos_limits[i] = std::cos(flat_angle_rad - m_patches[i].cone_angle_rad);
+  // Each patch's flat angle, by its least stretch.
+  std::vector<double> flat_angles_rad(m_patches.size());
+  bool any_flat = false;
+  for (std::size_t i = 0; i < m_patches.size(); ++i) {
+    flat_angles_rad[i] = culling.flat_angle_rad(reach_m, m_patches[i].least_stretch);
+    any_flat = any_flat || flat_angles_rad[i] > 0.0;
+  }
   // The boxes in sweep order, one array per bound: the inner loop reads them in sequence.
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   std::array<std::vector<double>, 6> bound;
@@ -219,7 +249,7 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_an
     for (std::size_t i = share_begin(order.size(), shares, k); i < end; ++i) {
       const Index p = order[i];
       const SurfacePatch& a = m_patches[static_cast<std::size_t>(p)];
-      out.push_back({{p, p}, 0.0, culling && a.cone_angle_rad < flat_angle_rad});
+      out.push_back({{p, p}, 0.0, a.cone_angle_rad < flat_angles_rad[static_cast<std::size_t>(p)]});
       for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
         if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
             bound[4][i] > bound[5][j])
@@ -228,8 +258,8 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, double flat_an
         const SurfacePatch& b = m_patches[static_cast<std::size_t>(q)];
         const double gap_m =
             std::max(0.0, (b.box.lo - a.box.hi).cwiseMax(a.box.lo - b.box.hi).maxCoeff());
-        const bool culled = culling && gap_m <= reach_m && neighbours(p, q) &&
-                            union_flat(p, q, cos_limits);
+        const bool culled = any_flat && gap_m <= reach_m && neighbours(p, q) &&
+                            union_flat(p, q, flat_angles_rad);
         out.push_back({{std::min(p, q), std::max(p, q)}, gap_m, culled});
       }
     }

@@ -7,7 +7,8 @@
 // normal — then finds the patch pairs that can hold a contact by sorting and sweeping the
 // boxes along one axis, and drops the pairs the normal cones rule out:
 //
-//  - a patch whose cone is narrower than `flat_angle` cannot come near itself, and
+//  - a patch whose cone is narrower than its flat angle (ConeCulling) cannot come near
+//    itself, and
 //  - neither can two neighbouring patches (sharing a side or a corner) when the union of the
 //    patches in the square or strip of the patch grid that holds both is — all of them
 //    present, so that the union is a convex piece of the grid —
@@ -18,14 +19,15 @@
 // axis a, the surface is a height field over the plane ⊥ a with slope at most tan θ, so two
 // of its points a geodesic distance g apart (along the surface) are at least g·cos θ apart in
 // space — when the patch's projection is convex, as a square of cloth that is not folded
-// over is. SelfCollision (self_collision.h) checks that this bound keeps every pair it
-// drops out of reach; the contour test of Volino & Magnenat-Thalmann, which also rules out a
-// patch that winds like a spiral ramp, is not done: such a patch would need a half turn
-// within a few cells.
+// over is. And the geodesic distance is at least the rest distance times the least stretch
+// of the triangles, measured at each refit, so the bound holds however much the cloth is
+// compressed or sheared (ConeCulling). The contour test of Volino & Magnenat-Thalmann, which
+// also rules out a patch that winds like a spiral ramp, is not done: such a patch would need
+// a half turn within a few cells.
 //
 // Every vertex–triangle, edge–edge and vertex–vertex pair of features lies in exactly one
 // returned patch pair (by ownership), so a caller that expands the pairs sees each feature
-// pair at most once. Deterministic: pairs come sorted.
+// pair at most once. Deterministic.
 
 #include <array>
 #include <vector>
@@ -46,6 +48,9 @@ struct SurfacePatch {
   Aabb box;
   Vec3 normal_sum = Vec3::Zero();      // Σ of the triangles' area-weighted normals
   double cone_angle_rad = 0.0;         // π when undefined (a degenerate triangle)
+  // The least stretch of its triangles: the smallest singular value of their deformation
+  // gradients, so that no curve on the patch is shorter than this times its rest length.
+  double least_stretch = 1.0;
   std::vector<Index> vertices;         // of its triangles (owned or not), ascending
 };
 
@@ -67,6 +72,18 @@ struct PatchMotion {
   double spread_m = 0.0;
 };
 
+// When the normal cones rule pairs out. Points of a piece of cloth whose normals lie within θ
+// of an axis and whose least stretch is s are at least s·cos θ times their rest distance
+// apart; the pairs that can be in contact are at least exclusion_m apart at rest, so none
+// of them comes within the reach while s·cos θ·exclusion ≥ reach. The flat angle of a piece
+// of cloth is then min(max_angle, acos(reach / (s·exclusion))), and 0 — nothing ruled out —
+// when that has no solution or exclusion_m is 0.
+struct ConeCulling {
+  double exclusion_m = 0.0;
+  double max_angle_rad = 60.0 * 3.14159265358979323846 / 180.0;
+  double flat_angle_rad(double reach_m, double least_stretch) const;
+};
+
 class SurfacePatches {
  public:
   // triangles: ClothMesh::triangles(); edges: unique_edges(triangles). A patch covers
@@ -75,22 +92,22 @@ class SurfacePatches {
   SurfacePatches(const ClothMesh& mesh, const std::vector<std::array<Index, 3>>& triangles,
                  const std::vector<std::array<Index, 2>>& edges, Index cells_per_side);
 
-  // Boxes and normal cones at positions x (#V×3, m).
+  // Boxes, normal cones and least stretches at positions x (#V×3, m).
   void refit(const Matrix3X& x);
   // The same for patches [first, end) only; calls for disjoint ranges may run at once.
   void refit(const Matrix3X& x, std::size_t first, std::size_t end);
 
   // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
-  // within reach_m of each other and that the normal cones do not rule out, where a cone
-  // narrower than flat_angle_rad counts as flat (0: no pair is ruled out). Sorted. Call
-  // refit first. Up to `shares` threads (parallel_shares.h) sweep; the pairs are the same.
-  void near_pairs(double reach_m, double flat_angle_rad,
+  // within reach_m of each other and that the normal cones do not rule out (`culling`; a
+  // default ConeCulling rules out nothing). Sorted. Call refit first. Up to `shares` threads
+  // (parallel_shares.h) sweep; the pairs are the same.
+  void near_pairs(double reach_m, const ConeCulling& culling,
                   std::vector<std::array<Index, 2>>& pairs, std::size_t shares = 1) const;
   // Every patch pair whose boxes are at most watch_m apart along each axis (a pair left out
   // is farther apart than watch_m), with its gap; those within reach_m (≤ watch_m) that the
   // cones rule out, as near_pairs() drops them, are marked culled. In the order of a sweep
   // along one axis, the same for any number of shares.
-  void pairs_within(double watch_m, double reach_m, double flat_angle_rad,
+  void pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
                     std::vector<PatchPair>& pairs, std::size_t shares = 1) const;
 
   // Each patch's motion from `reference` to x (both #V×3), one per patch.
@@ -102,11 +119,10 @@ class SurfacePatches {
   // Whether patches p ≠ q share a grid side or corner.
   bool neighbours(Index p, Index q) const;
   // Whether every normal of the union of the patches in the grid rectangle spanned by
-  // neighbours p and q lies within the flat angle of the union's axis, given for each patch
-  // the cosine of the flat angle less its cone's half-angle (> 1 when its cone is not
-  // narrower). False when one of them is missing (cut away, as at a disc's edge) or a cone
-  // is undefined.
-  bool union_flat(Index p, Index q, const std::vector<double>& cos_limits) const;
+  // neighbours p and q lies within the union's flat angle of its axis, given each patch's
+  // flat angle (the union's is the least of its members'). False when one of them is missing
+  // (cut away, as at a disc's edge) or a cone is undefined.
+  bool union_flat(Index p, Index q, const std::vector<double>& flat_angles_rad) const;
 
  private:
   std::vector<std::array<Index, 3>> m_triangles;
@@ -114,6 +130,9 @@ class SurfacePatches {
   Index m_patches_u = 0;              // patch grid columns
   std::vector<Index> m_patch_of_grid; // patch at grid (i, j): [j · m_patches_u + i], −1 if none
   std::vector<Vec3> m_normals;  // refit's scratch: each triangle's area-weighted normal
+  // Per triangle: the inverse of its rest edge matrix in a frame of its own plane, for the
+  // deformation gradient F = [x1 − x0, x2 − x0] · m_rest_inverse (3×2).
+  std::vector<Eigen::Matrix2d> m_rest_inverse;
 };
 
 }  // namespace weft::sim

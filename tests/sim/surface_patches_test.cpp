@@ -52,12 +52,37 @@ TEST(SurfacePatches, AFlatSheetNeedsNoPairButEveryNeighbourPairWithoutCulling) {
   const Matrix3X x = (mesh.rest_positions * turn.transpose()).rowwise() + Eigen::RowVector3d(1, 2, 3);
   patches.refit(x);
   std::vector<std::array<Index, 2>> pairs;
-  patches.near_pairs(0.01, 40.0 * pi / 180.0, pairs);
+  patches.near_pairs(0.01, ConeCulling{0.05}, pairs);  // flat angle 60°: acos(0.01 / 0.05) capped
   EXPECT_TRUE(pairs.empty());
-  patches.near_pairs(0.01, 0.0, pairs);
+  patches.near_pairs(0.01, ConeCulling{}, pairs);
   // 16 × 16 patches: each with itself, 2·16·15 side neighbours and 2·15·15 diagonal ones.
   EXPECT_EQ(pairs.size(), 256u + 480u + 450u);
-  for (const SurfacePatch& p : patches.patches()) EXPECT_LT(p.cone_angle_rad, 1e-6);  // acos rounding
+  for (const SurfacePatch& p : patches.patches()) {
+    EXPECT_LT(p.cone_angle_rad, 1e-6);  // acos rounding
+    EXPECT_NEAR(p.least_stretch, 1.0, 1e-9) << "a rigid motion does not stretch";
+  }
+}
+
+// The cones' bound needs the cloth's least stretch: squeezed to 60 % along the warp, the
+// flat sheet's points come nearer than their rest distances, and a culling that rules out
+// every pair at rest length (flat angle 33.6°: reach / exclusion = 0.833) rules out none.
+TEST(SurfacePatches, ASqueezedSheetIsNotCulledAsIfAtRest) {
+  const ClothMesh mesh = sheet(33);
+  const auto triangles = mesh.triangles();
+  SurfacePatches patches(mesh, triangles, unique_edges(triangles), 2);
+  const ConeCulling culling{0.012};
+  std::vector<std::array<Index, 2>> pairs;
+  patches.near_pairs(0.01, culling, pairs);
+  EXPECT_TRUE(pairs.empty());
+  Matrix3X squeezed = mesh.rest_positions;
+  squeezed.col(0) *= 0.6;
+  patches.refit(squeezed);
+  for (const SurfacePatch& p : patches.patches()) EXPECT_NEAR(p.least_stretch, 0.6, 1e-9);
+  EXPECT_EQ(culling.flat_angle_rad(0.01, 0.6), 0.0);
+  patches.near_pairs(0.01, culling, pairs);
+  std::vector<std::array<Index, 2>> all;
+  patches.near_pairs(0.01, ConeCulling{}, all);
+  EXPECT_EQ(pairs, all);
 }
 
 TEST(SurfacePatches, ARolledSheetKeepsEveryPairWithinReach) {
@@ -66,7 +91,7 @@ TEST(SurfacePatches, ARolledSheetKeepsEveryPairWithinReach) {
   settings.enabled = true;
   settings.thickness_m = 3e-3;
   const SelfCollision self(mesh, settings);
-  ASSERT_GT(self.flat_angle_rad(), 0.0);
+  ASSERT_GT(self.cone_culling().flat_angle_rad(self.margin_m() + self.thickness_m(), 0.9), 0.0);
   const double reach_m =
       std::max(self.thickness_m(), 2.0 * self.marble_radius_m()) + self.margin_m();
   const Matrix3X x = rolled(mesh, 0.12, 0.006);  // 1.3 turns, layers 6 mm apart
@@ -76,8 +101,8 @@ TEST(SurfacePatches, ARolledSheetKeepsEveryPairWithinReach) {
   SurfacePatches patches(mesh, triangles, edges, SelfCollision::cells_per_patch_side);
   patches.refit(x);
   std::vector<std::array<Index, 2>> culled, all;
-  patches.near_pairs(reach_m, self.flat_angle_rad(), culled);
-  patches.near_pairs(reach_m, 0.0, all);
+  patches.near_pairs(reach_m, self.cone_culling(), culled);
+  patches.near_pairs(reach_m, ConeCulling{}, all);
   const std::set<std::array<Index, 2>> kept(culled.begin(), culled.end());
   EXPECT_LT(culled.size(), all.size() / 2) << "the cones should drop the gently curved layers' pairs";
 
