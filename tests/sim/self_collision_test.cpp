@@ -280,21 +280,33 @@ TEST(SelfCollision, TheResultDoesNotDependOnTheThreadCount) {
   }
 }
 
+// A 1 m square sheet of n × n vertices, level at height z_m (Kang & Yu wool: Material{}).
+ClothMesh sheet_at(Index n, double z_m) {
+  GridSpec grid;
+  grid.nu = grid.nv = n;
+  grid.origin = Vec3(-0.5, -0.5, z_m);
+  return make_grid(grid);
+}
+
+// A Ø50 cm sphere centred at height sphere_z_m above the ground plane, with friction, and
+// self-collision on or off at the given thickness.
+SimSettings sphere_drape_settings(double sphere_z_m, double friction, bool self_collision,
+                                  double thickness_m) {
+  SimSettings settings;
+  settings.obstacles = {SphereObstacle{Vec3(0.0, 0.0, sphere_z_m), 0.25},
+                        PlaneObstacle{Vec3::Zero(), Vec3::UnitZ()}};
+  settings.collision_friction = friction;
+  settings.self_collision.enabled = self_collision;
+  settings.self_collision.thickness_m = thickness_m;
+  return settings;
+}
+
 // The candidate list never misses a pair in contact: a 33² sheet falls onto a sphere and
 // folds; after every 8th step, every vertex–triangle and edge–edge pair within the contact
 // distance (not rest neighbours) is a candidate, found independently by a spatial hash.
 TEST(SelfCollision, EveryPairInContactIsACandidateThroughoutADrape) {
-  GridSpec grid;
-  grid.nu = grid.nv = 33;
-  grid.origin = Vec3(-0.5, -0.5, 0.62);
-  SimSettings settings;
-  settings.obstacles = {SphereObstacle{Vec3(0.0, 0.0, 0.25), 0.25},
-                        PlaneObstacle{Vec3::Zero(), Vec3::UnitZ()}};
-  settings.collision_friction = 0.3;
-  settings.self_collision.enabled = true;
-  settings.self_collision.thickness_m = 3e-3;
-  Material wool;
-  Simulator sim(make_grid(grid), wool, {}, settings);
+  const SimSettings settings = sphere_drape_settings(0.25, 0.3, true, 3e-3);
+  Simulator sim(sheet_at(33, 0.62), Material{}, {}, settings);
   const SelfCollision& self = *sim.self_collision();
   const auto triangles = sim.mesh().triangles();
   const auto edges = unique_edges(triangles);
@@ -357,18 +369,9 @@ TEST(SelfCollision, EveryPairInContactIsACandidateThroughoutADrape) {
 // falls onto a Ø50 cm sphere standing on the ground; its four corner folds close on
 // themselves. The edge–triangle crossings after 1 s.
 Index crossings_of_a_sphere_drape(bool self_collision) {
-  GridSpec grid;
-  grid.nu = grid.nv = 17;
-  grid.origin = Vec3(-0.5, -0.5, 0.87);
-  SimSettings settings;
-  settings.obstacles = {SphereObstacle{Vec3(0.0, 0.0, 0.6), 0.25},
-                        PlaneObstacle{Vec3::Zero(), Vec3::UnitZ()}};
-  settings.collision_friction = 0.5;
+  SimSettings settings = sphere_drape_settings(0.6, 0.5, self_collision, 4e-3);
   settings.air_damping_1_s = 2.0;
-  settings.self_collision.enabled = self_collision;
-  settings.self_collision.thickness_m = 4e-3;
-  Material wool;  // the defaults: Kang & Yu wool, as in seed 002
-  Simulator sim(make_grid(grid), wool, {}, settings);
+  Simulator sim(sheet_at(17, 0.87), Material{}, {}, settings);
   sim.advance(1.0);
   const auto triangles = sim.mesh().triangles();
   return count_edge_triangle_crossings(sim.state().x, triangles, unique_edges(triangles));
