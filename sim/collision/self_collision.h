@@ -31,13 +31,14 @@
 // neighbouring patches (cone_culling() says how flat, by how much each is stretched); the
 // remaining patch pairs give the candidate pairs within the contact distance plus a margin,
 // shared out in contiguous runs among `threads` threads and then merged in order. Two
-// nested Verlet lists, both measured relative to the cloth's common translation at every
-// call: the candidates stay valid until some vertex has moved half the margin less the
-// crossing depth since they were built, and the active pairs — the candidates within the
-// contact distance plus a narrow band, and those that swapped sides within the crossing
-// depth, which the steps project — until some vertex has moved half the band since they were
-// selected. Selecting skips a candidate whose distance at the rebuild, less how far its
-// vertices have moved since, keeps it out of reach.
+// nested Verlet lists, checked at every call relative to the cloth's common translation: the
+// candidates stay valid while no pair left out can have come within the contact distance
+// plus the crossing depth — surely while no vertex has moved half the margin less the
+// crossing depth, else as the patches' motions tell (surface_patches.h, candidates_hold) —
+// and the active pairs — the candidates within the contact distance plus a narrow band, and
+// those that swapped sides within the crossing depth, which the steps project — until some
+// vertex has moved half the band since they were selected. Selecting skips a candidate
+// whose distance at the rebuild, less how far its vertices have moved since, keeps it out.
 // Deterministic: candidates are sorted and contacts are projected in that fixed order
 // (Gauss–Seidel), in up to `iterations` sweeps — after the first only over the pairs it found
 // near contact — ending early when no pair is in contact.
@@ -91,7 +92,9 @@ class SelfCollision {
   double active_band_m() const { return m_band_m; }
   // Pairs that passed through each other within a step by less than the contact distance
   // plus this are brought back (a quarter of the contact distance).
-  double crossing_depth_m() const { return 0.25 * std::max(m_settings.thickness_m, 2.0 * m_marble_radius_m); }
+  double crossing_depth_m() const {
+    return 0.25 * std::max(m_settings.thickness_m, 2.0 * m_marble_radius_m);
+  }
   // Pairs closer than this at rest are never in contact (marbles: 2·radius + mean rest edge).
   double exclusion_radius_m() const { return m_settings.thickness_m + m_neighbourhood_m; }
   // Candidate pairs of the current list, and how often it was rebuilt.
