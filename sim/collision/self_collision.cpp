@@ -44,27 +44,35 @@ double edge_edge_distance(const Matrix3X& x, const std::array<Index, 2>& e,
   return ((p0 + s * (p1 - p0)) - (q0 + t * (q1 - q0))).norm();
 }
 
+// Which side of the plane of triangle t vertex p lies on in m: the sign of the result (its
+// size is the distance times twice the area).
+double side_of(const Matrix3X& m, Index p, const std::array<Index, 3>& t) {
+  const Vec3 a = row(m, t[0]);
+  return (row(m, p) - a).dot((row(m, t[1]) - a).cross(row(m, t[2]) - a));
+}
+
 // Whether vertex p is on the other side of the plane of triangle t at x than at x_start.
 bool sides_swapped(const Matrix3X& x_start, const Matrix3X& x, Index p,
                    const std::array<Index, 3>& t) {
-  const auto side = [&](const Matrix3X& m) {
-    const Vec3 a = row(m, t[0]);
-    return (row(m, p) - a).dot((row(m, t[1]) - a).cross(row(m, t[2]) - a));
-  };
-  return side(x) * side(x_start) < 0.0;
+  return side_of(x, p, t) * side_of(x_start, p, t) < 0.0;
 }
 
-// The distance between edges e and f at x, and whether their closest points there have
-// swapped sides since x_start (the same material points, as project_edge_edge compares).
-std::pair<double, bool> edge_edge_distance_and_swap(const Matrix3X& x_start, const Matrix3X& x,
-                                                    const std::array<Index, 2>& e,
-                                                    const std::array<Index, 2>& f) {
+// Edges e and f's closest points at x (parameters s along e, u along f) and the vector
+// between them, d, and between the same material points at x_start, d0: their sides
+// swapped during the step when d · d0 < 0.
+struct EdgeEdgeApproach {
+  double s, u;
+  Vec3 d, d0;
+};
+
+EdgeEdgeApproach edge_edge_approach(const Matrix3X& x_start, const Matrix3X& x,
+                                    const std::array<Index, 2>& e, const std::array<Index, 2>& f) {
   const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
   const auto [s, u] = closest_segment_parameters(p0, p1, q0, q1);
   const Vec3 d = (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0));
   const Vec3 d0 = (row(x_start, e[0]) + s * (row(x_start, e[1]) - row(x_start, e[0]))) -
                   (row(x_start, f[0]) + u * (row(x_start, f[1]) - row(x_start, f[0])));
-  return {d.norm(), d.dot(d0) < 0.0};
+  return {s, u, d, d0};
 }
 
 // Whether the bounding boxes of point sets a and b of x come within limit_m of each other along
@@ -125,9 +133,10 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   if (settings.iterations < 1)
     throw std::invalid_argument("self_collision.iterations must be >= 1, got " +
                                 std::to_string(settings.iterations));
-  if (settings.threads < 0)
-    throw std::invalid_argument("self_collision.threads must be >= 0 (0: all hardware threads), got " +
-                                std::to_string(settings.threads));
+  if (settings.threads < 0 || settings.threads > 4096)
+    throw std::invalid_argument(
+        "self_collision.threads must be in 0..4096 (0: all hardware threads), got " +
+        std::to_string(settings.threads));
   m_expansions.resize(thread_count(settings.threads));
   m_moved_since_built_m.assign(static_cast<std::size_t>(m_rest.rows()), 0.0);
   m_marble_radius_m =
@@ -258,8 +267,9 @@ void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
     const auto& f = m_edges[static_cast<std::size_t>(candidate.ids[1])];
     const double moved_m = std::max(moved(e[0]), moved(e[1])) + std::max(moved(f[0]), moved(f[1]));
     if (candidate.distance_m - moved_m >= reach_m || !boxes_within(x, e, f, reach_m)) continue;
-    const auto [distance_m, swapped] = edge_edge_distance_and_swap(x_start, x, e, f);
-    if (distance_m < t + band_m || (distance_m < reach_m && swapped))
+    const EdgeEdgeApproach approach = edge_edge_approach(x_start, x, e, f);
+    const double distance_m = approach.d.norm();
+    if (distance_m < t + band_m || (distance_m < reach_m && approach.d.dot(approach.d0) < 0.0))
       m_active.ee.push_back(candidate.ids);
   }
   const double marble_m = 2.0 * m_marble_radius_m + band_m;
@@ -273,12 +283,10 @@ void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
   m_broad_s += seconds_since(start);
 }
 
-// Candidates: pairs within contact distance + margin at x that are not neighbours. A pair can
-// come into contact only after some vertex has moved more than half the margin (each of its
-// sides at most half), which triggers the next rebuild. The patches' spatial hash and normal
-// cones (surface_patches.h) give the patch pairs to look in; each is expanded into its
-// feature pairs, which are kept when a box test, the rest-state exclusion and the exact
-// distance agree.
+// Candidates: pairs within contact distance + margin at x that are not neighbours; resolve()
+// says when they must be rebuilt. The patches' sweep and normal cones (surface_patches.h)
+// give the patch pairs to look in; each is expanded into its feature pairs, which are kept
+// when a box test, the rest-state exclusion and the exact distance agree.
 void SelfCollision::rebuild(const Matrix3X& x) {
   const auto start = Clock::now();
   const double reach_m = m_settings.thickness_m + m_margin_m;
@@ -473,14 +481,13 @@ double SelfCollision::project_vertex_triangle(const std::array<Index, 2>& pair,
     if (!(normal.squaredNorm() > 0.0)) return none;
     n = normal.normalized();
     // The side it was on when over the face at the start of the step; else where it is now.
-    const Vec3 a0 = row(x_start, tri[0]), b0 = row(x_start, tri[1]), c0 = row(x_start, tri[2]);
-    const Vec3 p0 = row(x_start, v);
-    const double side0 = (p0 - a0).dot((b0 - a0).cross(c0 - a0));
+    const double side0 = side_of(x_start, v, tri);
     const double side_now = (p - q).dot(n);
     // Whether it was over the face matters only when the two sides differ.
     const bool same_side = side0 == 0.0 || (side_now != 0.0 && (side0 > 0.0) == (side_now > 0.0));
     const bool was_over =
-        !same_side && over_face(closest_point_on_triangle_weights(p0, a0, b0, c0));
+        !same_side && over_face(closest_point_on_triangle_weights(
+                          row(x_start, v), row(x_start, tri[0]), row(x_start, tri[1]), row(x_start, tri[2])));
     const double side = was_over ? side0 : side_now;
     if (side < 0.0) n = -n;
     gap_m = (p - q).dot(n);
@@ -498,13 +505,9 @@ double SelfCollision::project_edge_edge(const std::array<Index, 2>& pair, const 
   constexpr double none = std::numeric_limits<double>::infinity();
   const auto& e = m_edges[static_cast<std::size_t>(pair[0])];
   const auto& f = m_edges[static_cast<std::size_t>(pair[1])];
-  const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
-  const auto [s, u] = closest_segment_parameters(p0, p1, q0, q1);
-  const Vec3 d = (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0));
-  // The same material points at the start of the step: if they swapped sides, the edges
-  // passed through each other and go back to the start side.
-  const Vec3 d0 = (row(x_start, e[0]) + s * (row(x_start, e[1]) - row(x_start, e[0]))) -
-                  (row(x_start, f[0]) + u * (row(x_start, f[1]) - row(x_start, f[0])));
+  // If the closest points swapped sides since the start of the step, the edges passed
+  // through each other and go back to the start side.
+  const auto [s, u, d, d0] = edge_edge_approach(x_start, x, e, f);
   const bool interior = s > 0.0 && s < 1.0 && u > 0.0 && u < 1.0;
   Vec3 n;
   if (interior && d.dot(d0) < 0.0 && d0.squaredNorm() > 0.0) {

@@ -58,8 +58,8 @@ struct SelfCollisionSettings {
   double thickness_m = 2e-3;     // vertex–triangle and edge–edge contact distance, > 0
   double marble_radius_m = 0.0;  // vertex–vertex: 0 gives thickness_m / 2
   int iterations = 4;            // Gauss–Seidel sweeps over the contacts per call, ≥ 1
-  int threads = 0;  // threads that build the candidate list; 0: all hardware threads. Never
-                    // changes a bit of the result.
+  int threads = 0;  // threads that build the candidate list, 0..4096; 0: all hardware
+                    // threads. Never changes a bit of the result.
 };
 
 // Contacts found in the first sweep of one resolve() call.

@@ -244,9 +244,16 @@ TEST(SelfCollision, BadSettingsThrowNamingTheKey) {
   bad = SelfCollisionSettings{};
   bad.marble_radius_m = -1.0;
   EXPECT_THROW(SelfCollision(mesh, bad), std::invalid_argument);
-  bad = SelfCollisionSettings{};
-  bad.threads = -1;
-  EXPECT_THROW(SelfCollision(mesh, bad), std::invalid_argument);
+  for (const int threads : {-1, 5000}) {
+    bad = SelfCollisionSettings{};
+    bad.threads = threads;
+    try {
+      SelfCollision(mesh, bad);
+      ADD_FAILURE() << "no exception for " << threads << " threads";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("self_collision.threads"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A 65² sheet rolled into a spiral with layers 2 mm apart, inside the 3 mm thickness: the
