@@ -37,16 +37,10 @@ double point_triangle_distance(const Matrix3X& x, Index p, const std::array<Inde
   return (row(x, p) - (w[0] * a + w[1] * b + w[2] * c)).norm();
 }
 
-double edge_edge_distance(const Matrix3X& x, const std::array<Index, 2>& e,
-                          const std::array<Index, 2>& f) {
-  const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
-  const auto [s, t] = closest_segment_parameters(p0, p1, q0, q1);
-  return ((p0 + s * (p1 - p0)) - (q0 + t * (q1 - q0))).norm();
-}
 
 // Which side of the plane of triangle t vertex p lies on in m: the sign of the result (its
 // size is the distance times twice the area).
-double side_of(const Matrix3X& m, Index p, const std::array<Index, 3>& t) {
+inline double side_of(const Matrix3X& m, Index p, const std::array<Index, 3>& t) {
   const Vec3 a = row(m, t[0]);
   return (row(m, p) - a).dot((row(m, t[1]) - a).cross(row(m, t[2]) - a));
 }
@@ -57,22 +51,31 @@ bool sides_swapped(const Matrix3X& x_start, const Matrix3X& x, Index p,
   return side_of(x, p, t) * side_of(x_start, p, t) < 0.0;
 }
 
-// Edges e and f's closest points at x (parameters s along e, u along f) and the vector
-// between them, d, and between the same material points at x_start, d0: their sides
-// swapped during the step when d · d0 < 0.
-struct EdgeEdgeApproach {
+// Edges e and f's closest points at x: parameters s along e and u along f, and the vector d
+// from the one on f to the one on e.
+struct EdgeEdgeClosest {
   double s, u;
-  Vec3 d, d0;
+  Vec3 d;
 };
 
-EdgeEdgeApproach edge_edge_approach(const Matrix3X& x_start, const Matrix3X& x,
-                                    const std::array<Index, 2>& e, const std::array<Index, 2>& f) {
+inline EdgeEdgeClosest edge_edge_closest(const Matrix3X& x, const std::array<Index, 2>& e,
+                                  const std::array<Index, 2>& f) {
   const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
   const auto [s, u] = closest_segment_parameters(p0, p1, q0, q1);
-  const Vec3 d = (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0));
-  const Vec3 d0 = (row(x_start, e[0]) + s * (row(x_start, e[1]) - row(x_start, e[0]))) -
-                  (row(x_start, f[0]) + u * (row(x_start, f[1]) - row(x_start, f[0])));
-  return {s, u, d, d0};
+  return {s, u, (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))};
+}
+
+double edge_edge_distance(const Matrix3X& x, const std::array<Index, 2>& e,
+                          const std::array<Index, 2>& f) {
+  return edge_edge_closest(x, e, f).d.norm();
+}
+
+// The vector between the same material points of e and f (parameters c.s, c.u) at x_start:
+// the edges' sides swapped during the step when c.d · (this) < 0.
+inline Vec3 start_offset(const Matrix3X& x_start, const std::array<Index, 2>& e,
+                  const std::array<Index, 2>& f, const EdgeEdgeClosest& c) {
+  return (row(x_start, e[0]) + c.s * (row(x_start, e[1]) - row(x_start, e[0]))) -
+         (row(x_start, f[0]) + c.u * (row(x_start, f[1]) - row(x_start, f[0])));
 }
 
 // Whether the bounding boxes of point sets a and b of x come within limit_m of each other along
@@ -267,9 +270,10 @@ void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
     const auto& f = m_edges[static_cast<std::size_t>(candidate.ids[1])];
     const double moved_m = std::max(moved(e[0]), moved(e[1])) + std::max(moved(f[0]), moved(f[1]));
     if (candidate.distance_m - moved_m >= reach_m || !boxes_within(x, e, f, reach_m)) continue;
-    const EdgeEdgeApproach approach = edge_edge_approach(x_start, x, e, f);
-    const double distance_m = approach.d.norm();
-    if (distance_m < t + band_m || (distance_m < reach_m && approach.d.dot(approach.d0) < 0.0))
+    const EdgeEdgeClosest closest = edge_edge_closest(x, e, f);
+    const double distance_m = closest.d.norm();
+    if (distance_m < t + band_m ||
+        (distance_m < reach_m && closest.d.dot(start_offset(x_start, e, f, closest)) < 0.0))
       m_active.ee.push_back(candidate.ids);
   }
   const double marble_m = 2.0 * m_marble_radius_m + band_m;
@@ -505,10 +509,12 @@ double SelfCollision::project_edge_edge(const std::array<Index, 2>& pair, const 
   constexpr double none = std::numeric_limits<double>::infinity();
   const auto& e = m_edges[static_cast<std::size_t>(pair[0])];
   const auto& f = m_edges[static_cast<std::size_t>(pair[1])];
+  const EdgeEdgeClosest closest = edge_edge_closest(x, e, f);
+  const auto& [s, u, d] = closest;
   // If the closest points swapped sides since the start of the step, the edges passed
   // through each other and go back to the start side.
-  const auto [s, u, d, d0] = edge_edge_approach(x_start, x, e, f);
   const bool interior = s > 0.0 && s < 1.0 && u > 0.0 && u < 1.0;
+  const Vec3 d0 = interior ? start_offset(x_start, e, f, closest) : Vec3::Zero();
   Vec3 n;
   if (interior && d.dot(d0) < 0.0 && d0.squaredNorm() > 0.0) {
     n = d0.normalized();
