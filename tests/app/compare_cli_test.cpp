@@ -32,7 +32,9 @@ nlohmann::json json_of(const std::string& output) {
 class CompareCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "compare_cli";
+    // One directory per test: ctest runs the tests of this fixture at once.
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "compare_cli" / info->name();
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
     CurtainSpec photo;

@@ -21,7 +21,9 @@ using weft::render::Image;
 class DiffCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "diff_cli";
+    // One directory per test: ctest runs the tests of this fixture at once.
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "diff_cli" / info->name();
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
     Image a(48, 32, {120, 80, 40}), b = a;
