@@ -10,8 +10,8 @@
 #include "app/folds_overlay.h"
 #include "app/frame_mesh.h"
 #include "app/run_command.h"
+#include "app/renderer_choice.h"
 #include "app/scene.h"
-#include "render/renderer.h"
 
 namespace weft::app {
 
@@ -169,7 +169,7 @@ int run_folds(const FoldsOptions& options) {
     const sim::Vec3 top(0.0, 0.0, 1.1 * in.height_m + 0.1);
     const FoldedMembrane m = folded_membrane(pattern, options.shape, top);
     render::RenderSettings settings = membrane_render_settings(pattern, top, width, height);
-    const std::unique_ptr<render::Renderer> renderer = render::make_renderer(settings);
+    const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(settings);
     fs::create_directories(dir);
     render::write_png(renderer->render(to_render_mesh(m.mesh, m.x), settings, {}),
                       dir / "folds.png");

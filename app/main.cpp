@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--renderer", renderer,
                       "raster (OSMesa, fast previews) or raytrace (Embree: soft shadows, ambient "
                       "occlusion, sheen; overrides render.renderer)")
-      ->check(CLI::IsMember({"raster", "raytrace"}));
+      ->check(CLI::IsMember(weft::render::renderer_choices()));
   int samples = 0;
   run_cmd->add_option("--samples", samples,
                       "Ray tracer samples per pixel (overrides render.raytrace.samples)");
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
   turntable_cmd->add_option("--out", turntable_out, "Output folder (default: out/<input name>_turntable)");
   turntable_cmd->add_option("--size", turntable_size, "Image size WIDTHxHEIGHT (overrides render.size)");
   turntable_cmd->add_option("--renderer", turntable_renderer, "raster or raytrace (overrides render.renderer)")
-      ->check(CLI::IsMember({"raster", "raytrace"}));
+      ->check(CLI::IsMember(weft::render::renderer_choices()));
   turntable_cmd->add_option("--samples", turntable_samples, "Ray tracer samples per pixel");
   turntable_cmd->add_option("--elevation-deg", turntable_elevation_deg,
                             "Camera elevation above the cloth centre, degrees (default: the scene camera's)");

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "render/raster.h"
+#include "render/render_settings.h"
 #include "sim/collision/obstacle.h"
 #include "sim/collision/obstacle_motion.h"
 

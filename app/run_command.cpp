@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <stdexcept>
 
 #include "app/output_files.h"
 #include "app/frame_mesh.h"
@@ -10,11 +11,10 @@
 #include "app/obstacle_meshes.h"
 #include "app/progress.h"
 #include "app/run_report.h"
+#include "app/renderer_choice.h"
 #include "app/scene.h"
 #include "app/stats_csv.h"
 #include "app/version.h"
-#include "render/raster.h"
-#include "render/renderer.h"
 #include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -59,13 +59,10 @@ void apply_overrides(Scene& scene, const RunOptions& options) {
     scene.render.shading =
         *options.normals_shading ? render::Shading::normals : render::Shading::lit;
   if (options.renderer) {
-    if (*options.renderer == "raster") {
-      scene.render.renderer = render::RendererKind::raster;
-    } else if (*options.renderer == "raytrace") {
-      scene.render.renderer = render::RendererKind::raytrace;
-    } else {
-      throw SceneError("--renderer: expected 'raster' or 'raytrace', got '" + *options.renderer +
-                       "'");
+    try {
+      scene.render.renderer = render::renderer_from_name(*options.renderer, "--renderer");
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(e.what());
     }
   }
   if (options.samples) {
@@ -121,7 +118,7 @@ int run_scene(const RunOptions& options) {
 
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
-  const std::unique_ptr<render::Renderer> renderer = render::make_renderer(scene.render);
+  const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   fs::create_directories(dir);

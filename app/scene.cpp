@@ -482,20 +482,12 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
     ground.finish();
   }
 
-  s.shading = r.enumeration<render::Shading>(
-      "shading", {{"lit", render::Shading::lit}, {"normals", render::Shading::normals}}, s.shading);
+  s.shading = r.enumeration("shading", render::shading_choices(), std::optional(s.shading));
   s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
   if (s.msaa_samples & (s.msaa_samples - 1))
     r.fail("msaa", "expected 1, 2, 4 or 8 samples, got " + std::to_string(s.msaa_samples));
-  s.renderer = r.enumeration<render::RendererKind>(
-      "renderer", {{"raster", render::RendererKind::raster},
-                   {"raytrace", render::RendererKind::raytrace}},
-      s.renderer);
-  s.gl = r.enumeration<render::GlBackend>("gl",
-                                          {{"auto", render::GlBackend::automatic},
-                                           {"osmesa", render::GlBackend::osmesa},
-                                           {"egl", render::GlBackend::egl}},
-                                          s.gl);
+  s.renderer = r.enumeration("renderer", render::renderer_choices(), std::optional(s.renderer));
+  s.gl = r.enumeration("gl", render::gl_backend_choices(), std::optional(s.gl));
   read_raytrace(r.object("raytrace"), s.raytrace);
   read_cloth_surface(r, s.cloth_surface);  // subdivision, thickness, texture
   r.finish();

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/tension_field_scene.h"
-#include "render/raster.h"
+#include "render/render_settings.h"
 #include "sim/grid.h"
 #include "sim/material.h"
 #include "sim/pin_motion.h"

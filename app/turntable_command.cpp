@@ -18,9 +18,9 @@
 #include "app/obstacle_meshes.h"
 #include "app/progress.h"
 #include "app/run_command.h"
+#include "app/renderer_choice.h"
 #include "app/scene.h"
 #include "app/version.h"
-#include "render/renderer.h"
 #include "sim/simulator.h"
 
 namespace weft::app {
@@ -96,7 +96,7 @@ Subject scene_subject(const TurntableOptions& o) {
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   Subject s;
   // A renderer that cannot start fails before the simulation time is spent.
-  s.renderer = render::make_renderer(scene.render);
+  s.renderer = make_chosen_renderer(scene.render);
 
   std::fprintf(stderr, "weft: %s — simulating %d frames at %g fps to t = %.3g s, %dx%d vertices\n",
                scene.source.c_str(), scene.frames, scene.fps, scene.frames / scene.fps,
@@ -154,7 +154,7 @@ Subject mesh_subject(const TurntableOptions& o) {
   // The mesh stands on the ground.
   s.settings.ground_z_m = lo.z();
   s.settings.ground_half_size_m = 5.0 * std::max((hi - lo).norm(), 1e-3);
-  s.renderer = render::make_renderer(s.settings);
+  s.renderer = make_chosen_renderer(s.settings);
   return s;
 }
 

@@ -1,8 +1,8 @@
-// What the GL contexts share (gl_context.h): choosing one by name — OSMesa or EGL surfaceless,
-// or "auto" (OSMesa first, EGL when OSMesa is not built or cannot start), WEFT_GL overriding —
-// and the renderer/version text of their descriptions.
+// What the GL contexts share (gl_context.h): choosing one — OSMesa or EGL surfaceless, or
+// "auto" (OSMesa first, EGL when OSMesa is not built or cannot start); the environment variable
+// WEFT_GL is read by app/ (app/renderer_choice.h), not here — and the renderer/version text of
+// their descriptions.
 
-#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -11,29 +11,7 @@
 
 namespace weft::render {
 
-const char* gl_backend_name(GlBackend backend) {
-  switch (backend) {
-    case GlBackend::osmesa:
-      return "osmesa";
-    case GlBackend::egl:
-      return "egl";
-    case GlBackend::automatic:
-      break;
-  }
-  return "auto";
-}
-
-GlBackend gl_backend_from_name(const std::string& name, const std::string& where) {
-  for (GlBackend b : {GlBackend::automatic, GlBackend::osmesa, GlBackend::egl}) {
-    if (name == gl_backend_name(b)) return b;
-  }
-  throw std::invalid_argument(where + ": expected 'auto', 'osmesa' or 'egl', got '" + name + "'");
-}
-
 std::unique_ptr<GlContext> make_gl_context(GlBackend choice, int width, int height) {
-  if (const char* variable = std::getenv("WEFT_GL"); variable != nullptr && *variable != '\0') {
-    choice = gl_backend_from_name(variable, "environment variable WEFT_GL");
-  }
   switch (choice) {
     case GlBackend::osmesa:
       return make_osmesa_context(width, height);

@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "render/render_settings.h"
+
 namespace weft::render {
 
 class GlContext {
@@ -27,18 +29,8 @@ std::unique_ptr<GlContext> make_osmesa_context(int width, int height);
 // weft was built without EGL (CMake option WEFT_WITH_EGL).
 std::unique_ptr<GlContext> make_egl_context(int width, int height);
 
-// Which context the rasterizer gets (gl_context_choice.cpp). automatic: OSMesa when it was built
-// and starts, else EGL.
-enum class GlBackend { automatic, osmesa, egl };
-
-const char* gl_backend_name(GlBackend backend);  // "auto", "osmesa", "egl"
-// "auto" | "osmesa" | "egl"; otherwise throws std::invalid_argument starting with `where` and
-// listing the choices.
-GlBackend gl_backend_from_name(const std::string& name, const std::string& where);
-
-// The context `choice` names, unless the environment variable WEFT_GL (osmesa|egl|auto) is set,
-// which overrides it. Throws std::invalid_argument for a bad WEFT_GL, std::runtime_error (with
-// every reason) when no context can be created.
+// The context `choice` (render_settings.h) names; automatic tries OSMesa, then EGL. Throws
+// std::runtime_error (with every reason) when no context can be created.
 std::unique_ptr<GlContext> make_gl_context(GlBackend choice, int width, int height);
 
 namespace detail {

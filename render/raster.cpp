@@ -240,28 +240,6 @@ PixelRect footprint_on_screen(const Eigen::AlignedBox2d& footprint,
 
 }  // namespace
 
-void validate(const RenderSettings& s, int max_size) {
-  const auto fail = [](const std::string& what) {
-    throw std::invalid_argument("RenderSettings: " + what);
-  };
-  if (s.width <= 0 || s.height <= 0 || s.width > max_size || s.height > max_size) {
-    fail("width×height must be within 1.." + std::to_string(max_size) + ", got " +
-         size_text(s.width, s.height));
-  }
-  if (s.msaa_samples < 0) fail("msaa_samples must be >= 0, got " + std::to_string(s.msaa_samples));
-  if (!s.light_direction.allFinite() || !(s.light_direction.norm() > 0.0)) {
-    fail("light_direction must be a finite non-zero vector");
-  }
-  if (!(s.light_intensity >= 0.0) || !std::isfinite(s.light_intensity)) {
-    fail("light_intensity must be finite and >= 0");
-  }
-  if (!(s.ambient >= 0.0) || !std::isfinite(s.ambient)) fail("ambient must be finite and >= 0");
-  if (s.ground && (!(s.ground_half_size_m > 0.0) || !std::isfinite(s.ground_half_size_m) ||
-                   !std::isfinite(s.ground_z_m))) {
-    fail("ground needs a finite ground_z_m and ground_half_size_m > 0");
-  }
-}
-
 struct RasterRenderer::Impl {
   explicit Impl(std::unique_ptr<GlContext> context);
   ~Impl();

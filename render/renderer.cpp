@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "render/cloth_surface.h"
+#include "render/raster.h"
 
 #ifdef WEFT_WITH_EMBREE_RT
 #include "render/raytrace/ray_tracer.h"
@@ -35,10 +36,6 @@ class WithClothSurface final : public Renderer {
 };
 
 }  // namespace
-
-const char* renderer_name(RendererKind kind) {
-  return kind == RendererKind::raytrace ? "raytrace" : "raster";
-}
 
 std::unique_ptr<Renderer> make_renderer(const RenderSettings& settings) {
   switch (settings.renderer) {

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "render/raster.h"
 #include "render/raytrace/ray_tracer.h"
 #include "render/render_mesh.h"
+#include "render/render_settings.h"
 #include "render/texture.h"
 
 namespace weft::render::rt {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "render/image.h"
-#include "render/raster.h"
 #include "render/render_mesh.h"
+#include "render/render_settings.h"
 
 namespace weft::render {
 

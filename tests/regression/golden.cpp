@@ -9,7 +9,7 @@
 #include "app/frame_mesh.h"
 #include "app/obstacle_meshes.h"
 #include "app/scene.h"
-#include "render/renderer.h"
+#include "app/renderer_choice.h"
 #include "tests/app/coarse_scene.h"
 
 namespace weft::test {
@@ -50,12 +50,11 @@ render::Image render_case(const GoldenCase& c, double density_scale) {
   scene.material.density_kg_m2 *= density_scale;
   scene.render.width = c.width;
   scene.render.height = c.height;
-  scene.render.renderer =
-      c.renderer == "raytrace" ? render::RendererKind::raytrace : render::RendererKind::raster;
+  scene.render.renderer = render::renderer_from_name(c.renderer, c.name);
   scene.render.raytrace.samples_per_pixel = c.samples;
   const auto simulator = app::make_simulator(scene);
   if (scene.dynamics && c.frames > 0) simulator->advance(c.frames / scene.fps);
-  const auto renderer = render::make_renderer(scene.render);
+  const auto renderer = app::make_chosen_renderer(scene.render);
   return renderer->render(app::to_render_mesh(simulator->mesh(), simulator->state().x),
                           scene.render, app::obstacle_render_objects(scene.sim.obstacles, scene.render));
 }

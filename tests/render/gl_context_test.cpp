@@ -1,5 +1,5 @@
-// The two GL contexts of the rasterizer (gl_context.h): choosing one by name and through WEFT_GL,
-// and OSMesa and EGL surfaceless drawing the same scene (ground, shadow, obstacle, 4× MSAA) into
+// The two GL contexts of the rasterizer (gl_context.h): choosing one by name (WEFT_GL is read by
+// app/, tests/app/gl_scene_test.cpp), and OSMesa and EGL surfaceless drawing the same scene (ground, shadow, obstacle, 4× MSAA) into
 // images within a tight tolerance: both run Mesa's llvmpipe with the same shaders, so they may
 // differ only where the two drivers round or rasterise differently. Tests that need a context
 // are skipped (with the reason) when it cannot be created. On failure the rendered images are
@@ -8,9 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,27 +21,6 @@
 
 namespace weft::render {
 namespace {
-
-// Sets an environment variable for one scope and restores the previous value.
-class ScopedEnvironment {
- public:
-  ScopedEnvironment(const char* name, const char* value) : m_name(name) {
-    if (const char* old = std::getenv(name)) m_old = old;
-    ::setenv(name, value, 1);
-  }
-  ~ScopedEnvironment() {
-    if (m_old)
-      ::setenv(m_name.c_str(), m_old->c_str(), 1);
-    else
-      ::unsetenv(m_name.c_str());
-  }
-  ScopedEnvironment(const ScopedEnvironment&) = delete;
-  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
-
- private:
-  std::string m_name;
-  std::optional<std::string> m_old;
-};
 
 TEST(GlBackend, NamesRoundTripAndUnknownNamesListTheChoices) {
   for (GlBackend b : {GlBackend::automatic, GlBackend::osmesa, GlBackend::egl})
@@ -58,27 +35,6 @@ TEST(GlBackend, NamesRoundTripAndUnknownNamesListTheChoices) {
     EXPECT_NE(message.find("'egl'"), std::string::npos) << message;
     EXPECT_NE(message.find("vulkan"), std::string::npos) << message;
   }
-}
-
-TEST(GlBackend, BadEnvironmentVariableIsNamed) {
-  const ScopedEnvironment gl("WEFT_GL", "metal");
-  try {
-    make_gl_context(GlBackend::automatic, 8, 8);
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("WEFT_GL"), std::string::npos) << e.what();
-  }
-}
-
-TEST(GlBackend, EnvironmentVariableOverridesTheChoice) {
-  const ScopedEnvironment gl("WEFT_GL", "egl");
-  std::unique_ptr<GlContext> context;
-  try {
-    context = make_gl_context(GlBackend::osmesa, 8, 8);
-  } catch (const std::runtime_error& e) {
-    GTEST_SKIP() << "no EGL context: " << e.what();
-  }
-  EXPECT_NE(context->description().find("EGL"), std::string::npos) << context->description();
 }
 
 TEST(GlBackend, EglDescriptionSaysSurfaceless) {
