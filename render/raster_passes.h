@@ -1,0 +1,108 @@
+#pragma once
+// Private to render/: the rasterizer's passes (raster.cpp runs them in this order):
+//   shadow  — depth of the casters (cloth, objects) from the key light into a shadow map,
+//   ground  — the ground square, its shadow lookup (5×5 PCF, most of a frame's cost under
+//             llvmpipe) only inside the screen rectangle where the casters' shadow can fall,
+//             a program without it elsewhere (the same pixels: there the lookup returns 1),
+//   surface — cloth and objects, lit (or normals-shaded), two-sided, the cloth textured.
+// And the light's geometry the first two share.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "render/gl_functions.h"
+#include "render/image.h"
+#include "render/raster_gl.h"
+#include "render/render_mesh.h"
+#include "render/render_settings.h"
+
+namespace weft::render::detail {
+
+constexpr int shadow_map_size = 2048;  // texels per side of the square shadow map
+
+// World → light clip space for the shadow pass: an orthographic box looking along
+// −light_unit that encloses the sphere around the meshes' bounding box.
+Eigen::Matrix4f light_view_projection(const std::vector<const RenderMesh*>& meshes,
+                                      const Eigen::Vector3d& light_unit);
+
+// Where the casters' shadow can fall, in the light's clip x, y: their bounding box widened by
+// `margin` (clip units), within [−1, 1]² (the shadow map).
+Eigen::AlignedBox2d caster_footprint(const std::vector<const RenderMesh*>& casters,
+                                     const Eigen::Matrix4f& light_matrix, double margin);
+
+// The shadow map and the depth-only program that draws it.
+class ShadowPass {
+ public:
+  explicit ShadowPass(const GlFunctions& gl);
+  ~ShadowPass();
+  ShadowPass(const ShadowPass&) = delete;
+  ShadowPass& operator=(const ShadowPass&) = delete;
+
+  // Draws the casters' depth (each mesh's first `count` indices; 0: skipped) through
+  // light_matrix; the map is created on first use.
+  void draw(const Eigen::Matrix4f& light_matrix,
+            const std::vector<std::pair<const MeshBuffers*, GLsizei>>& casters);
+  GLuint depth_texture() const { return m_depth; }
+
+ private:
+  void ensure_map();
+
+  const GlFunctions& m_gl;
+  GlProgram m_program;
+  GLuint m_fbo = 0, m_depth = 0;
+};
+
+// The ground square, drawn from gl_VertexID, with and without the shadow lookup.
+class GroundPass {
+ public:
+  explicit GroundPass(const GlFunctions& gl);
+  ~GroundPass();
+  GroundPass(const GroundPass&) = delete;
+  GroundPass& operator=(const GroundPass&) = delete;
+
+  // Into the bound framebuffer. shadow_matrix: the light's view-projection when there is a
+  // shadow (shadow_map then holds the casters' depth), and footprint the casters' shadow in
+  // its clip x, y (caster_footprint).
+  void draw(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
+            const Eigen::Matrix4f* shadow_matrix, const Eigen::AlignedBox2d& footprint,
+            GLuint shadow_map);
+
+ private:
+  void set_uniforms(const GlProgram& p, const RenderSettings& s,
+                    const Eigen::Matrix4f& view_projection,
+                    const Eigen::Matrix4f* shadow_matrix) const;
+
+  const GlFunctions& m_gl;
+  GlProgram m_shadowed, m_unshadowed;
+  GLuint m_empty_vao = 0;  // the ground needs no attributes
+};
+
+// Lit (or normals-shaded) surfaces: the cloth program with its uniforms set, then one draw per
+// index range with its front and back colours; the cloth's texture on texture unit 1.
+class SurfacePass {
+ public:
+  explicit SurfacePass(const GlFunctions& gl);
+  ~SurfacePass();
+  SurfacePass(const SurfacePass&) = delete;
+  SurfacePass& operator=(const SurfacePass&) = delete;
+
+  // Uses the program with the frame's camera and light; binds the cloth texture (uploading it
+  // when the image changed) when `textured`.
+  void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured);
+  void draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
+            const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured = false);
+
+ private:
+  void bind_texture(const ClothTexture& texture);
+
+  const GlFunctions& m_gl;
+  GlProgram m_program;
+  GLuint m_texture = 0;                        // created on first use
+  const Image* m_texture_image = nullptr;      // what it holds (compared by address)
+  std::shared_ptr<const Image> m_texture_owner;  // keeps that address valid
+};
+
+}  // namespace weft::render::detail
