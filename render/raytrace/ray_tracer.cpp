@@ -67,92 +67,57 @@ float max_abs_coordinate(const RenderMesh& mesh) {
   return m;
 }
 
-}  // namespace
-
-struct RayTracer::Impl {
-  rt::EmbreeDevice device;  // declared first: released last
-  rt::EmbreeScene scene{device};
-  rt::TriangleGeometry cloth_geometry, ground_geometry;
-  std::vector<std::unique_ptr<rt::TriangleGeometry>> object_geometries;
-  RayCounts last_counts;
-
-  Image render(const RenderMesh& cloth, const RenderSettings& s,
-               const std::vector<RenderObject>& objects);
+// The meshes of one frame as the ray tracer draws them: validated, with vertex normals (copies
+// where they were missing), and the ground square under the camera target as the rasterizer's.
+struct FrameMeshes {
+  RenderMesh cloth_storage;
+  const RenderMesh* cloth = nullptr;
+  std::vector<RenderMesh> object_storage;
+  std::vector<const RenderMesh*> objects;
+  RenderMesh ground;  // empty without a ground
 };
 
-Image RayTracer::Impl::render(const RenderMesh& cloth_input, const RenderSettings& s,
-                              const std::vector<RenderObject>& objects) {
-  validate(s, max_image_side);
-  validate_raytrace(s.raytrace);
-  validate(s.cloth_surface);
-  validate(cloth_input);
-  RenderMesh cloth_storage;
-  const RenderMesh& cloth = with_normals(cloth_input, cloth_storage);
-  std::vector<RenderMesh> object_storage(objects.size());
-  std::vector<const RenderMesh*> object_meshes;
+// Step 1 (validate_raytrace and validate(RenderSettings) are checked before).
+void prepare_meshes(const RenderMesh& cloth, const RenderSettings& s,
+                    const std::vector<RenderObject>& objects, FrameMeshes& m) {
+  validate(cloth);
+  m.cloth = &with_normals(cloth, m.cloth_storage);
+  m.object_storage.resize(objects.size());
   for (std::size_t k = 0; k < objects.size(); ++k) {
     const std::string name = "object " + std::to_string(k);
     validate(objects[k].mesh, name);
     if (!objects[k].color.allFinite()) throw std::invalid_argument(name + ": colour is not finite");
-    object_meshes.push_back(&with_normals(objects[k].mesh, object_storage[k]));
+    m.objects.push_back(&with_normals(objects[k].mesh, m.object_storage[k]));
   }
-  RenderMesh ground;
   if (s.ground) {
-    ground =
+    m.ground =
         make_square_patch(Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m),
                           Eigen::Vector3d::UnitZ(), s.ground_half_size_m);
   }
+}
 
-  // 2. The Embree scene.
-  cloth_geometry.set(device, scene, cloth.positions, cloth.triangles);
-  ground_geometry.set(device, scene, ground.positions, ground.triangles);
-  while (object_geometries.size() < objects.size())
-    object_geometries.push_back(std::make_unique<rt::TriangleGeometry>());
-  object_geometries.resize(objects.size());  // released ones detach themselves
-  for (std::size_t k = 0; k < objects.size(); ++k)
-    object_geometries[k]->set(device, scene, object_meshes[k]->positions,
-                              object_meshes[k]->triangles);
-  scene.commit(device);
-
-  // 3. What the pixels read.
-  rt::FrameView view;
-  view.scene = scene.get();
-  const auto add_surface = [&](const rt::TriangleGeometry& g, rt::SurfaceShading surface) {
-    if (!g.attached()) return;
-    if (view.surfaces.size() <= g.id()) view.surfaces.resize(g.id() + 1);
-    view.surfaces[g.id()] = surface;
-  };
-  float extent = std::max(max_abs_coordinate(cloth), max_abs_coordinate(ground));
-  add_surface(cloth_geometry,
-              {&cloth, rt::reflectance_from_color(s.front_color),
-               rt::reflectance_from_color(s.back_color), true, false,
-               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr});
-  const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
-  add_surface(ground_geometry, {&ground, ground_reflectance, ground_reflectance, false, true});
-  for (std::size_t k = 0; k < objects.size(); ++k) {
-    const Eigen::Vector3f reflectance = rt::reflectance_from_color(objects[k].color);
-    add_surface(*object_geometries[k], {object_meshes[k], reflectance, reflectance, false, false});
-    extent = std::max(extent, max_abs_coordinate(*object_meshes[k]));
-  }
-
-  view.width = s.width;
-  view.height = s.height;
-  // The camera basis of Camera::view_matrix (which also checks eye, target and up).
-  const Eigen::Matrix4f view_matrix = s.camera.view_matrix();
-  const double aspect = static_cast<double>(s.width) / static_cast<double>(s.height);
-  const Eigen::Matrix4f projection = s.camera.projection_matrix(aspect);  // checks fov, near, far
+// Step 3, the camera: Camera::view_matrix's basis (which also checks eye, target and up) and
+// its projection's extent (which checks fov, near, far).
+void set_camera(const Camera& camera, int width, int height, rt::FrameView& view) {
+  view.width = width;
+  view.height = height;
+  const Eigen::Matrix4f view_matrix = camera.view_matrix();
+  const double aspect = static_cast<double>(width) / static_cast<double>(height);
+  const Eigen::Matrix4f projection = camera.projection_matrix(aspect);
   const Eigen::Vector3f side = view_matrix.block<1, 3>(0, 0).transpose();
   const Eigen::Vector3f true_up = view_matrix.block<1, 3>(1, 0).transpose();
   view.forward = -view_matrix.block<1, 3>(2, 0).transpose();
   // At depth 1 the image spans ±1/P(0,0) sideways and ±1/P(1,1) up and down.
   view.right = side / projection(0, 0);
   view.up = true_up / projection(1, 1);
-  view.eye = s.camera.eye.cast<float>();
-  view.near_m = static_cast<float>(s.camera.near_m);
-  view.far_m = static_cast<float>(s.camera.far_m);
-  view.pixel_angle = 2.0f / (projection(1, 1) * static_cast<float>(s.height));
-  extent = std::max(extent, view.eye.cwiseAbs().maxCoeff());
+  view.eye = camera.eye.cast<float>();
+  view.near_m = static_cast<float>(camera.near_m);
+  view.far_m = static_cast<float>(camera.far_m);
+  view.pixel_angle = 2.0f / (projection(1, 1) * static_cast<float>(height));
+}
 
+// Step 3, light, ground and sampling.
+void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.shading = s.shading;
   view.sun = s.light_direction.normalized().cast<float>();
   view.sun_cos_max = static_cast<float>(std::cos(s.raytrace.sun_angular_radius_deg * pi / 180.0));
@@ -170,15 +135,16 @@ Image RayTracer::Impl::render(const RenderMesh& cloth_input, const RenderSetting
   view.sheen = static_cast<float>(s.raytrace.sheen);
   view.sheen_roughness = static_cast<float>(s.raytrace.sheen_roughness);
   view.seed = s.raytrace.seed;
-  // Float positions near `extent` are exact to ~6e-8 extent; Embree's hits to a few ulps more.
-  view.epsilon_m = 2e-5f * (1.0f + extent);
+}
 
-  // 4. Tiles over threads.
-  Image image(s.width, s.height);
-  const int tiles_x = (s.width + tile_side - 1) / tile_side;
-  const int tiles_y = (s.height + tile_side - 1) / tile_side;
+// Step 4: threads take tiles off a shared counter and write their pixels' bytes into `image`;
+// returns the rays they traced. The first exception of any thread is rethrown.
+RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Image& image) {
+  const int width = image.width(), height = image.height();
+  const int tiles_x = (width + tile_side - 1) / tile_side;
+  const int tiles_y = (height + tile_side - 1) / tile_side;
   const int tiles = tiles_x * tiles_y;
-  const int threads = thread_count(s.raytrace, tiles);
+  const int threads = thread_count(r, tiles);
   std::atomic<int> next_tile{0};
   std::vector<RayCounts> counts(static_cast<std::size_t>(threads));
   std::exception_ptr failure;
@@ -189,11 +155,11 @@ Image RayTracer::Impl::render(const RenderMesh& cloth_input, const RenderSetting
       RayCounts& mine = counts[static_cast<std::size_t>(worker)];
       for (int tile = next_tile++; tile < tiles; tile = next_tile++) {
         const int x0 = (tile % tiles_x) * tile_side, y0 = (tile / tiles_x) * tile_side;
-        const int x1 = std::min(x0 + tile_side, s.width), y1 = std::min(y0 + tile_side, s.height);
+        const int x1 = std::min(x0 + tile_side, width), y1 = std::min(y0 + tile_side, height);
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
             const Eigen::Vector3f radiance = rt::render_pixel(view, x, y, mine);
-            std::uint8_t* out = bytes + 3 * (static_cast<std::size_t>(y) * s.width + x);
+            std::uint8_t* out = bytes + 3 * (static_cast<std::size_t>(y) * width + x);
             for (int c = 0; c < 3; ++c) out[c] = rt::encode_channel(radiance[c]);
           }
         }
@@ -216,13 +182,85 @@ Image RayTracer::Impl::render(const RenderMesh& cloth_input, const RenderSetting
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 
-  last_counts = {};
+  RayCounts total;
   for (const RayCounts& c : counts) {
-    last_counts.camera += c.camera;
-    last_counts.shadow += c.shadow;
-    last_counts.occlusion += c.occlusion;
-    last_counts.bounce += c.bounce;
+    total.camera += c.camera;
+    total.shadow += c.shadow;
+    total.occlusion += c.occlusion;
+    total.bounce += c.bounce;
   }
+  return total;
+}
+
+}  // namespace
+
+struct RayTracer::Impl {
+  rt::EmbreeDevice device;  // declared first: released last
+  rt::EmbreeScene scene{device};
+  rt::TriangleGeometry cloth_geometry, ground_geometry;
+  std::vector<std::unique_ptr<rt::TriangleGeometry>> object_geometries;
+  RayCounts last_counts;
+
+  Image render(const RenderMesh& cloth, const RenderSettings& s,
+               const std::vector<RenderObject>& objects);
+  // Step 2: the Embree scene, committed.
+  void update_scene(const FrameMeshes& m);
+  // Step 3: what the pixels read (scene, surfaces, camera, light; integrator.h).
+  rt::FrameView frame_view(const FrameMeshes& m, const RenderSettings& s,
+                           const std::vector<RenderObject>& objects) const;
+};
+
+void RayTracer::Impl::update_scene(const FrameMeshes& m) {
+  cloth_geometry.set(device, scene, m.cloth->positions, m.cloth->triangles);
+  ground_geometry.set(device, scene, m.ground.positions, m.ground.triangles);
+  while (object_geometries.size() < m.objects.size())
+    object_geometries.push_back(std::make_unique<rt::TriangleGeometry>());
+  object_geometries.resize(m.objects.size());  // released ones detach themselves
+  for (std::size_t k = 0; k < m.objects.size(); ++k)
+    object_geometries[k]->set(device, scene, m.objects[k]->positions, m.objects[k]->triangles);
+  scene.commit(device);
+}
+
+rt::FrameView RayTracer::Impl::frame_view(const FrameMeshes& m, const RenderSettings& s,
+                                          const std::vector<RenderObject>& objects) const {
+  rt::FrameView view;
+  view.scene = scene.get();
+  const auto add_surface = [&](const rt::TriangleGeometry& g, rt::SurfaceShading surface) {
+    if (!g.attached()) return;
+    if (view.surfaces.size() <= g.id()) view.surfaces.resize(g.id() + 1);
+    view.surfaces[g.id()] = surface;
+  };
+  float extent = std::max(max_abs_coordinate(*m.cloth), max_abs_coordinate(m.ground));
+  add_surface(cloth_geometry,
+              {m.cloth, rt::reflectance_from_color(s.front_color),
+               rt::reflectance_from_color(s.back_color), true, false,
+               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr});
+  const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
+  add_surface(ground_geometry, {&m.ground, ground_reflectance, ground_reflectance, false, true});
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    const Eigen::Vector3f reflectance = rt::reflectance_from_color(objects[k].color);
+    add_surface(*object_geometries[k], {m.objects[k], reflectance, reflectance, false, false});
+    extent = std::max(extent, max_abs_coordinate(*m.objects[k]));
+  }
+  set_camera(s.camera, s.width, s.height, view);
+  extent = std::max(extent, view.eye.cwiseAbs().maxCoeff());
+  set_lighting(s, view);
+  // Float positions near `extent` are exact to ~6e-8 extent; Embree's hits to a few ulps more.
+  view.epsilon_m = 2e-5f * (1.0f + extent);
+  return view;
+}
+
+Image RayTracer::Impl::render(const RenderMesh& cloth, const RenderSettings& s,
+                              const std::vector<RenderObject>& objects) {
+  validate(s, max_image_side);
+  validate_raytrace(s.raytrace);
+  validate(s.cloth_surface);
+  FrameMeshes meshes;
+  prepare_meshes(cloth, s, objects, meshes);
+  update_scene(meshes);
+  const rt::FrameView view = frame_view(meshes, s, objects);
+  Image image(s.width, s.height);
+  last_counts = trace_tiles(view, s.raytrace, image);
   return image;
 }
 
