@@ -44,78 +44,94 @@ double loop_beta(int n) {
   return (5.0 / 8.0 - c * c) / n;
 }
 
-RenderMesh subdivide_once(const RenderMesh& mesh) {
-  const std::size_t vertex_count = mesh.positions.size();
-  const bool has_uvs = !mesh.uvs.empty();
-
-  // 1. Edges, in the order first met; per triangle the indices of its edges ab, bc, ca.
+// Step 1: edges in the order first met; per triangle the indices of its edges ab, bc, ca.
+struct EdgeTable {
   std::vector<Edge> edges;
+  std::vector<std::array<std::uint32_t, 3>> triangle_edges;
+  std::vector<int> face_count;  // per vertex: triangles on it
+};
+
+EdgeTable build_edges(const RenderMesh& mesh) {
+  EdgeTable table;
   std::unordered_map<std::uint64_t, std::uint32_t> edge_index;
   edge_index.reserve(3 * mesh.triangles.size());
-  std::vector<std::array<std::uint32_t, 3>> triangle_edges(mesh.triangles.size());
-  std::vector<int> face_count(vertex_count, 0);
+  table.triangle_edges.resize(mesh.triangles.size());
+  table.face_count.assign(mesh.positions.size(), 0);
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const auto& t = mesh.triangles[f];
     for (int k = 0; k < 3; ++k) {
-      ++face_count[t[k]];
+      ++table.face_count[t[k]];
       const std::uint32_t a = t[k], b = t[(k + 1) % 3], opposite = t[(k + 2) % 3];
       const auto [it, inserted] =
-          edge_index.emplace(edge_key(a, b), static_cast<std::uint32_t>(edges.size()));
-      if (inserted) edges.push_back({std::min(a, b), std::max(a, b), 0, {0, 0}});
-      Edge& e = edges[it->second];
+          edge_index.emplace(edge_key(a, b), static_cast<std::uint32_t>(table.edges.size()));
+      if (inserted) table.edges.push_back({std::min(a, b), std::max(a, b), 0, {0, 0}});
+      Edge& e = table.edges[it->second];
       if (e.faces < 2) e.opposite[e.faces] = opposite;
       ++e.faces;
-      triangle_edges[f][k] = it->second;
+      table.triangle_edges[f][k] = it->second;
     }
   }
-  const std::size_t new_count = vertex_count + edges.size();
-  if (new_count > std::numeric_limits<std::uint32_t>::max() ||
-      4 * mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
-    throw std::invalid_argument("loop_subdivide: the subdivided mesh does not fit 32-bit indices");
-  }
+  return table;
+}
 
-  // 2. Per vertex: neighbours over all edges, and over boundary edges (one triangle).
-  std::vector<Eigen::Vector3d> neighbour_sum(vertex_count, Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> boundary_sum(vertex_count, Eigen::Vector3d::Zero());
-  std::vector<int> valence(vertex_count, 0), boundary_edges(vertex_count, 0);
-  std::vector<bool> non_manifold(vertex_count, false);
+// Step 2: per vertex, neighbours over all edges and over boundary edges (one triangle).
+struct Neighbours {
+  std::vector<Eigen::Vector3d> sum, boundary_sum;
+  std::vector<int> valence, boundary_edges;
+  std::vector<bool> non_manifold;  // on an edge of more than two triangles
+};
+
+Neighbours gather_neighbours(const RenderMesh& mesh, const std::vector<Edge>& edges) {
+  const std::size_t vertex_count = mesh.positions.size();
+  Neighbours n;
+  n.sum.assign(vertex_count, Eigen::Vector3d::Zero());
+  n.boundary_sum.assign(vertex_count, Eigen::Vector3d::Zero());
+  n.valence.assign(vertex_count, 0);
+  n.boundary_edges.assign(vertex_count, 0);
+  n.non_manifold.assign(vertex_count, false);
   for (const Edge& e : edges) {
     const Eigen::Vector3d pa = mesh.positions[e.a].cast<double>();
     const Eigen::Vector3d pb = mesh.positions[e.b].cast<double>();
-    neighbour_sum[e.a] += pb;
-    neighbour_sum[e.b] += pa;
-    ++valence[e.a];
-    ++valence[e.b];
+    n.sum[e.a] += pb;
+    n.sum[e.b] += pa;
+    ++n.valence[e.a];
+    ++n.valence[e.b];
     if (e.faces == 1) {
-      boundary_sum[e.a] += pb;
-      boundary_sum[e.b] += pa;
-      ++boundary_edges[e.a];
-      ++boundary_edges[e.b];
+      n.boundary_sum[e.a] += pb;
+      n.boundary_sum[e.b] += pa;
+      ++n.boundary_edges[e.a];
+      ++n.boundary_edges[e.b];
     } else if (e.faces > 2) {
-      non_manifold[e.a] = non_manifold[e.b] = true;
+      n.non_manifold[e.a] = n.non_manifold[e.b] = true;
     }
   }
+  return n;
+}
 
-  // 3. Positions and UVs.
-  RenderMesh out;
-  out.positions.resize(new_count);
-  if (has_uvs) out.uvs.resize(new_count);
+// Step 3: the old vertices moved by the vertex masks, then one point per edge; UVs carried
+// (old vertices) and averaged (edge points) when the mesh has them.
+void place_vertices(const RenderMesh& mesh, const EdgeTable& table, const Neighbours& n,
+                    RenderMesh& out) {
+  const std::size_t vertex_count = mesh.positions.size();
+  const bool has_uvs = !mesh.uvs.empty();
+  out.positions.resize(vertex_count + table.edges.size());
+  if (has_uvs) out.uvs.resize(out.positions.size());
   for (std::size_t v = 0; v < vertex_count; ++v) {
     const Eigen::Vector3d p = mesh.positions[v].cast<double>();
     Eigen::Vector3d moved = p;
-    if (non_manifold[v] || valence[v] == 0) {
+    if (n.non_manifold[v] || n.valence[v] == 0) {
       // kept
-    } else if (boundary_edges[v] == 0) {
-      const double beta = loop_beta(valence[v]);
-      moved = (1.0 - valence[v] * beta) * p + beta * neighbour_sum[v];
-    } else if (boundary_edges[v] == 2 && face_count[v] >= 3) {
-      moved = 0.75 * p + 0.125 * boundary_sum[v];
+    } else if (n.boundary_edges[v] == 0) {
+      const double beta = loop_beta(n.valence[v]);
+      moved = (1.0 - n.valence[v] * beta) * p + beta * n.sum[v];
+    } else if (n.boundary_edges[v] == 2 && table.face_count[v] >= 3) {
+      moved = 0.75 * p + 0.125 * n.boundary_sum[v];
     }  // else a corner: kept
     out.positions[v] = moved.cast<float>();
     if (has_uvs) out.uvs[v] = mesh.uvs[v];
   }
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    const Edge& e = edges[k];
+  for (std::size_t k = 0; k < table.edges.size(); ++k) {
+    const Edge& e = table.edges[k];
     const Eigen::Vector3d pa = mesh.positions[e.a].cast<double>();
     const Eigen::Vector3d pb = mesh.positions[e.b].cast<double>();
     Eigen::Vector3d point = 0.5 * (pa + pb);
@@ -126,14 +142,25 @@ RenderMesh subdivide_once(const RenderMesh& mesh) {
     out.positions[vertex_count + k] = point.cast<float>();
     if (has_uvs) out.uvs[vertex_count + k] = 0.5f * (mesh.uvs[e.a] + mesh.uvs[e.b]);
   }
+}
+
+RenderMesh subdivide_once(const RenderMesh& mesh) {
+  const EdgeTable table = build_edges(mesh);
+  const std::size_t new_count = mesh.positions.size() + table.edges.size();
+  if (new_count > std::numeric_limits<std::uint32_t>::max() ||
+      4 * mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("loop_subdivide: the subdivided mesh does not fit 32-bit indices");
+  }
+  RenderMesh out;
+  place_vertices(mesh, table, gather_neighbours(mesh, table.edges), out);
 
   // 4. Four triangles per triangle.
   out.triangles.reserve(4 * mesh.triangles.size());
-  const auto base = static_cast<std::uint32_t>(vertex_count);
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const auto& t = mesh.triangles[f];
-    const std::uint32_t ab = base + triangle_edges[f][0], bc = base + triangle_edges[f][1],
-                        ca = base + triangle_edges[f][2];
+    const auto& e = table.triangle_edges[f];
+    const std::uint32_t ab = base + e[0], bc = base + e[1], ca = base + e[2];
     out.triangles.push_back({t[0], ab, ca});
     out.triangles.push_back({ab, t[1], bc});
     out.triangles.push_back({ca, bc, t[2]});
