@@ -1,5 +1,5 @@
 // weft measure: simulate a scene frame by frame as `weft run` does, without rendering, and
-// measure its settle time and drape (sim/measure/); docs/measure.md.
+// measure its settle time and drape (analysis/measure/); docs/measure.md.
 
 #include "app/measure_command.h"
 
@@ -12,7 +12,7 @@
 #include "app/run_command.h"
 #include "app/version.h"
 #include "sim/collision/self_intersection.h"
-#include "sim/measure/settle.h"
+#include "analysis/measure/settle.h"
 
 namespace weft::app {
 

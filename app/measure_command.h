@@ -1,7 +1,7 @@
 #pragma once
 // `weft measure`: simulate a scene without rendering and measure its drape frame by frame — the
 // settle time, the drape coefficient, the outline r(θ) and the fold count (issue 5 item 5;
-// sim/measure/, docs/measure.md).
+// analysis/measure/, docs/measure.md).
 
 #include <filesystem>
 #include <functional>
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "app/scene.h"
-#include "sim/measure/curtain_folds.h"
-#include "sim/measure/drape_measure.h"
-#include "sim/measure/settle.h"
+#include "analysis/measure/curtain_folds.h"
+#include "analysis/measure/drape_measure.h"
+#include "analysis/measure/settle.h"
 #include "sim/simulator.h"
 
 namespace weft::app {
@@ -47,7 +47,7 @@ struct SceneMeasurement {
 };
 
 // Whether the cloth hangs as a curtain: weft along gravity (its top edge at v = 0) and both
-// top corners pinned — the folds are then counted down its centre column (sim/measure/curtain_folds.h).
+// top corners pinned — the folds are then counted down its centre column (analysis/measure/curtain_folds.h).
 bool hangs_as_curtain(const Scene& scene);
 
 // The cloth centre a support is looked for under: the mean rest position of the used vertices.

@@ -14,7 +14,7 @@
 #include "app/version.h"
 #include "render/canvas.h"
 #include "sim/simulator.h"
-#include "sim/stability.h"
+#include "analysis/stability.h"
 
 namespace weft::app {
 namespace {

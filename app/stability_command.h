@@ -1,7 +1,7 @@
 #pragma once
 // `weft stability`: the stability map of the integrators (issue 4, item 6). Sweeps the time
 // step h × a stiffness scale s (every rigidity of the wool × s) on the standard cloth of
-// sim/stability.h (1 m square, n × n vertices, two corners pinned, no gravity), runs each
+// analysis/stability.h (1 m square, n × n vertices, two corners pinned, no gravity), runs each
 // integrator from a small seeded perturbation of rest, and writes
 //   DIR/stability.csv        one row per integrator × s × h: stable 0/1, steps run, growth
 //   DIR/critical_steps.csv   per integrator × s: ω_max, predicted, Gershgorin and observed

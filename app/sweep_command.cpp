@@ -1,5 +1,5 @@
 // weft sweep: simulate each combination of --set values, compare each final frame with the
-// reference run's (app/sweep_metrics.h) and report the speed/accuracy trade.
+// reference run's (analysis/sweep_metrics.h) and report the speed/accuracy trade.
 
 #include "app/sweep_command.h"
 
@@ -13,7 +13,7 @@
 #include "app/run_command.h"
 #include "app/scene.h"
 #include "app/scene_patch.h"
-#include "app/sweep_metrics.h"
+#include "analysis/sweep_metrics.h"
 #include "app/sweep_plot.h"
 #include "app/version.h"
 #include "render/image.h"

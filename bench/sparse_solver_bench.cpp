@@ -1,5 +1,5 @@
 // SparseSpdSolver back-ends and CHOLMOD variants on the matrices weft solves
-// (sim/linear/test_matrices.h), on n×n cloth grids:
+// (tests/support/test_matrices.h), on n×n cloth grids:
 //   factorize_solve/<matrix>/<variant>/<n>  one numeric factorization and one solve, the
 //                                           pattern analysed once beforehand (what every
 //                                           fast-projection iteration and implicit step pays);
@@ -20,7 +20,7 @@
 
 #include "sim/linear/cholmod_solver.h"
 #include "sim/linear/sparse_spd_solver.h"
-#include "sim/linear/test_matrices.h"
+#include "tests/support/test_matrices.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include "app/scene.h"
 #include "app/scene_patch.h"
-#include "app/sweep_metrics.h"
+#include "analysis/sweep_metrics.h"
 #include "app/sweep_plot.h"
 #include "sim/grid.h"
 #include "tests/app/scene_test_support.h"

@@ -9,7 +9,7 @@
 
 #include "app/measure_command.h"
 #include "app/scene.h"
-#include "sim/measure/curtain_folds.h"
+#include "analysis/measure/curtain_folds.h"
 #include "tests/app/coarse_scene.h"
 #include "tests/app/scene_test_support.h"
 

@@ -17,7 +17,7 @@
 
 #include "sim/linear/cholmod_solver.h"
 #include "sim/linear/sparsity_pattern.h"
-#include "sim/linear/test_matrices.h"
+#include "tests/support/test_matrices.h"
 
 namespace weft::sim {
 namespace {

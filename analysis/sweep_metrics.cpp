@@ -1,4 +1,4 @@
-#include "app/sweep_metrics.h"
+#include "analysis/sweep_metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sim/measure/settle.h"
+#include "analysis/measure/settle.h"
 
 #include <cmath>
 #include <stdexcept>

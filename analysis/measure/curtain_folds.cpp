@@ -1,6 +1,6 @@
 // Folds of a hanging curtain down its centre column; see curtain_folds.h.
 
-#include "sim/measure/curtain_folds.h"
+#include "analysis/measure/curtain_folds.h"
 
 #include <algorithm>
 #include <cmath>

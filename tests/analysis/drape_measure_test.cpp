@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "sim/grid.h"
-#include "sim/measure/drape_measure.h"
-#include "sim/measure/settle.h"
+#include "analysis/measure/drape_measure.h"
+#include "analysis/measure/settle.h"
 
 namespace weft::sim {
 namespace {

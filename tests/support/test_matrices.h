@@ -1,7 +1,7 @@
 #pragma once
-// Test support, not part of weft_sim: the two kinds of matrix weft hands to SparseSpdSolver,
-// built on a perturbed cloth, for tests/sim/sparse_spd_solver_test and bench/sparse_solver_bench.
-// Header-only and included by nothing in sim/: unlike sim/linear itself it sits above the model
+// Test support, part of no library: the two kinds of matrix weft hands to SparseSpdSolver, built
+// on a perturbed cloth, for tests/sim/sparse_spd_solver_test and bench/sparse_solver_bench.
+// Header-only, under tests/ so that production code cannot include it; it sits above the model
 // (grid, pins, edge constraints, springs), whose kernels it reuses so that the matrices are the
 // ones the simulator builds.
 //

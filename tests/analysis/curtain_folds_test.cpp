@@ -1,4 +1,4 @@
-// Folds of a hanging curtain down its centre column (sim/measure/curtain_folds.h): the zigzag
+// Folds of a hanging curtain down its centre column (analysis/measure/curtain_folds.h): the zigzag
 // count on sequences whose extremes are known, and on curtains — flat (none), and laid onto
 // seed 001's tension-field folds, whose n wrinkles have n + 1 lines.
 
@@ -11,7 +11,7 @@
 #include "sim/folds/fold_geometry.h"
 #include "sim/folds/tension_field.h"
 #include "sim/grid.h"
-#include "sim/measure/curtain_folds.h"
+#include "analysis/measure/curtain_folds.h"
 
 namespace weft::sim {
 namespace {

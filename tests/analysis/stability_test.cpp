@@ -1,4 +1,4 @@
-// Stability near rest (sim/stability.h): the largest eigenvalue of M⁻¹K against analytic values
+// Stability near rest (analysis/stability.h): the largest eigenvalue of M⁻¹K against analytic values
 // (one spring: k/m; a fixed–fixed chain: 4k/m sin²(nπ/2(n+1))) and a dense eigen-solve, and the
 // observed critical steps of the integrators against their predictions — one spring, damped
 // explicit Euler, and the standard cloth of `weft stability`.
@@ -11,7 +11,7 @@
 
 #include "sim/energies/spring.h"
 #include "sim/simulator.h"
-#include "sim/stability.h"
+#include "analysis/stability.h"
 
 namespace weft::sim {
 namespace {

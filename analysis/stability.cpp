@@ -1,4 +1,4 @@
-#include "sim/stability.h"
+#include "analysis/stability.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "sim/measure/drape_measure.h"
+#include "analysis/measure/drape_measure.h"
 
 #include <algorithm>
 #include <cmath>
