@@ -16,7 +16,7 @@ namespace weft::app {
 render::Image thumbnail(const render::Image& image, int width);
 
 // The thumbnails in rows of `columns` (left to right, top to bottom), each above its label
-// (printable ASCII, in render/canvas.h's font), with a margin of `gap` pixels around and between
+// (UTF-8, in render/canvas.h's text), with a margin of `gap` pixels around and between
 // them, on a white background. Thumbnails of different sizes get cells of the largest size.
 // Throws std::invalid_argument when there are no thumbnails, the label count differs, or
 // columns < 1.

@@ -13,7 +13,7 @@
 #include "app/html_escape.h"
 #include "app/progress.h"
 #include "app/scene.h"
-#include "app/svg_chart.h"
+#include "chart/chart.h"
 
 namespace weft::app {
 namespace {
@@ -28,8 +28,33 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+// A line chart of the report: values against simulated time, the series named in a legend
+// at the top right.
+chart::Figure line_chart(const std::string& title, const std::string& y_label,
+                         const std::vector<double>& t, std::vector<chart::Series> series) {
+  std::vector<double> all_y;
+  for (chart::Series& s : series) {
+    s.x = t;
+    all_y.insert(all_y.end(), s.y.begin(), s.y.end());
+  }
+  chart::Figure figure;
+  figure.title = title;
+  chart::Plot plot;
+  plot.x = chart::Axis::linear_fit("simulated time [s]", t);
+  plot.y = chart::Axis::linear_fit(y_label, all_y);
+  plot.y.grid = true;
+  for (const chart::Series& s : series)
+    figure.legend.push_back({s.name, chart::Swatch::line, s.colour});
+  plot.series = std::move(series);
+  figure.plots = {plot};
+  figure.legend_place = chart::LegendPlace::top_right;
+  figure.plot_width = 340;
+  figure.plot_height = 160;
+  return figure;
+}
+
 // The charts: one column of `rows` each, against the frame's simulated time.
-std::vector<LineChart> report_charts(const std::vector<FrameStats>& rows) {
+std::vector<chart::Figure> report_charts(const std::vector<FrameStats>& rows) {
   std::vector<double> t;
   std::vector<double> strain_pct, kinetic, elastic, gravity, sim_ms, render_ms;
   for (const FrameStats& r : rows) {
@@ -41,18 +66,15 @@ std::vector<LineChart> report_charts(const std::vector<FrameStats>& rows) {
     sim_ms.push_back(r.sim_ms);
     render_ms.push_back(r.render_ms);
   }
-  const std::string x_label = "simulated time [s]";
-  std::vector<LineChart> charts(4);
-  charts[0] = {"Largest strain", x_label, "strain [%]", t, {{"max_strain", "#d6541a", strain_pct}}};
-  charts[1] = {"Kinetic and elastic energy", x_label, "energy [J]", t,
-               {{"kinetic", "#3b6fb6", kinetic}, {"elastic", "#2a9d5b", elastic}}};
-  charts[2] = {"Gravitational energy", x_label, "energy [J]", t,
-               {{"gravitational", "#7a4fa0", gravity}}};
-  charts[3] = {"Wall time per frame", x_label, "time [ms]", t,
-               {{"simulation", "#d6541a", sim_ms}, {"render", "#3b6fb6", render_ms}}};
-  return charts;
+  const auto colour = chart::series_colour;
+  return {line_chart("Largest strain", "strain [%]", t, {{"max_strain", colour(0), {}, strain_pct}}),
+          line_chart("Kinetic and elastic energy", "energy [J]", t,
+                     {{"kinetic", colour(1), {}, kinetic}, {"elastic", colour(2), {}, elastic}}),
+          line_chart("Gravitational energy", "energy [J]", t,
+                     {{"gravitational", colour(3), {}, gravity}}),
+          line_chart("Wall time per frame", "time [ms]", t,
+                     {{"simulation", colour(0), {}, sim_ms}, {"render", colour(1), {}, render_ms}})};
 }
-
 
 }  // namespace
 
@@ -138,7 +160,7 @@ fs::path write_run_report(const fs::path& dir, const Scene& scene, const std::st
           "\" alt=\"last frame\">\n";
   html += "<h2>Per frame</h2>\n<p>The values of <a href=\"stats.csv\">stats.csv</a>, one point "
           "per frame.</p>\n<div class=\"charts\">\n";
-  for (const LineChart& chart : report_charts(rows)) html += svg_line_chart(chart) + "\n";
+  for (const chart::Figure& figure : report_charts(rows)) html += chart::draw_svg(figure) + "\n";
   html += "</div>\n</body></html>\n";
   const fs::path path = dir / "report.html";
   write_text(path, html);

@@ -12,9 +12,9 @@
 #include "app/progress.h"
 #include "app/scene.h"
 #include "app/version.h"
-#include "render/canvas.h"
-#include "sim/simulator.h"
 #include "analysis/stability.h"
+#include "chart/chart.h"
+#include "sim/simulator.h"
 
 namespace weft::app {
 namespace {
@@ -89,152 +89,90 @@ std::string format_g(double value, int digits = 4) {
 
 // ---- the heatmap -------------------------------------------------------------------------
 
-const render::Rgb8 kWhite{255, 255, 255}, kBlack{0, 0, 0}, kGrey{110, 110, 110};
-const render::Rgb8 kStable{70, 165, 90}, kBlewUp{210, 70, 60};
+// Colour-blind-safe cells: two well-separated stops of viridis (chart/palette.h).
+const chart::Rgb8 kStable = chart::viridis(0.9), kBlewUp = chart::viridis(0.3);
 
-// A tick label for h = mantissa × 10^exponent: "1e-4", "2e-4".
-std::string tick_label(int mantissa, int exponent) {
-  return std::to_string(mantissa) + "e" + std::to_string(exponent);
+// The predicted critical step: through the row centres, extended to the plot's edges (rows
+// run from 0 at the bottom to rows at the top), as a white-haloed black line.
+std::vector<chart::Series> predicted_line(const Panel& panel, const chart::Axis& x) {
+  std::vector<double> hs, ys;
+  for (std::size_t r = 0; r < panel.predicted_h_s.size(); ++r)
+    if (std::isfinite(panel.predicted_h_s[r])) {
+      hs.push_back(std::log(panel.predicted_h_s[r]));
+      ys.push_back(static_cast<double>(r) + 0.5);
+    }
+  if (hs.empty()) return {};
+  const double rows = static_cast<double>(panel.predicted_h_s.size());
+  const auto extend = [&](std::size_t a, std::size_t b, double y) {  // in log h, clamped
+    const double lh = hs[a] + (hs[b] - hs[a]) * (y - ys[a]) / (ys[b] - ys[a]);
+    return std::clamp(std::exp(lh), x.lo, x.hi);
+  };
+  std::vector<double> line_h, line_y;
+  if (hs.size() == 1) {
+    line_h = {std::exp(hs[0]), std::exp(hs[0])};
+    line_y = {0.0, rows};
+  } else {
+    line_h.push_back(extend(0, 1, 0.0));
+    line_y.push_back(0.0);
+    for (std::size_t k = 0; k < hs.size(); ++k) {
+      line_h.push_back(std::exp(hs[k]));
+      line_y.push_back(ys[k]);
+    }
+    line_h.push_back(extend(hs.size() - 2, hs.size() - 1, rows));
+    line_y.push_back(rows);
+  }
+  chart::Series halo{"predicted_halo", chart::kWhite, line_h, line_y, 4.0};
+  chart::Series line{"predicted", chart::okabe_ito::black, line_h, line_y, 2.0};
+  return {halo, line};
 }
 
-struct Layout {
-  int cell_w, cell_h, plot_w, plot_h;
-  int panel_w, panel_h;
-  static constexpr int kLeft = 62, kRight = 14, kTop = 30, kBottom = 42;
-};
-
-void draw_panel(render::Canvas& c, int x0, int y0, const Layout& L, const Panel& panel,
-                const std::vector<Row>& rows, const std::vector<double>& h_s, double h_lo,
-                double h_hi) {
-  const int left = x0 + Layout::kLeft, top = y0 + Layout::kTop;
-  const int right = left + L.plot_w, bottom = top + L.plot_h;
-  const double log_span = std::log(h_hi / h_lo);
-  const auto x_of = [&](double h) { return left + L.plot_w * std::log(h / h_lo) / log_span; };
-  const auto y_centre = [&](std::size_t r) {  // row 0 (the smallest scale) at the bottom
-    return bottom - L.cell_h * (static_cast<double>(r) + 0.5);
-  };
-  const int th = render::Canvas::text_height();
-
-  // The name in double size, a note after it in single size on the same baseline.
-  const std::string name = sim::integrator_name(panel.method);
-  std::string note;
-  if (panel.method == Integrator::explicit_euler) note = "(alpha = omega_max)";
+chart::Plot heatmap_panel(const Panel& panel, const std::vector<Row>& rows,
+                          const std::vector<double>& h_s, double h_lo, double h_hi) {
+  chart::Plot plot;
+  plot.title = sim::integrator_name(panel.method);
+  if (panel.method == Integrator::explicit_euler) plot.note = "(α = ω_max)";
   if (panel.limit == sim::StepLimit::always_stable)
-    note = panel.all_stable() ? "(stable everywhere)" : "(NOT stable everywhere)";
-  const int title_y = y0 + (Layout::kTop - 2 * th) / 2;
-  c.text(left, title_y, name, kBlack, 2);
-  c.text(left + render::Canvas::text_width(name, 2) + 8, title_y + th, note, kBlack);
-
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    for (std::size_t j = 0; j < h_s.size(); ++j) {
-      const int cx = left + static_cast<int>(j) * L.cell_w;
-      const int cy = bottom - static_cast<int>(r + 1) * L.cell_h;
-      c.fill_rect(cx, cy, cx + L.cell_w, cy + L.cell_h, panel.runs[r][j].stable ? kStable : kBlewUp);
-    }
-    const std::string label = format_g(rows[r].scale, 3);
-    c.text(left - 6 - render::Canvas::text_width(label), static_cast<int>(y_centre(r)) - th / 2,
-           label, kBlack);
-  }
-  c.rect(left - 1, top - 1, right + 1, bottom + 1, kBlack);
-
-  // x ticks at 1, 2, 5 × 10^e inside [h_lo, h_hi] (decades only when they are enough).
-  const int e_lo = static_cast<int>(std::floor(std::log10(h_lo)));
-  const int e_hi = static_cast<int>(std::ceil(std::log10(h_hi)));
-  const bool decades_only = e_hi - e_lo >= 3;
-  for (int e = e_lo; e <= e_hi; ++e) {
-    for (int m : {1, 2, 5}) {
-      if (decades_only && m != 1) continue;
-      const double h = m * std::pow(10.0, e);
-      if (h < h_lo || h > h_hi) continue;
-      const double x = x_of(h);
-      c.line(x, bottom + 1, x, bottom + 5, kBlack);
-      const std::string label = tick_label(m, e);
-      c.text(static_cast<int>(x) - render::Canvas::text_width(label) / 2, bottom + 8, label, kBlack);
-    }
-  }
-  const std::string x_label = "time step h (s), log scale";
-  c.text(left + (L.plot_w - render::Canvas::text_width(x_label)) / 2, bottom + 12 + th + 4,
-         x_label, kGrey);
-  const std::string y_label = "stiffness scale s";
-  c.text_vertical(x0 + 6, top + (L.plot_h + render::Canvas::text_width(y_label)) / 2, y_label,
-                  kGrey);
-
-  // The predicted critical step: through the row centres, extended to the plot's edges.
-  std::vector<std::pair<double, double>> points;
+    plot.note = panel.all_stable() ? "(stable everywhere)" : "(NOT stable everywhere)";
+  plot.x = {"time step h [s]", chart::Scale::log, h_lo, h_hi};
+  plot.y = {"stiffness scale s", chart::Scale::linear, 0.0, static_cast<double>(rows.size())};
   for (std::size_t r = 0; r < rows.size(); ++r)
-    if (std::isfinite(panel.predicted_h_s[r]))
-      points.emplace_back(x_of(panel.predicted_h_s[r]), y_centre(r));
-  if (!points.empty()) {
-    const auto extend = [&](std::pair<double, double> a, std::pair<double, double> b, double y) {
-      const double x = a.first + (b.first - a.first) * (y - a.second) / (b.second - a.second);
-      return std::pair<double, double>(std::clamp(x, double(left), double(right)), y);
-    };
-    if (points.size() == 1) {
-      c.line(points[0].first, top, points[0].first, bottom, kBlack, 2);
-    } else {
-      const auto first = extend(points[0], points[1], bottom);
-      const auto last = extend(points[points.size() - 2], points.back(), top);
-      points.insert(points.begin(), first);
-      points.push_back(last);
-      for (std::size_t k = 0; k + 1 < points.size(); ++k)
-        c.line(points[k].first, points[k].second, points[k + 1].first, points[k + 1].second,
-               kBlack, 2);
+    plot.y.ticks.push_back({static_cast<double>(r) + 0.5, format_g(rows[r].scale, 3)});
+  const double n = static_cast<double>(h_s.size()), ratio = h_hi / h_lo;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t j = 0; j < h_s.size(); ++j)
+      plot.cells.push_back({h_lo * std::pow(ratio, static_cast<double>(j) / n),
+                            h_lo * std::pow(ratio, static_cast<double>(j + 1) / n),
+                            static_cast<double>(r), static_cast<double>(r + 1),
+                            panel.runs[r][j].stable ? kStable : kBlewUp});
+  plot.series = predicted_line(panel, plot.x);
+  chart::Series observed{"observed", chart::okabe_ito::black, {}, {}, 0.0};
+  observed.marker = chart::Marker::ring;
+  for (std::size_t r = 0; r < rows.size(); ++r)  // observed critical steps (bisection)
+    if (std::isfinite(panel.observed_h_s[r])) {
+      observed.x.push_back(panel.observed_h_s[r]);
+      observed.y.push_back(static_cast<double>(r) + 0.5);
     }
-  }
-  for (std::size_t r = 0; r < rows.size(); ++r) {  // observed critical steps (bisection)
-    if (!std::isfinite(panel.observed_h_s[r])) continue;
-    const double x = x_of(panel.observed_h_s[r]), y = y_centre(r);
-    c.circle(x, y, 4.0, kWhite, true);
-    c.circle(x, y, 4.0, kBlack, false);
-  }
+  plot.series.push_back(observed);
+  return plot;
 }
 
-void write_heatmap(const fs::path& path, const std::string& title, const std::vector<Row>& rows,
-                   const std::vector<Panel>& panels, const std::vector<double>& h_s, double h_lo,
-                   double h_hi) {
-  Layout L{};
-  L.cell_w = std::max(4, 300 / static_cast<int>(h_s.size()));
-  L.cell_h = std::max(6, 180 / static_cast<int>(rows.size()));
-  L.plot_w = L.cell_w * static_cast<int>(h_s.size());
-  L.plot_h = L.cell_h * static_cast<int>(rows.size());
-  L.panel_w = Layout::kLeft + L.plot_w + Layout::kRight;
-  L.panel_h = Layout::kTop + L.plot_h + Layout::kBottom;
-  const int columns = std::min<int>(3, static_cast<int>(panels.size()));
-  const int panel_rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
-  const int header = 16 + 2 * render::Canvas::text_height() + 12, footer = 40;
-  const int width = std::max(columns * L.panel_w + 20, 560);
-  render::Canvas c(width, header + panel_rows * L.panel_h + footer, kWhite);
-  c.text(10, 10, title, kBlack, 1);
-  c.text(10, 10 + render::Canvas::text_height() + 6,
-         "each cell: one run from a seeded perturbation of rest; blew up = displacement x1000 or "
-         "non-finite",
-         kGrey, 1);
-  for (std::size_t p = 0; p < panels.size(); ++p) {
-    const int col = static_cast<int>(p) % columns, prow = static_cast<int>(p) / columns;
-    draw_panel(c, 10 + col * L.panel_w, header + prow * L.panel_h, L, panels[p], rows, h_s, h_lo,
-               h_hi);
-  }
-  // Legend.
-  const int ly = header + panel_rows * L.panel_h + 12, th = render::Canvas::text_height();
-  int lx = 10 + Layout::kLeft;
-  const auto legend_text = [&](const std::string& s) {
-    c.text(lx, ly + (12 - th) / 2, s, kBlack);
-    lx += render::Canvas::text_width(s) + 24;
-  };
-  c.fill_rect(lx, ly, lx + 12, ly + 12, kStable);
-  lx += 18;
-  legend_text("stable");
-  c.fill_rect(lx, ly, lx + 12, ly + 12, kBlewUp);
-  lx += 18;
-  legend_text("blew up");
-  c.line(lx, ly + 6, lx + 24, ly + 6, kBlack, 2);
-  lx += 30;
-  legend_text("predicted critical step");
-  c.circle(lx + 5, ly + 6, 4.0, kWhite, true);
-  c.circle(lx + 5, ly + 6, 4.0, kBlack, false);
-  lx += 16;
-  legend_text("observed (bisection)");
-  render::write_png(c.image(), path);
+chart::Figure heatmap(const std::string& title, const std::vector<Row>& rows,
+                      const std::vector<Panel>& panels, const std::vector<double>& h_s,
+                      double h_lo, double h_hi) {
+  chart::Figure figure;
+  figure.title = title;
+  figure.subtitle = "each cell: one run from a seeded perturbation of rest; blew up = "
+                    "displacement ×1000 or non-finite";
+  for (const Panel& p : panels) figure.plots.push_back(heatmap_panel(p, rows, h_s, h_lo, h_hi));
+  figure.columns = 3;
+  figure.plot_width = std::max(4, 300 / static_cast<int>(h_s.size())) * static_cast<int>(h_s.size());
+  figure.plot_height = std::max(6, 180 / static_cast<int>(rows.size())) * static_cast<int>(rows.size());
+  using chart::Swatch;
+  figure.legend = {{"stable", Swatch::box, kStable},
+                   {"blew up", Swatch::box, kBlewUp},
+                   {"predicted critical step", Swatch::line, chart::okabe_ito::black},
+                   {"observed (bisection)", Swatch::ring, chart::okabe_ito::black}};
+  return figure;
 }
 
 // ---- the sweep ---------------------------------------------------------------------------
@@ -273,34 +211,38 @@ std::vector<Integrator> parse_integrator_list(const std::vector<std::string>& na
   return result;
 }
 
-int run_stability(const StabilityOptions& options) {
-  check_options(options);
-  std::vector<double> scales = options.stiffness_scales;
-  std::sort(scales.begin(), scales.end());
-  if (std::adjacent_find(scales.begin(), scales.end()) != scales.end())
-    throw SceneError("--stiffness-scales: a value is listed twice");
-  fs::create_directories(options.out);
+namespace {
 
-  // The rows: one cloth per stiffness scale, its ω_max (Lanczos) and Gershgorin bound.
-  std::vector<std::unique_ptr<sim::StabilityCloth>> cloths;
+// The rows: one cloth per stiffness scale, its ω_max (Lanczos) and Gershgorin bound.
+std::vector<Row> measure_rows(const std::vector<double>& scales,
+                              const std::vector<std::unique_ptr<sim::StabilityCloth>>& cloths) {
   std::vector<Row> rows;
-  for (double s : scales) {
-    cloths.push_back(std::make_unique<sim::StabilityCloth>(options.size, s));
-    const sim::StabilityCloth& cloth = *cloths.back();
+  for (std::size_t r = 0; r < scales.size(); ++r) {
+    const sim::StabilityCloth& cloth = *cloths[r];
     const sim::LargestEigenvalue e = cloth.largest_eigenvalue();
     if (!e.converged)
-      std::fprintf(stderr, "weft: warning: s = %g: lambda_max not converged in %d steps\n", s,
-                   e.iterations);
+      std::fprintf(stderr, "weft: warning: s = %g: lambda_max not converged in %d steps\n",
+                   scales[r], e.iterations);
     const double gershgorin_h =
         sim::Simulator(cloth.mesh(), cloth.material(), cloth.pinned(), sim::SimSettings{})
             .critical_time_step();
-    rows.push_back({s, e.omega_rad_s(), 2.0 / gershgorin_h});
+    rows.push_back({scales[r], e.omega_rad_s(), 2.0 / gershgorin_h});
   }
+  return rows;
+}
 
-  // The panels' predictions, and the swept steps around them.
+// The swept steps: log spaced over [h_lo, h_hi], at the cells' centres.
+struct Steps {
+  double lo = 0.0, hi = 0.0;
+  std::vector<double> h_s;
+};
+
+// The panels' predictions, and the swept steps around them.
+std::vector<Panel> predict_panels(const std::vector<Integrator>& integrators,
+                                  const std::vector<Row>& rows, int steps_per_row, Steps& steps) {
   std::vector<Panel> panels;
   double h_min = std::numeric_limits<double>::infinity(), h_max = 0.0;
-  for (Integrator method : options.integrators) {
+  for (Integrator method : integrators) {
     Panel p;
     p.method = method;
     for (const Row& row : rows) {
@@ -318,18 +260,19 @@ int run_stability(const StabilityOptions& options) {
     }
     panels.push_back(std::move(p));
   }
-  const double h_lo = h_min / kSweepMargin, h_hi = h_max * kSweepMargin;
-  std::vector<double> h_s(static_cast<std::size_t>(options.steps_per_row));
-  for (std::size_t j = 0; j < h_s.size(); ++j)  // cell centres, log spaced
-    h_s[j] = h_lo * std::pow(h_hi / h_lo, (static_cast<double>(j) + 0.5) / static_cast<double>(h_s.size()));
+  steps.lo = h_min / kSweepMargin;
+  steps.hi = h_max * kSweepMargin;
+  steps.h_s.resize(static_cast<std::size_t>(steps_per_row));
+  const double n = static_cast<double>(steps.h_s.size());
+  for (std::size_t j = 0; j < steps.h_s.size(); ++j)
+    steps.h_s[j] = steps.lo * std::pow(steps.hi / steps.lo, (static_cast<double>(j) + 0.5) / n);
+  return panels;
+}
 
-  const std::string cloth_text = std::to_string(options.size) + "x" +
-                                 std::to_string(options.size) +
-                                 " wool (Kang & Yu), 1 m square, corners u0v1 u1v1 pinned, no "
-                                 "gravity, all rigidities x s";
-  std::fprintf(stderr, "weft: stability of %s: %zu integrators x %zu scales x %zu steps\n",
-               cloth_text.c_str(), panels.size(), rows.size(), h_s.size());
-  Progress progress(stderr, static_cast<int>(panels.size() * rows.size()), "stability");
+// Every cell's blow-up run, and the observed critical step of each bounded row (bisection).
+void run_panels(std::vector<Panel>& panels, const std::vector<Row>& rows,
+                const std::vector<std::unique_ptr<sim::StabilityCloth>>& cloths,
+                const std::vector<double>& h_s, Progress& progress) {
   int done = 0;
   for (Panel& p : panels) {
     p.runs.resize(rows.size());
@@ -354,12 +297,11 @@ int run_stability(const StabilityOptions& options) {
                                   format_g(rows[r].scale, 3));
     }
   }
-  progress.finish();
+}
 
-  // The table (stdout and critical_steps.csv) and the full sweep (stability.csv).
-  std::ostringstream table, critical_csv, sweep_csv;
-  table << "stability of the standard cloth: " << cloth_text << "\n\n"
-        << "  scale s   omega_max (rad/s)   2/omega_max (s)   Gershgorin 2/omega (s)   Gershgorin/exact\n";
+// The rows' eigenvalues as the table's first part.
+void write_row_table(std::ostream& table, const std::vector<Row>& rows) {
+  table << "  scale s   omega_max (rad/s)   2/omega_max (s)   Gershgorin 2/omega (s)   Gershgorin/exact\n";
   for (const Row& row : rows) {
     char line[160];
     std::snprintf(line, sizeof line, "  %7.3g   %17.5e   %15.5e   %22.5e   %16.3f\n", row.scale,
@@ -367,6 +309,15 @@ int run_stability(const StabilityOptions& options) {
                   row.omega_rad_s / row.gershgorin_omega_rad_s);
     table << line;
   }
+}
+
+// The table (stdout and critical_steps.csv) and the full sweep (stability.csv).
+void write_tables(const StabilityOptions& options, const std::string& cloth_text,
+                  const std::vector<Row>& rows, const std::vector<Panel>& panels,
+                  const std::vector<double>& h_s) {
+  std::ostringstream table, critical_csv, sweep_csv;
+  table << "stability of the standard cloth: " << cloth_text << "\n\n";
+  write_row_table(table, rows);
   table << "\n  integrator           scale s   predicted h (s)   observed h (s)   observed/predicted\n";
   critical_csv << "integrator,stiffness_scale,omega_max_rad_s,damping_1_s,predicted_h_s,"
                   "gershgorin_h_s,observed_h_s,observed_over_predicted\n";
@@ -402,10 +353,40 @@ int run_stability(const StabilityOptions& options) {
   std::fputs(table.str().c_str(), stdout);
   write_text(options.out / "critical_steps.csv", critical_csv.str());
   write_text(options.out / "stability.csv", sweep_csv.str());
+}
+
+}  // namespace
+
+int run_stability(const StabilityOptions& options) {
+  check_options(options);
+  std::vector<double> scales = options.stiffness_scales;
+  std::sort(scales.begin(), scales.end());
+  if (std::adjacent_find(scales.begin(), scales.end()) != scales.end())
+    throw SceneError("--stiffness-scales: a value is listed twice");
+  fs::create_directories(options.out);
+
+  std::vector<std::unique_ptr<sim::StabilityCloth>> cloths;
+  for (double s : scales) cloths.push_back(std::make_unique<sim::StabilityCloth>(options.size, s));
+  const std::vector<Row> rows = measure_rows(scales, cloths);
+  Steps steps;
+  std::vector<Panel> panels = predict_panels(options.integrators, rows, options.steps_per_row, steps);
+
+  const std::string cloth_text = std::to_string(options.size) + "x" +
+                                 std::to_string(options.size) +
+                                 " wool (Kang & Yu), 1 m square, corners u0v1 u1v1 pinned, no "
+                                 "gravity, all rigidities x s";
+  std::fprintf(stderr, "weft: stability of %s: %zu integrators x %zu scales x %zu steps\n",
+               cloth_text.c_str(), panels.size(), rows.size(), steps.h_s.size());
+  Progress progress(stderr, static_cast<int>(panels.size() * rows.size()), "stability");
+  run_panels(panels, rows, cloths, steps.h_s, progress);
+  progress.finish();
+
+  write_tables(options, cloth_text, rows, panels, steps.h_s);
   write_text(options.out / "run.txt", "weft " + std::string(version()) +
                                           "\ncommand: " + options.command_line + "\n");
-  write_heatmap(options.out / "stability.png", "weft stability: " + cloth_text, rows, panels,
-                h_s, h_lo, h_hi);
+  chart::write_png(heatmap("weft stability: " + cloth_text, rows, panels, steps.h_s, steps.lo,
+                           steps.hi),
+                   options.out / "stability.png");
   std::fprintf(stderr, "weft: wrote %s (stability.png, stability.csv, critical_steps.csv) in %s\n",
                options.out.c_str(), format_duration(progress.elapsed_s()).c_str());
   return 0;

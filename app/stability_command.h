@@ -6,8 +6,9 @@
 //   DIR/stability.csv        one row per integrator × s × h: stable 0/1, steps run, growth
 //   DIR/critical_steps.csv   per integrator × s: ω_max, predicted, Gershgorin and observed
 //                            critical steps (the table it prints)
-//   DIR/stability.png        one heatmap panel per integrator: log h across, s up, green
-//                            stable, red blew up, the predicted critical step as a line
+//   DIR/stability.png        one heatmap panel per integrator: log h across, s up, light
+//                            (viridis) stable, dark blew up, the predicted critical step as a
+//                            line (chart/chart.h)
 //   DIR/run.txt              weft version and command line
 // Explicit Euler, unstable at every step without damping, runs with mass damping α = ω_max of
 // each stiffness (its limit is then α/ω² = 1/ω_max); the others run undamped.

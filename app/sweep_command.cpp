@@ -13,9 +13,9 @@
 #include "app/run_command.h"
 #include "app/scene.h"
 #include "app/scene_patch.h"
-#include "analysis/sweep_metrics.h"
 #include "app/sweep_plot.h"
 #include "app/version.h"
+#include "analysis/sweep_metrics.h"
 #include "render/image.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -249,8 +249,8 @@ int run_sweep(const SweepOptions& options) {
     plot_runs.push_back(
         {r.wall_s, r.rms_error_m, label(r, keys), r.pareto, k == reference, r.diverged});
   }
-  render::write_png(sweep_plot(plot_runs, "weft sweep: " + base.name + ", error vs time"),
-                    dir / "sweep.png");
+  chart::write_png(sweep_chart(plot_runs, "weft sweep: " + base.name + ", error vs time"),
+                   dir / "sweep.png");
   {
     std::ofstream scene_copy(dir / "scene.json");
     scene_copy << base.text;

@@ -1,11 +1,11 @@
 #pragma once
 // weft sweep's chart: error against wall time on log–log axes, the Pareto front connected, each
-// run numbered and listed in a legend with its settings.
+// run numbered and listed in a legend with its settings. A chart::Figure (chart/chart.h).
 
 #include <string>
 #include <vector>
 
-#include "render/image.h"
+#include "chart/chart.h"
 
 namespace weft::app {
 
@@ -19,9 +19,6 @@ struct PlotRun {
 };
 
 // Runs are numbered from 1 in the order given (the rows of sweep.csv).
-render::Image sweep_plot(const std::vector<PlotRun>& runs, const std::string& title);
-
-// A tick label for a value on a log axis: "0.001" … "1000", else "2e-05" style ("2e-5").
-std::string log_tick_label(double value);
+chart::Figure sweep_chart(const std::vector<PlotRun>& runs, const std::string& title);
 
 }  // namespace weft::app

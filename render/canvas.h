@@ -1,7 +1,8 @@
 #pragma once
-// A small 2-D drawing surface for charts (weft sweep's error-vs-time plot, weft stability's
-// heatmap): filled rectangles, lines, markers and text in a built-in bitmap font, on an Image
-// that write_png() saves. No anti-aliasing: the same calls give the same bits.
+// A small 2-D drawing surface: the raster back-end of chart/ (weft sweep's, stability's and
+// report's charts) and the labels of contact sheets and overlays. Hard-edged rectangles, lines
+// and circles; anti-aliased lines, circles and text (render/font.h, DejaVu Sans) blended by
+// coverage. Deterministic: the same calls give the same bits.
 
 #include <string>
 
@@ -32,15 +33,25 @@ class Canvas {
                      double dash, double gap, double phase = 0.0);
   // A circle of radius r pixels centred at (cx, cy), filled or as an outline.
   void circle(double cx, double cy, double r, Rgb8 colour, bool filled = true);
-  // Printable ASCII (other characters draw as '?') in the built-in font, each glyph
-  // glyph_width × glyph_height pixels times `scale`; (x, y) is the top left of the first glyph.
-  void text(int x, int y, const std::string& s, Rgb8 colour, int scale = 1);
-  // The same, rotated 90° counter-clockwise (for a y-axis label), reading bottom to top from
-  // (x, y), the bottom-left corner of the first glyph.
-  void text_vertical(int x, int y, const std::string& s, Rgb8 colour, int scale = 1);
+  // Anti-aliased: a line `width` pixels wide with round ends, and a circle (filled, or its
+  // outline `width` pixels wide), blended over what is there by each pixel's coverage.
+  void smooth_line(double x0, double y0, double x1, double y1, Rgb8 colour, double width);
+  void smooth_circle(double cx, double cy, double r, Rgb8 colour, bool filled, double width = 1.0);
+  // Blends `colour` over pixel (x, y) with opacity alpha ∈ [0, 1]; ignored outside the canvas.
+  void blend(int x, int y, Rgb8 colour, double alpha);
 
-  static int text_width(const std::string& s, int scale = 1);
-  static int text_height(int scale = 1);
+  // Body text size, pixels: the font's height from ascender to descender (render/font.h).
+  static constexpr double kTextPx = 12.0;
+  // UTF-8 text, anti-aliased, in the chart font at `size_px`; (x, y) is the top-left corner of
+  // its box, text_width × text_height pixels (descenders included).
+  void text(double x, double y, const std::string& s, Rgb8 colour, double size_px = kTextPx);
+  // The same, rotated 90° counter-clockwise (for a y-axis label), reading bottom to top from
+  // (x, y), the bottom-left corner of its box.
+  void text_vertical(double x, double y, const std::string& s, Rgb8 colour,
+                     double size_px = kTextPx);
+
+  static int text_width(const std::string& s, double size_px = kTextPx);
+  static int text_height(double size_px = kTextPx);
 
  private:
   Image m_image;

@@ -81,11 +81,12 @@ Image outline_overlay(const Image& photo, const PhotoComparison& c) {
   draw(c.render_mask, magenta);
   Canvas canvas(std::move(out));
   const int scale = std::max(1, std::min(w, h) / 300);
-  const int lh = Canvas::text_height(scale) + 2 * scale;
-  if (w >= Canvas::text_width("render", scale) + 8 && h >= 2 * lh + 8) {
-    canvas.fill_rect(2, 2, 6 + Canvas::text_width("render", scale), 4 + 2 * lh, {0, 0, 0});
-    canvas.text(4, 4, "photo", cyan, scale);
-    canvas.text(4, 4 + lh, "render", magenta, scale);
+  const double size = Canvas::kTextPx * scale;
+  const int lh = Canvas::text_height(size) + 2 * scale;
+  if (w >= Canvas::text_width("render", size) + 8 && h >= 2 * lh + 8) {
+    canvas.fill_rect(2, 2, 6 + Canvas::text_width("render", size), 4 + 2 * lh, {0, 0, 0});
+    canvas.text(4, 4, "photo", cyan, size);
+    canvas.text(4, 4 + lh, "render", magenta, size);
   }
   return canvas.image();
 }

@@ -12,7 +12,6 @@
 #include "app/scene.h"
 #include "app/scene_patch.h"
 #include "analysis/sweep_metrics.h"
-#include "app/sweep_plot.h"
 #include "sim/grid.h"
 #include "tests/app/scene_test_support.h"
 
@@ -161,14 +160,6 @@ TEST(SweepMetrics, ParetoFrontKeepsRunsNoOtherBeatsInBoth) {
             (std::vector<bool>{true, true, false}));
 }
 
-TEST(SweepPlot, LogTickLabels) {
-  EXPECT_EQ(log_tick_label(1.0), "1");
-  EXPECT_EQ(log_tick_label(0.01), "0.01");
-  EXPECT_EQ(log_tick_label(200.0), "200");
-  EXPECT_EQ(log_tick_label(1e-5), "1e-5");
-  EXPECT_EQ(log_tick_label(2e-4), "2e-4");
-  EXPECT_EQ(log_tick_label(5e4), "5e4");
-}
 
 // ---- --set parsing and scene patching ----
 

@@ -1,4 +1,4 @@
-// Canvas: which pixels lines, rectangles, circles and text set, clipping, and the font's
+// Canvas: which pixels lines, rectangles, circles and text set, clipping, and the text's
 // metrics. Expected pixel sets come from the geometry (a line between pixel centres, a disc's
 // area), not from earlier output.
 
@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -174,91 +175,104 @@ TEST(Canvas, CircleOutlineIsARingAroundTheRadius) {
   EXPECT_NEAR(static_cast<double>(pixels.size()), 2 * M_PI * r, 0.3 * 2 * M_PI * r);
 }
 
-// Glyphs are 5 × 9 cells: capitals in rows 0–6, descenders in rows 7–8.
-TEST(Canvas, TextMetricsAreFiveByNineGlyphsOneColumnApart) {
+// Text is anti-aliased DejaVu Sans (render/font.h): the pixels it touches, not one ink.
+std::set<Pixel> touched(const Canvas& canvas, Rgb8 background = kWhite) {
+  std::set<Pixel> pixels;
+  for (int y = 0; y < canvas.height(); ++y)
+    for (int x = 0; x < canvas.width(); ++x)
+      if (!(canvas.image().at(x, y) == background)) pixels.insert({x, y});
+  return pixels;
+}
+
+TEST(Canvas, TextMetricsGrowWithLengthAndSize) {
   EXPECT_EQ(Canvas::text_width(""), 0);
-  EXPECT_EQ(Canvas::text_width("A"), 5);
-  EXPECT_EQ(Canvas::text_width("abc"), 3 * 6 - 1);
-  EXPECT_EQ(Canvas::text_width("abc", 2), 2 * (3 * 6 - 1));
-  EXPECT_EQ(Canvas::text_height(), 9);
-  EXPECT_EQ(Canvas::text_height(3), 27);
+  EXPECT_GT(Canvas::text_width("A"), 4);
+  EXPECT_GT(Canvas::text_width("abc"), Canvas::text_width("ab"));
+  EXPECT_NEAR(Canvas::text_width("abcdef", 24.0), 2 * Canvas::text_width("abcdef", 12.0), 2);
+  EXPECT_EQ(Canvas::text_height(), 12);
+  EXPECT_EQ(Canvas::text_height(30.0), 30);
 }
 
 TEST(Canvas, TextStaysInsideItsMeasuredBox) {
-  for (int scale : {1, 2}) {
-    Canvas canvas(340, 40, kWhite);
-    const std::string s = "Wall time [s] 1e-3 |gjpqy_";
-    canvas.text(4, 6, s, kInk, scale);
-    const Box box = bounds(inked(canvas));
+  for (double size : {12.0, 24.0}) {
+    Canvas canvas(420, 60, kWhite);
+    const std::string s = "Wall time [s] 1e-3 |gjpqy_ µ² σ";
+    canvas.text(4, 6, s, kInk, size);
+    const Box box = bounds(touched(canvas));
     EXPECT_GE(box.x_min, 4);
     EXPECT_GE(box.y_min, 6);
-    EXPECT_LT(box.x_max, 4 + Canvas::text_width(s, scale));
-    EXPECT_LT(box.y_max, 6 + Canvas::text_height(scale));
-    // The box is used: '|' reaches the top row, the descenders the bottom, 'W' the first column.
-    EXPECT_EQ(box.x_min, 4);
-    EXPECT_EQ(box.y_min, 6);
-    EXPECT_EQ(box.y_max, 6 + Canvas::text_height(scale) - 1);
+    EXPECT_LE(box.x_max, 4 + Canvas::text_width(s, size));
+    EXPECT_LE(box.y_max, 6 + Canvas::text_height(size));
+    // The box is used: from near its top to near its bottom.
+    EXPECT_LE(box.y_min, 6 + 0.25 * size);
+    EXPECT_GE(box.y_max, 6 + 0.75 * size);
   }
 }
 
-// Capitals, digits and lower case without descenders stand on row 6 of the 9-row cell.
+// Capitals, digits and lower case without descenders stand on the baseline, above the box's
+// bottom by the font's descent; a 'p' goes below it.
 TEST(Canvas, OnlyDescendersGoBelowTheBaseline) {
-  Canvas canvas(200, 12, kWhite);
+  Canvas canvas(200, 20, kWhite);
   canvas.text(0, 0, "AZ09 ackx", kInk);
-  EXPECT_EQ(bounds(inked(canvas)).y_max, 6);
-  Canvas descender(20, 12, kWhite);
+  Canvas descender(20, 20, kWhite);
   descender.text(0, 0, "p", kInk);
-  EXPECT_EQ(bounds(inked(descender)).y_max, 8);
+  EXPECT_GE(bounds(touched(descender)).y_max, bounds(touched(canvas)).y_max + 2);
 }
 
-// Every printable character has a glyph, and no two look the same (except the blank space).
+// Every printable ASCII character and µ, ², σ, ω have a glyph, and no two look the same.
 TEST(Canvas, EveryPrintableGlyphIsDistinctAndNonEmpty) {
-  std::set<std::set<Pixel>> seen;
-  for (char c = '!'; c <= '~'; ++c) {
-    Canvas canvas(5, 9, kWhite);
-    canvas.text(0, 0, std::string(1, c), kInk);
-    const std::set<Pixel> pixels = inked(canvas);
-    EXPECT_FALSE(pixels.empty()) << "glyph '" << c << "' is blank";
-    EXPECT_TRUE(seen.insert(pixels).second) << "glyph '" << c << "' repeats an earlier one";
+  std::vector<std::string> characters;
+  for (char c = '!'; c <= '~'; ++c) characters.push_back(std::string(1, c));
+  for (const char* c : {"µ", "²", "σ", "ω", "×", "−"}) characters.push_back(c);
+  std::set<std::vector<std::uint8_t>> seen;
+  for (const std::string& c : characters) {
+    Canvas canvas(16, 16, kWhite);
+    canvas.text(1, 1, c, kInk);
+    EXPECT_FALSE(touched(canvas).empty()) << "glyph '" << c << "' is blank";
+    const std::vector<std::uint8_t> bytes(canvas.image().data(), canvas.image().data() + 16 * 16 * 3);
+    EXPECT_TRUE(seen.insert(bytes).second) << "glyph '" << c << "' repeats an earlier one";
   }
-  Canvas space(5, 9, kWhite);
-  space.text(0, 0, " ", kInk);
-  EXPECT_TRUE(inked(space).empty());
+  Canvas space(16, 16, kWhite);
+  space.text(1, 1, " ", kInk);
+  EXPECT_TRUE(touched(space).empty());
 }
 
-TEST(Canvas, NonPrintableCharactersDrawAsQuestionMark) {
-  Canvas question(5, 9, kWhite), control(5, 9, kWhite), high(5, 9, kWhite);
-  question.text(0, 0, "?", kInk);
-  control.text(0, 0, "\t", kInk);
-  high.text(0, 0, "\xC2", kInk);
-  EXPECT_EQ(inked(control), inked(question));
-  EXPECT_EQ(inked(high), inked(question));
-}
-
-TEST(Canvas, ScaledTextIsThePixelDoubledText) {
-  Canvas one(40, 10, kWhite), two(80, 20, kWhite);
-  one.text(0, 0, "R2d", kInk, 1);
-  two.text(0, 0, "R2d", kInk, 2);
-  for (int y = 0; y < 20; ++y) {
-    for (int x = 0; x < 80; ++x) {
-      ASSERT_EQ(two.image().at(x, y) == kInk, one.image().at(x / 2, y / 2) == kInk)
-          << x << ", " << y;
-    }
-  }
+// Malformed UTF-8 draws as the replacement character, not as nothing.
+TEST(Canvas, MalformedTextStillDrawsSomething) {
+  Canvas high(16, 16, kWhite);
+  high.text(1, 1, "\xC2", kInk);
+  EXPECT_FALSE(touched(high).empty());
 }
 
 // Vertical text is horizontal text rotated 90° counter-clockwise: horizontal pixel (c, r)
 // (column c of the string from its left, row r from its top) lands at (x + r, y − c).
 TEST(Canvas, VerticalTextIsHorizontalTextRotatedCounterClockwise) {
-  const std::string s = "Ab1%";
+  const std::string s = "Ab1% µ²";
   const int w = Canvas::text_width(s), h = Canvas::text_height();
-  Canvas flat(w, h, kWhite), upright(h + 10, w + 10, kWhite);
+  Canvas flat(w + 4, h + 4, kWhite), upright(h + 14, w + 14, kWhite);
   flat.text(0, 0, s, kInk);
-  const int x = 3, y = w + 4;  // bottom-left pixel of the first glyph
+  const int x = 3, y = w + 8;  // bottom-left corner of the text's box
   upright.text_vertical(x, y, s, kInk);
   std::set<Pixel> expected;
-  for (const auto& [c, r] : inked(flat)) expected.insert({x + r, y - c});
-  EXPECT_EQ(inked(upright), expected);
+  for (const auto& [c, r] : touched(flat)) expected.insert({x + r, y - c});
+  EXPECT_EQ(touched(upright), expected);
+  for (const auto& [c, r] : touched(flat))
+    ASSERT_EQ(flat.image().at(c, r), upright.image().at(x + r, y - c));
+}
+
+// A smooth line covers the pixels within half its width of the segment fully, and blends the
+// ones at its edge.
+TEST(Canvas, SmoothLineIsFullOnItsAxisAndBlendedAtItsEdge) {
+  Canvas canvas(20, 10, kWhite);
+  canvas.smooth_line(2, 4.5, 17, 4.5, kInk, 2.0);
+  EXPECT_EQ(canvas.image().at(10, 4), kInk);
+  EXPECT_EQ(canvas.image().at(10, 5), kInk);
+  EXPECT_EQ(canvas.image().at(10, 1), kWhite);
+  Canvas thin(20, 10, kWhite);
+  thin.smooth_line(2, 4.25, 17, 4.25, kInk, 1.0);
+  const Rgb8 edge = thin.image().at(10, 5);
+  EXPECT_FALSE(edge == kInk);
+  EXPECT_FALSE(edge == kWhite);
 }
 
 TEST(Canvas, SameCallsGiveTheSameBits) {
@@ -267,7 +281,8 @@ TEST(Canvas, SameCallsGiveTheSameBits) {
     canvas.line(0.3, 47.7, 63.2, 0.4, kInk, 2);
     canvas.circle(30.25, 20.75, 7.5, Rgb8{200, 0, 0}, false);
     canvas.text_vertical(2, 40, "error", kInk);
-    canvas.text(10, 30, "1e-2", kInk);
+    canvas.text(10.3, 30, "1e-2 µm²", kInk);
+    canvas.smooth_circle(40.2, 10.7, 5.0, kInk, false, 1.5);
     return canvas;
   };
   const Canvas a = draw(), b = draw();
