@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "render/canvas.h"
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
 
@@ -127,8 +128,9 @@ TEST_F(ReportGalleryCli, ReportLinksExistAndPlotsFollowStatsCsv) {
   const Image frame = read_image(out / "frame_0014.png");
   const int gap = 8;
   EXPECT_EQ(sheet.width(), gap + 3 * (frame.width() + gap));
-  EXPECT_GT(sheet.height(), gap + 4 * (frame.height() + gap));
-  EXPECT_LT(sheet.height(), gap + 5 * (frame.height() + gap));
+  // Each row: a frame, its label (the text's height + 4, render/canvas.h) and a gap.
+  const int label_h = weft::render::Canvas::text_height() + 4;
+  EXPECT_EQ(sheet.height(), gap + 4 * (frame.height() + label_h + gap));
 
   // One point per stats.csv row, in time order; the plotted peak is stats.csv's peak.
   for (const auto& [series, column] :
