@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/frame_mesh.h"
+#include "app/frame_stream.h"
 #include "app/obstacle_meshes.h"
 #include "app/scene.h"
 #include "app/renderer_choice.h"
@@ -52,8 +53,11 @@ render::Image render_case(const GoldenCase& c, double density_scale) {
   scene.render.height = c.height;
   scene.render.renderer = render::renderer_from_name(c.renderer, c.name);
   scene.render.raytrace.samples_per_pixel = c.samples;
+  scene.frames = c.frames;
   const auto simulator = app::make_simulator(scene);
-  if (scene.dynamics && c.frames > 0) simulator->advance(c.frames / scene.fps);
+  // The frames weft run writes: the frame stream, frame by frame to the last.
+  const app::FrameStreamEnd end = app::stream_frames(scene, *simulator, {});
+  if (end.divergence) throw end.divergence->error;
   const auto renderer = app::make_chosen_renderer(scene.render);
   return renderer->render(app::to_render_mesh(simulator->mesh(), simulator->state().x),
                           scene.render, app::obstacle_render_objects(scene.sim.obstacles, scene.render));

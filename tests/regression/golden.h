@@ -20,7 +20,7 @@ struct GoldenCase {
   std::string name;         // also the golden's file stem
   std::string scene;        // file in assets/scenes
   int resolution = 17;      // vertices per side of the coarse grid
-  int frames = 12;          // simulated frames at the scene's fps (0: the initial state)
+  int frames = 12;          // frames of the scene's stream (0: the initial state)
   std::string renderer;     // "raster" or "raytrace"
   int width = 160, height = 120;
   int samples = 4;          // ray tracer samples per pixel
@@ -33,8 +33,8 @@ struct GoldenCase {
   int pixel_threshold = 16;
 };
 
-// Simulates the case's scene on its coarse grid (cloth density × density_scale) and renders
-// the last frame. Throws what the scene or renderer throws.
+// Simulates the case's scene on its coarse grid (cloth density × density_scale) through the
+// frame stream of weft run (app/frame_stream.h) and renders its last frame. Throws what the scene or renderer throws.
 render::Image render_case(const GoldenCase& c, double density_scale = 1.0);
 
 std::filesystem::path golden_path(const GoldenCase& c);
