@@ -2,6 +2,9 @@
 
 #include "app/compare_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -222,6 +225,28 @@ int run_compare(const CompareOptions& o) {
   else print_text(j);
   std::fprintf(stderr, "weft compare: wrote %s\n", (o.out / "report.html").c_str());
   return exit_ok;
+}
+
+Command register_compare(CLI::App& app, const std::string& /*command_line*/) {
+  const auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Compare a render with a photo: segment both, align, print silhouette IoU, Chamfer "
+                 "distance, fold agreement, SSIM; write DIR/overlay.png and DIR/report.html");
+  cmd->add_option("photo", o->photo, "Photo (PNG or JPG, any size)")->required();
+  cmd->add_option("render", o->render, "Render (PNG or JPG; resampled onto the photo)")->required();
+  cmd->add_option("--mask-photo", o->mask_photo,
+                  "Mask image of the photo (white = cloth), instead of segmentation");
+  cmd->add_option("--mask-render", o->mask_render,
+                  "Mask image of the render (white = cloth), instead of segmentation");
+  cmd->add_option("--transform", o->transform,
+                  "s,tx,ty[,deg]: render pixels to photo pixels, p = s R(deg) r + t, "
+                  "instead of aligning the silhouettes");
+  cmd->add_option("--out", o->out, "Output folder (default: out/compare)");
+  cmd->add_flag("--json", o->json, "Print the numbers as one JSON object");
+  cmd->add_option("--fold-sigma", o->fold_sigma_px,
+                  "Gaussian sigma in photo pixels for the fold maps (default: 1 % of the "
+                  "diagonal, at least 1.5)");
+  return {cmd, [o] { return run_compare(*o); }};
 }
 
 }  // namespace weft::app

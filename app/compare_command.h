@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "app/command.h"
 #include "render/photo_compare/alignment.h"
 
 namespace weft::app {
@@ -29,5 +30,9 @@ render::Similarity parse_transform(const std::string& text);
 
 // Returns an ExitCode (app/run_command.h); errors go to stderr naming the file.
 int run_compare(const CompareOptions& options);
+
+
+// Adds `weft compare` to the command line.
+Command register_compare(CLI::App& app, const std::string& command_line);
 
 }  // namespace weft::app

@@ -2,6 +2,9 @@
 
 #include "app/diff_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -164,6 +167,29 @@ int run_diff(const DiffOptions& o) {
   if (o.json) print_json(o, d, v);
   else print_text(o, d, v);
   return v.exit;
+}
+
+Command register_diff(CLI::App& app, const std::string& /*command_line*/) {
+  const auto o = std::make_shared<DiffOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "diff", "Compare two images: mean/RMS/max difference, PSNR, SSIM, pixels over a threshold; "
+              "exit 0 pass, 1 warn, 2 fail, 3 size mismatch, 4 unreadable file, 5 bad arguments");
+  cmd->add_option("a", o->a, "First image (PNG or JPG)")->required();
+  cmd->add_option("b", o->b, "Second image (PNG or JPG)")->required();
+  cmd->add_option("--heatmap", o->heatmap, "Write a heatmap of the differences to this PNG");
+  cmd->add_flag("--json", o->json, "Print the comparison as one JSON object");
+  cmd->add_option("--warn", o->warn,
+                  "Thresholds that warn, e.g. 'psnr<40,ssim<0.99' (metrics: mean, rms, max, "
+                  "psnr, ssim, over); repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--fail", o->fail, "Thresholds that fail, e.g. 'ssim<0.95,over>0.01'; repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--pixel-threshold", o->pixel_threshold,
+                  "A pixel differs when a channel differs by more than this (0..255, default 8)");
+  // Its exit code 1 means "warn": a command-line error is diff_bad_arguments.
+  return {cmd, [o] { return run_diff(*o); }, diff_bad_arguments};
 }
 
 }  // namespace weft::app

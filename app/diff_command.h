@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/command.h"
 #include "render/image_diff.h"
 
 namespace weft::app {
@@ -58,5 +59,9 @@ struct DiffOptions {
 // Prints the comparison (text or one JSON object on stdout), writes the heatmap if asked, and
 // returns the exit code above; errors go to stderr.
 int run_diff(const DiffOptions& options);
+
+
+// Adds `weft diff` to the command line.
+Command register_diff(CLI::App& app, const std::string& command_line);
 
 }  // namespace weft::app

@@ -3,6 +3,9 @@
 
 #include "app/folds_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -182,6 +185,68 @@ int run_folds(const FoldsOptions& options) {
     std::fprintf(stderr, "weft: wrote %s\n", (dir / "folds_overlay.png").c_str());
   }
   return exit_ok;
+}
+
+namespace {
+
+// The flags as typed (cm, mm, MPa, N/mm²), converted to SI when the command runs.
+struct FoldsFlags {
+  double h_cm = 0, L_cm = 0, d_cm = 0, t_mm = 0, E_MPa = 0, w_N_mm2 = 0;
+  std::optional<double> Q;
+  std::string shape = "rectangle", interpolation = "cosine";
+};
+
+FoldsOptions folds_options(FoldsOptions o, const FoldsFlags& f) {
+  o.inputs.height_m = 1e-2 * f.h_cm;
+  o.inputs.width_m = 1e-2 * f.L_cm;
+  o.inputs.support_shift_m = 1e-2 * f.d_cm;
+  o.inputs.thickness_m = 1e-3 * f.t_mm;
+  o.inputs.youngs_modulus_Pa = 1e6 * f.E_MPa;
+  o.inputs.weight_N_m2 = 1e6 * f.w_N_mm2;  // N/mm² → N/m²
+  if (f.Q) o.inputs.ratio = *f.Q;
+  o.shape = f.shape == "cosine" ? sim::MembraneShape::cosine : sim::MembraneShape::rectangle;
+  o.interpolation = f.interpolation == "linear" ? sim::FoldInterpolation::linear
+                                                : sim::FoldInterpolation::cosine;
+  return o;
+}
+
+// The required flags of the inputs, in the paper's units.
+void add_input_flags(CLI::App& cmd, FoldsFlags& f, FoldsOptions& o) {
+  cmd.add_option("--h-cm", f.h_cm, "Height h of the cloth, cm")->required();
+  cmd.add_option("--L-cm", f.L_cm, "Width L of the flat cloth, cm")->required();
+  cmd.add_option("--d-cm", f.d_cm, "Support displacement d, cm: the span is l = L - d")->required();
+  cmd.add_option("--t-mm", f.t_mm, "Thickness t, mm")->required();
+  cmd.add_option("--E-MPa", f.E_MPa, "Young's modulus E, MPa")->required();
+  cmd.add_option("--w-N-mm2", f.w_N_mm2, "Weight per area w, N/mm^2 (e.g. 15e-7)")->required();
+  cmd.add_option("--nu", o.inputs.poisson_ratio, "Poisson's ratio (default 0.3)");
+  cmd.add_option("--c", o.inputs.load_constant,
+                 "Load-condition constant c of eq. (7) (default: the fit to the paper's Table 1)");
+  cmd.add_option("--Q", f.Q, "Amplitude ratio Q > 1, instead of eq. (7)'s");
+  cmd.add_option("--tolerance", o.inputs.tolerance, "On |L' - L|/L (default 0.05)");
+}
+
+}  // namespace
+
+Command register_folds(CLI::App& app, const std::string& command_line) {
+  const auto o = std::make_shared<FoldsOptions>();
+  const auto f = std::make_shared<FoldsFlags>();
+  o->command_line = command_line;
+  CLI::App* cmd = app.add_subcommand(
+      "folds", "Tension-field folds of a cloth hanging from two supports (Conci 2007): print n, Q, "
+               "z_max, a_i, L'; render them; draw them on a photo (docs/folds.md)");
+  add_input_flags(*cmd, *f, *o);
+  cmd->add_flag("--json", o->json, "Print the result as one JSON object");
+  cmd->add_option("--out", o->out, "Render the folded cloth to DIR/folds.png (the overlay goes there too; default out/folds)");
+  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT of folds.png (default 640x480)");
+  cmd->add_option("--shape", f->shape, "Membrane rendered: rectangle or cosine")
+      ->check(CLI::IsMember({"rectangle", "cosine"}));
+  cmd->add_option("--interpolation", f->interpolation,
+                  "z between wrinkle lines: cosine (smooth) or linear (the paper's)")
+      ->check(CLI::IsMember({"cosine", "linear"}));
+  cmd->add_option("--overlay", o->overlay, "Photo (PNG/JPG) to draw the fold lines on: writes folds_overlay.png");
+  cmd->add_option("--supports", o->supports, "x1,y1,x2,y2: the supports' pixels in the photo");
+  cmd->add_option("--bottom", o->bottom_px, "Pixel row of the cloth's bottom at the middle (default: same scale as across)");
+  return {cmd, [o, f] { return run_folds(folds_options(*o, *f)); }};
 }
 
 }  // namespace weft::app

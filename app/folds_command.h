@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/command.h"
 #include "sim/folds/fold_geometry.h"
 #include "sim/folds/tension_field.h"
 #include "sim/grid.h"
@@ -48,5 +49,9 @@ FoldedMembrane folded_membrane(const sim::FoldPattern& pattern, sim::MembraneSha
 // Runs the job; bad input throws SceneError (naming the flag) before anything is written. The
 // overlay goes to DIR/folds_overlay.png, DIR from --out or out/folds.
 int run_folds(const FoldsOptions& options);
+
+
+// Adds `weft folds` to the command line.
+Command register_folds(CLI::App& app, const std::string& command_line);
 
 }  // namespace weft::app

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "app/progress.h"
 #include "app/run_command.h"
 #include "app/run_report.h"
@@ -90,7 +92,9 @@ void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
   RunOptions run;
   run.scene = entry.path;
   run.out = scratch;
-  if (frames != scene.frames) run.frames = frames;
+  if (frames != scene.frames)
+    run.overrides.push_back({"output.frames", std::to_string(frames), frames_arg.substr(1)});
+  run.threads = options.threads;
   run.command_line = "weft run " + scene_arg + frames_arg;
   const int code = run_scene(run);
   if (code != exit_ok) {
@@ -174,6 +178,29 @@ int run_gallery(const GalleryOptions& options) {
   std::fprintf(stderr, "weft gallery: %zu failed:\n", failed.size());
   for (const std::string& f : failed) std::fprintf(stderr, "  %s\n", f.c_str());
   return exit_failure;
+}
+
+Command register_gallery(CLI::App& app, const std::string& command_line) {
+  const auto o = std::make_shared<GalleryOptions>();
+  o->command_line = command_line;
+  CLI::App* cmd = app.add_subcommand(
+      "gallery", "Render every scene of assets/scenes into out/gallery: <scene>.png (final frame), "
+                 "<scene>_sheet.png (contact sheet), README.md with the commands");
+  cmd->add_option("--scenes", o->scenes, "Folder of scene files (default: assets/scenes)");
+  cmd->add_option("--out", o->out,
+                  "Output folder (default: out/gallery; the repository's gallery/ only if given)");
+  cmd->add_option("--frames-scale", o->frames_scale,
+                  "Run each scene for this fraction of its frames, e.g. 0.25 for a quick look");
+  cmd->add_option_function<std::string>(
+      "--only",
+      [o](const std::string& text) {
+        std::stringstream names(text);
+        for (std::string name; std::getline(names, name, ',');)
+          if (!name.empty()) o->only.push_back(name);
+      },
+      "Comma-separated scene names (file stems) to render");
+  add_threads_option(*cmd, o->threads);
+  return {cmd, [o] { return run_gallery(*o); }};
 }
 
 }  // namespace weft::app

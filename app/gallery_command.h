@@ -5,8 +5,12 @@
 // reported and the others still run.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "app/command.h"
+#include "app/scene_options.h"
 
 namespace weft::app {
 
@@ -15,11 +19,15 @@ struct GalleryOptions {
   std::filesystem::path out = "out/gallery";       // the repository's gallery/ only if asked
   double frames_scale = 1.0;       // each scene's output.frames × this (rounded, at least 1)
   std::vector<std::string> only;   // scene names (file stems) to render; empty: all
+  std::optional<int> threads;      // --threads (command.h), passed to every run
   std::string command_line;        // recorded in README.md
 };
 
 // Frames of a scene of `frames` frames under --frames-scale: round(frames × scale), at least 1.
 int scaled_frames(int frames, double scale);
+
+// Adds `weft gallery` to the command line.
+Command register_gallery(CLI::App& app, const std::string& command_line);
 
 // Returns exit_ok when every scene rendered, exit_failure (listing the failed scenes on stderr)
 // otherwise. Bad options (missing folder, unknown --only name, scale out of range) throw

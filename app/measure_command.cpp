@@ -8,8 +8,10 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <CLI/CLI.hpp>
+
+#include "app/frame_stream.h"
 #include "app/progress.h"
-#include "app/run_command.h"
 #include "app/version.h"
 #include "sim/collision/self_intersection.h"
 #include "analysis/measure/settle.h"
@@ -145,13 +147,11 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
   const auto triangles = mesh.triangles();
   const sim::DrapeMeasureSettings settings;
 
-  const double frame_dt_s = 1.0 / scene.fps;
-  const auto record = [&](int frame) {
+  const auto record = [&](int frame, double time_s) {
     MeasureRow row;
     row.frame = frame;
     const sim::Diagnostics d = simulator.diagnostics();
-    // Without dynamics the simulator does not run: the frames' times still advance.
-    row.time_s = scene.dynamics ? simulator.state().time_s : frame * frame_dt_s;
+    row.time_s = time_s;
     row.kinetic_energy_J = d.kinetic_energy_J;
     row.max_speed_m_s = d.max_speed_m_s;
     if (m.support) {
@@ -162,11 +162,10 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
     m.rows.push_back(row);
     if (on_frame) on_frame(row);
   };
-  record(0);
-  for (int frame = 1; frame <= scene.frames; ++frame) {
-    if (scene.dynamics) simulator.advance(frame * frame_dt_s - simulator.state().time_s);
-    record(frame);
-  }
+  record(0, simulator.state().time_s);
+  const FrameStreamEnd end = stream_frames(
+      scene, simulator, [&](const Frame& frame) { record(frame.index, frame.time_s); });
+  if (end.divergence) throw end.divergence->error;
   if (hangs_as_curtain(scene)) m.curtain = sim::count_curtain_folds(mesh, simulator.state().x);
   std::vector<double> time_s, speed_m_s;
   for (const MeasureRow& r : m.rows) {
@@ -205,8 +204,8 @@ std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulato
 }
 
 int run_measure(const MeasureOptions& options) {
-  Scene scene = options.scene ? load_scene(*options.scene) : default_scene();
-  if (options.frames) scene.frames = checked_frames_option(*options.frames);
+  Scene scene = load_scene_with(options.scene, options.overrides);
+  apply_threads(scene, options.threads);
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::optional<sim::DrapeSupport> support =
@@ -254,6 +253,23 @@ int run_measure(const MeasureOptions& options) {
   std::printf("weft: wrote measure.csv%s to %s (%s)\n", m.final_drape ? " and outline.csv" : "",
               dir.c_str(), format_duration(progress.elapsed_s()).c_str());
   return exit_ok;
+}
+
+Command register_measure(CLI::App& app, const std::string& command_line) {
+  const auto o = std::make_shared<MeasureOptions>();
+  o->command_line = command_line;
+  CLI::App* cmd = app.add_subcommand(
+      "measure", "Simulate a scene without rendering; print settle time, drape coefficient and "
+                 "folds; write measure.csv and outline.csv (docs/measure.md)");
+  cmd->add_option("scene", o->scene, "Scene file; the built-in default scene if omitted");
+  cmd->add_option("--out", o->out, "Output folder (default: out/<scene name>)");
+  add_set_option(*cmd, o->overrides);
+  add_override_option(*cmd, "--frames", "output.frames", o->overrides,
+                      "Frames to simulate (overrides output.frames)", "INT");
+  add_threads_option(*cmd, o->threads);
+  cmd->add_flag("--drape", o->require_drape,
+                "Require the drape measures: an error if no obstacle supports the cloth centre");
+  return {cmd, [o] { return run_measure(*o); }};
 }
 
 }  // namespace weft::app

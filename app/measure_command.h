@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/command.h"
+#include "app/scene_options.h"
 #include "app/scene.h"
 #include "analysis/measure/curtain_folds.h"
 #include "analysis/measure/drape_measure.h"
@@ -20,7 +22,8 @@ namespace weft::app {
 struct MeasureOptions {
   std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
   std::optional<std::filesystem::path> out;    // default: out/<scene name>
-  std::optional<int> frames;                   // overrides the scene's output.frames
+  std::vector<Setting> overrides;              // --set, --frames (scene patches, command.h)
+  std::optional<int> threads;                  // --threads (command.h)
   bool require_drape = false;  // --drape: a scene without a support is an error
   std::string command_line;    // recorded in measure.txt
 };
@@ -59,8 +62,8 @@ sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh);
 std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
                                                bool require_drape);
 
-// Simulates every frame of the scene on `simulator` (made by make_simulator(scene)) and measures
-// it; on_frame, if given, sees each row as it is made. Throws sim::DivergenceError (the rows so
+// Simulates every frame of the scene on `simulator` (made by make_simulator(scene)) through the
+// frame stream (frame_stream.h) and measures it; on_frame, if given, sees each row as it is made. Throws sim::DivergenceError (the rows so
 // far are lost; on_frame has seen them), SceneError as scene_support.
 SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bool require_drape,
                                const std::function<void(const MeasureRow&)>& on_frame = {});
@@ -68,6 +71,9 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
 // "drape coefficient 0.62, 9 folds over the cylinder obstacles[0]" for the simulator's current
 // positions, or none when the scene has no support. For `weft run`'s last line.
 std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulator& simulator);
+
+// Adds `weft measure` to the command line.
+Command register_measure(CLI::App& app, const std::string& command_line);
 
 // Runs the job; bad input throws SceneError before anything is written.
 int run_measure(const MeasureOptions& options);

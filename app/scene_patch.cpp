@@ -10,7 +10,9 @@ namespace weft::app {
 
 namespace {
 
-std::string option_text(const Setting& s) { return "--set " + s.key + "=" + s.value; }
+std::string option_text(const Setting& s) {
+  return s.option.empty() ? "--set " + s.key + "=" + s.value : s.option;
+}
 
 [[noreturn]] void bad_option(const std::string& text, const std::string& what) {
   throw SceneError("--set '" + text + "': " + what);
@@ -173,7 +175,7 @@ std::vector<std::vector<Setting>> setting_grid(const std::vector<SettingValues>&
     for (const std::vector<Setting>& row : grid) {
       for (const std::string& v : o.values) {
         next.push_back(row);
-        next.back().push_back({o.key, v});
+        next.back().push_back({o.key, v, ""});
       }
     }
     grid = std::move(next);

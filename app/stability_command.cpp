@@ -1,5 +1,7 @@
 #include "app/stability_command.h"
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -390,6 +392,28 @@ int run_stability(const StabilityOptions& options) {
   std::fprintf(stderr, "weft: wrote %s (stability.png, stability.csv, critical_steps.csv) in %s\n",
                options.out.c_str(), format_duration(progress.elapsed_s()).c_str());
   return 0;
+}
+
+Command register_stability(CLI::App& app, const std::string& command_line) {
+  const auto o = std::make_shared<StabilityOptions>();
+  o->command_line = command_line;
+  CLI::App* cmd = app.add_subcommand(
+      "stability", "Sweep time step x stiffness for each integrator; write stability.png/.csv");
+  cmd->add_option("--out", o->out, "Output folder (default: out/stability)");
+  cmd->add_option("--size", o->size, "Vertices per side of the 1 m cloth (default 12)");
+  cmd->add_option_function<std::vector<std::string>>(
+         "--integrators",
+         [o](const std::vector<std::string>& names) {
+           o->integrators = parse_integrator_list(names, "--integrators");
+         },
+         "Comma-separated integrators (default: all)")
+      ->delimiter(',');
+  cmd->add_option("--stiffness-scales", o->stiffness_scales,
+                  "Comma-separated factors on every rigidity (default 0.1,0.3,1,3,10,30,100)")
+      ->delimiter(',');
+  cmd->add_option("--steps-per-row", o->steps_per_row,
+                  "Time steps h per heatmap row, log spaced (default 24)");
+  return {cmd, [o] { return run_stability(*o); }};
 }
 
 }  // namespace weft::app

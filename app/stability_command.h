@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/command.h"
 #include "sim/integrators/integrator.h"
 
 namespace weft::app {
@@ -40,5 +41,9 @@ std::vector<sim::Integrator> parse_integrator_list(const std::vector<std::string
 // Checks the options (SceneError naming the option), runs the sweep with progress on stderr,
 // prints the table on stdout and writes the files. Returns the exit code.
 int run_stability(const StabilityOptions& options);
+
+
+// Adds `weft stability` to the command line.
+Command register_stability(CLI::App& app, const std::string& command_line);
 
 }  // namespace weft::app

@@ -10,7 +10,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "app/run_command.h"
+#include <CLI/CLI.hpp>
+
+#include "app/frame_stream.h"
 #include "app/scene.h"
 #include "app/scene_patch.h"
 #include "app/sweep_plot.h"
@@ -47,26 +49,20 @@ struct SweepRun {
   bool pareto = false;
 };
 
-// Simulates to the scene's last frame, frame by frame as `weft run` does; timing only advance().
+// Simulates the scene's frames through the frame stream (frame_stream.h), as `weft run` does;
+// the wall time is advance()'s only.
 void simulate(SweepRun& run) {
   const std::unique_ptr<sim::Simulator> owner = make_simulator(run.scene);
   sim::Simulator& simulator = *owner;
   run.time_step_s = simulator.time_step();
-  const double frame_dt_s = 1.0 / run.scene.fps;
-  std::chrono::steady_clock::duration busy{};
-  for (int frame = 1; frame <= run.scene.frames && !run.diverged; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      simulator.advance(frame * frame_dt_s - simulator.state().time_s);
-    } catch (const sim::DivergenceError& e) {
-      run.diverged = true;
-      run.failure = e.what();
-    }
-    busy += std::chrono::steady_clock::now() - start;
-    if (!run.diverged)
-      run.max_strain = std::max(run.max_strain, simulator.diagnostics().max_strain);
+  const FrameStreamEnd end = stream_frames(run.scene, simulator, [&](const Frame& frame) {
+    run.wall_s += frame.sim_s;
+    run.max_strain = std::max(run.max_strain, simulator.diagnostics().max_strain);
+  });
+  if (end.divergence) {
+    run.diverged = true;
+    run.failure = end.divergence->error.what();
   }
-  run.wall_s = std::chrono::duration<double>(busy).count();
   run.steps = simulator.steps_taken();
   run.mesh = simulator.mesh();
   run.x = simulator.state().x;
@@ -205,19 +201,19 @@ void print_table(const std::vector<SettingValues>& options, const std::vector<Sw
 }  // namespace
 
 int run_sweep(const SweepOptions& options) {
-  const Scene base = options.scene ? load_scene(*options.scene) : default_scene();
+  Scene base = load_scene_with(options.scene, options.overrides);
+  apply_threads(base, options.threads);
   if (options.set.empty())
     throw SceneError("--set: expected at least one KEY=V1,V2,... to sweep over");
   std::vector<SettingValues> values;
   for (const std::string& text : options.set) values.push_back(parse_set_option(text));
-  if (options.frames) checked_frames_option(*options.frames);
 
   // Every combination is read (and so checked) before any is simulated.
   std::vector<SweepRun> runs;
   for (std::vector<Setting>& settings : setting_grid(values)) {
     SweepRun run;
     run.scene = patched_scene(base, settings);
-    if (options.frames) run.scene.frames = *options.frames;
+    apply_threads(run.scene, options.threads);
     run.settings = std::move(settings);
     runs.push_back(std::move(run));
   }
@@ -282,6 +278,28 @@ int run_sweep(const SweepOptions& options) {
   std::printf("weft sweep: wrote %s and %s\n", (dir / "sweep.csv").c_str(),
               (dir / "sweep.png").c_str());
   return exit_ok;
+}
+
+Command register_sweep(CLI::App& app, const std::string& command_line) {
+  const auto o = std::make_shared<SweepOptions>();
+  o->command_line = command_line;
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Run a scene over a grid of settings; write sweep.csv and sweep.png (error vs wall time)");
+  cmd->add_option("scene", o->scene, "Scene file; the built-in default scene if omitted");
+  cmd->add_option("--set", o->set,
+                  "KEY=V1,V2,...: scene key (dotted path, e.g. cloth.resolution) and the values to "
+                  "try (JSON, or plain text such as 1 ms); repeat for a grid of every combination")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--out", o->out, "Output folder (default: out/sweep-<scene name>)");
+  add_override_option(*cmd, "--frames", "output.frames", o->overrides,
+                      "Frames to simulate in every run (overrides output.frames)", "INT");
+  add_threads_option(*cmd, o->threads);
+  cmd->add_option("--reference", o->reference,
+                  "Run number (row of sweep.csv) the errors are measured against (default: the "
+                  "finished run with the largest wall time, taken as the most accurate)");
+  return {cmd, [o] { return run_sweep(*o); }};
 }
 
 }  // namespace weft::app

@@ -8,21 +8,28 @@
 #include <string>
 #include <vector>
 
+#include "app/command.h"
+#include "app/scene_options.h"
+
 namespace weft::app {
 
 struct SweepOptions {
   std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
   std::vector<std::string> set;                // each "KEY=V1,V2,…" (app/scene_patch.h)
   std::optional<std::filesystem::path> out;    // default: out/sweep-<scene name>
-  std::optional<int> frames;                   // overrides output.frames in every run
+  std::vector<Setting> overrides;              // --frames: patched into every run (command.h)
+  std::optional<int> threads;                  // --threads (command.h)
   // 1-based row of the run the others are compared with; default: the finished run with the
   // largest wall time (taken as the most accurate).
   std::optional<int> reference;
   std::string command_line;                    // recorded in run.txt
 };
 
+// Adds `weft sweep` to the command line.
+Command register_sweep(CLI::App& app, const std::string& command_line);
+
 // Runs the sweep; returns an ExitCode (app/run_command.h): exit_ok, or exit_diverged when no
-// run finished. Bad input (a --set key or value, --frames, --reference) throws SceneError
+// run finished. Bad input (a --set key or value, --frames, --threads, --reference) throws SceneError
 // before anything is simulated or written.
 int run_sweep(const SweepOptions& options);
 

@@ -10,14 +10,16 @@
 #include <fstream>
 #include <regex>
 
+#include <CLI/CLI.hpp>
+
 #include "app/output_files.h"
 #include "app/contact_sheet.h"
 #include "app/ffmpeg_video.h"
 #include "app/frame_mesh.h"
+#include "app/frame_stream.h"
 #include "app/mesh_file.h"
 #include "app/obstacle_meshes.h"
 #include "app/progress.h"
-#include "app/run_command.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
 #include "app/version.h"
@@ -69,9 +71,6 @@ void check_options(const TurntableOptions& o) {
   if (!(o.orbit.distance_scale > 0.0) || !std::isfinite(o.orbit.distance_scale))
     throw SceneError("--distance-scale: expected a finite factor > 0, got " +
                      std::to_string(o.orbit.distance_scale));
-  if (o.sim_frames && (*o.sim_frames < 1 || *o.sim_frames > 100000))
-    throw SceneError("--sim-frames: expected an integer in 1..100000, got " +
-                     std::to_string(*o.sim_frames));
   if (!fs::exists(o.input))
     throw SceneError(o.input.string() + ": no such file (expected a scene .json or a mesh file)");
   if (lower(o.input.extension().string()) != ".json" && !is_mesh_file(o.input))
@@ -80,19 +79,9 @@ void check_options(const TurntableOptions& o) {
                      ".fbx)");
 }
 
-// --size, --renderer and --samples, applied as `weft run` applies them.
-void apply_render_overrides(Scene& scene, const TurntableOptions& o) {
-  RunOptions run;
-  run.size = o.size;
-  run.renderer = o.renderer;
-  run.samples = o.samples;
-  apply_overrides(scene, run);
-}
-
 Subject scene_subject(const TurntableOptions& o) {
-  Scene scene = load_scene(o.input);
-  apply_render_overrides(scene, o);
-  if (o.sim_frames) scene.frames = *o.sim_frames;
+  Scene scene = load_scene_with(o.input, o.overrides);
+  apply_threads(scene, o.threads);
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   Subject s;
   // A renderer that cannot start fails before the simulation time is spent.
@@ -101,18 +90,15 @@ Subject scene_subject(const TurntableOptions& o) {
   std::fprintf(stderr, "weft: %s — simulating %d frames at %g fps to t = %.3g s, %dx%d vertices\n",
                scene.source.c_str(), scene.frames, scene.fps, scene.frames / scene.fps,
                scene.grid.nu, scene.grid.nv);
-  // Frame by frame, as weft run advances, so the last frame is the one weft run writes.
-  const double frame_dt = 1.0 / scene.fps;
+  // The frame stream of weft run, so the last frame is the one weft run writes.
   Progress progress(stderr, scene.frames, "simulate");
-  if (scene.dynamics) {
-    for (int frame = 1; frame <= scene.frames; ++frame) {
-      simulator->advance(frame * frame_dt - simulator->state().time_s);
-      char detail[64];
-      std::snprintf(detail, sizeof detail, "t = %.2f s", simulator->state().time_s);
-      progress.update(frame, detail);
-    }
-  }
+  const FrameStreamEnd end = stream_frames(scene, *simulator, [&](const Frame& frame) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "t = %.2f s", frame.time_s);
+    progress.update(frame.index, detail);
+  });
   progress.finish();
+  if (end.divergence) throw end.divergence->error;
 
   s.name = scene.name;
   s.text = scene.text;
@@ -132,8 +118,8 @@ Subject mesh_subject(const TurntableOptions& o) {
   }
   Subject s;
   s.name = o.input.stem().string();
-  Scene defaults = default_scene();  // the default render settings, with the overrides
-  apply_render_overrides(defaults, o);
+  Scene defaults = load_scene_with(std::nullopt, o.overrides);  // the default render settings
+  apply_threads(defaults, o.threads);
   s.settings = defaults.render;
   for (Eigen::Index v = 0; v < file.vertices.rows(); ++v)
     s.mesh.positions.push_back(file.vertices.row(v).transpose().cast<float>());
@@ -262,6 +248,32 @@ int run_turntable(const TurntableOptions& options) {
                 format_duration(progress.elapsed_s()).c_str());
   }
   return status;
+}
+
+Command register_turntable(CLI::App& app, const std::string& command_line) {
+  const auto o = std::make_shared<TurntableOptions>();
+  o->command_line = command_line;
+  CLI::App* cmd = app.add_subcommand(
+      "turntable", "Orbit the camera around a scene's final drape (or a mesh file): write "
+                   "turntable_0001.png, ..., contact_sheet.png, and turntable.mp4/.gif with ffmpeg");
+  cmd->add_option("input", o->input,
+                  "Scene file (.json; simulated to its last frame first) or mesh file "
+                  "(.obj, .ply, .stl, .gltf, .glb, .fbx)")
+      ->required();
+  cmd->add_option("--frames", o->frames,
+                  "Images around the orbit; frame i at azimuth 360*i/N (default 36)");
+  cmd->add_option("--out", o->out, "Output folder (default: out/<input name>_turntable)");
+  add_set_option(*cmd, o->overrides);
+  add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
+  add_render_options(*cmd, o->overrides);
+  add_threads_option(*cmd, o->threads);
+  cmd->add_option("--elevation-deg", o->orbit.elevation_deg,
+                  "Camera elevation above the cloth centre, degrees (default: the scene camera's)");
+  cmd->add_option("--distance-scale", o->orbit.distance_scale,
+                  "Factor on the scene camera's distance to its target (default 1)");
+  add_override_option(*cmd, "--sim-frames", "output.frames", o->overrides,
+                      "Simulate to this frame instead of output.frames", "INT");
+  return {cmd, [o] { return run_turntable(*o); }};
 }
 
 }  // namespace weft::app

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "app/command.h"
+#include "app/scene_options.h"
 #include "app/orbit_camera.h"
 
 namespace weft::app {
@@ -15,14 +18,18 @@ struct TurntableOptions {
   std::filesystem::path input;               // a scene (.json) or a mesh file (mesh_file.h)
   std::optional<std::filesystem::path> out;  // default: out/<input stem>_turntable
   int frames = 36;                           // images around the orbit, 1..3600
-  std::optional<std::string> size;           // "WxH", overrides render.size
-  std::optional<std::string> renderer;       // "raster" or "raytrace"
-  std::optional<int> samples;                // ray tracer samples per pixel
+  // Scene patches (command.h): --set, --size, --renderer, --shading, --samples, and
+  // --sim-frames (output.frames: a scene is simulated to that frame). A mesh file is drawn with
+  // the default scene's render settings, patched the same way.
+  std::vector<Setting> overrides;
+  std::optional<int> threads;                // --threads (command.h)
   OrbitSettings orbit;                       // --elevation-deg, --distance-scale
-  std::optional<int> sim_frames;             // a scene is simulated to this frame (output.frames)
   double video_fps = 12.0;                   // of turntable.mp4/.gif: 36 frames take 3 s
   std::string command_line;                  // recorded in turntable.txt
 };
+
+// Adds `weft turntable` to the command line.
+Command register_turntable(CLI::App& app, const std::string& command_line);
 
 // Runs the job. Bad input (missing or unknown file, bad option) throws SceneError before
 // anything is written; returns exit_diverged when the scene's simulation diverges (nothing

@@ -156,7 +156,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "simulation.integrator"},
         BadInput{"BadSizeOption", "--size 10x", tiny_scene(), "--size: expected WIDTHxHEIGHT"},
         BadInput{"BadFramesOption", "--frames 0", tiny_scene(),
-                 "--frames: expected an integer in 1..100000"},
+                 "output.frames: expected an integer in [1, 100000], got 0"},
         BadInput{"BadShadingOption", "--shading glossy", tiny_scene(),
                  "--shading: glossy not in {lit,normals}"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
@@ -250,7 +250,9 @@ TEST_F(Cli, RunWithTheRayTracer) {
   const Result bad_samples = run_weft("run " + scene.string() + " --samples 0 --out " +
                                       (m_dir / "bad").string());
   EXPECT_EQ(bad_samples.exit_code, 1) << bad_samples.output;
-  EXPECT_CONTAINS(bad_samples.output, "--samples: expected an integer in 1..65536, got 0");
+  EXPECT_CONTAINS(bad_samples.output, "--samples 0: " + scene.string() +
+                                          ": render.raytrace.samples: expected an integer in "
+                                          "[1, 65536], got 0");
   EXPECT_FALSE(fs::exists(m_dir / "bad"));
 }
 

@@ -126,7 +126,8 @@ TEST_F(MeasureCli, DrapeWithoutSupportAndBadFramesAreErrors) {
   EXPECT_CONTAINS(r.output, scene.string() + ": obstacles: --drape needs a support");
   r = run_weft("measure " + scene.string() + " --frames 0 --out " + out.string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_CONTAINS(r.output, "--frames: expected an integer in 1..100000");
+  EXPECT_CONTAINS(r.output, "--frames 0: " + scene.string() +
+                                ": output.frames: expected an integer in [1, 100000], got 0");
   EXPECT_FALSE(fs::exists(out));
 }
 

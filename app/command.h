@@ -1,0 +1,36 @@
+#pragma once
+// What every `weft` subcommand shares: its registration — each *_command.cpp adds its own
+// subcommand and options to the CLI11 app and returns a Command; app/main.cpp only lists them
+// and dispatches — and the exit codes. The options that change a scene are in
+// app/scene_options.h.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace weft::app {
+
+// Exit codes of the weft command.
+enum ExitCode : int { exit_ok = 0, exit_bad_input = 1, exit_failure = 2, exit_diverged = 3 };
+
+// A registered subcommand: the CLI11 subcommand and the job to run when it was parsed. The job
+// returns an ExitCode; SceneError (bad input) and other exceptions are dispatch's to report.
+struct Command {
+  CLI::App* cli = nullptr;
+  std::function<int()> run;
+  int parse_error_code = exit_bad_input;  // exit code of a command-line error
+};
+
+// Parses the command line and runs the command that was given: prints help or the version
+// (exit 0), a command-line error or bad input as one line "weft: error: …" (the command's
+// parse_error_code, or exit_bad_input), another failure as exit_failure.
+int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv);
+
+// The command line as typed, recorded in the output folders' run.txt and the like.
+std::string joined_command_line(int argc, char** argv);
+
+}  // namespace weft::app

@@ -1,0 +1,93 @@
+// The options that change a scene (see scene_options.h).
+
+#include "app/scene_options.h"
+
+#include <CLI/CLI.hpp>
+#include <regex>
+
+#include "render/render_settings.h"
+
+namespace weft::app {
+
+Scene load_scene_with(const std::optional<std::filesystem::path>& path,
+                      const std::vector<Setting>& overrides) {
+  Scene scene = path ? load_scene(*path) : default_scene();
+  if (overrides.empty()) return scene;
+  return patched_scene(scene, overrides);
+}
+
+void add_set_option(CLI::App& command, std::vector<Setting>& overrides) {
+  command
+      .add_option_function<std::vector<std::string>>(
+          "--set",
+          [&overrides](const std::vector<std::string>& texts) {
+            for (const std::string& text : texts) {
+              const SettingValues option = parse_set_option(text);
+              if (option.values.size() != 1)
+                throw SceneError("--set '" + text +
+                                 "': expected one value (weft sweep tries several)");
+              overrides.push_back({option.key, option.values.front(), ""});
+            }
+          },
+          "KEY=VALUE: set a scene key (dotted path, e.g. simulation.time_step=1ms or "
+          "cloth.resolution=[21,21]; the value is JSON or plain text); repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+void add_override_option(CLI::App& command, const std::string& option, const std::string& key,
+                         std::vector<Setting>& overrides, const std::string& help,
+                         const std::string& type) {
+  command
+      .add_option_function<std::string>(
+          option,
+          [&overrides, option, key](const std::string& value) {
+            overrides.push_back({key, value, option + " " + value});
+          },
+          help)
+      ->type_name(type);
+}
+
+void add_size_option(CLI::App& command, std::vector<Setting>& overrides,
+                     const std::string& help) {
+  command.add_option_function<std::string>(
+      "--size",
+      [&overrides](const std::string& text) {
+        static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+        std::smatch m;
+        if (!std::regex_match(text, m, pattern))
+          throw SceneError("--size: expected WIDTHxHEIGHT (e.g. 640x480), got '" + text + "'");
+        overrides.push_back({"render.size", "[" + m[1].str() + "," + m[2].str() + "]",
+                             "--size " + text});
+      },
+      help);
+}
+
+void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
+  add_override_option(command, "--shading", "render.shading", overrides,
+                      "lit, or normals: the normal as colour (overrides render.shading)");
+  command.get_option("--shading")->check(CLI::IsMember(render::shading_choices()));
+  add_override_option(command, "--renderer", "render.renderer", overrides,
+                      "raster (OSMesa, fast previews) or raytrace (Embree: soft shadows, ambient "
+                      "occlusion, sheen; overrides render.renderer)");
+  command.get_option("--renderer")->check(CLI::IsMember(render::renderer_choices()));
+  add_override_option(command, "--samples", "render.raytrace.samples", overrides,
+                      "Ray tracer samples per pixel (overrides render.raytrace.samples)", "INT");
+}
+
+void add_threads_option(CLI::App& command, std::optional<int>& threads) {
+  command
+      .add_option_function<int>(
+          "--threads", [&threads](const int& n) { threads = n; },
+          "Threads of the ray tracer and of self-collision (0: all hardware threads, the "
+          "default); the output is the same whatever the number")
+      ->check(CLI::Range(0, 4096));
+}
+
+void apply_threads(Scene& scene, std::optional<int> threads) {
+  if (!threads) return;
+  scene.render.raytrace.threads = *threads;
+  scene.sim.self_collision.threads = *threads;
+}
+
+}  // namespace weft::app
