@@ -8,7 +8,6 @@
 #include <string>
 #include <utility>
 
-#include "sim/integrators/implicit_euler.h"
 #include "sim/pins.h"
 
 namespace weft::sim {
@@ -163,26 +162,16 @@ CriticalStep predicted_critical_step(Integrator method, double omega_rad_s, doub
   throw std::logic_error("predicted_critical_step: unknown integrator");
 }
 
-StepperFactory explicit_stepper_factory(Integrator method, ExplicitSystem system) {
-  ExplicitStepper check(method, system);  // throws now on misuse, not in the first run
-  return [method, system = std::move(system)]() -> StepFunction {
-    auto stepper = std::make_shared<ExplicitStepper>(method, system);
-    return [stepper](Matrix3X& x, Matrix3X& v, double h_s) {
-      stepper->step(x, v, h_s);
-      return true;
-    };
-  };
-}
-
-StepperFactory implicit_euler_factory(const MassSpringModel& model, VectorXd mass_kg,
-                                      VectorXd inv_mass, double damping_1_s) {
-  return [&model, mass_kg = std::move(mass_kg), inv_mass = std::move(inv_mass),
-          damping_1_s]() -> StepFunction {
-    auto solver = std::make_shared<ImplicitEuler>(model, mass_kg, inv_mass, ImplicitSolveSettings{});
-    return [solver, damping_1_s](Matrix3X& x, Matrix3X& v, double h_s) {
-      if (!solver->step(x, v, h_s, Vec3::Zero(), damping_1_s).solved) return false;
-      x += h_s * v;  // ImplicitEuler::step leaves the position update to its caller
-      return true;
+StepperFactory stepper_factory(Integrator method, System system) {
+  if (!integrates_physical_time(method))
+    throw std::logic_error(std::string("stepper_factory: ") + integrator_name(method) +
+                           " does not integrate physical time");
+  (void)make_time_integrator(method, system);  // throws now on misuse, not in the first run
+  auto shared = std::make_shared<const System>(std::move(system));
+  return [method, shared]() -> StepFunction {
+    std::shared_ptr<TimeIntegrator> integrator = make_time_integrator(method, *shared);
+    return [integrator, shared](Matrix3X& x, Matrix3X& v, double h_s) {
+      return integrator->step(*shared, x, v, h_s).solved;
     };
   };
 }
@@ -299,15 +288,17 @@ LargestEigenvalue StabilityCloth::largest_eigenvalue(const EigenvalueSettings& s
   return largest_eigenvalue_mass_stiffness(forces(), rest_positions(), m_mass_kg, m_inv_mass, s);
 }
 
-StepperFactory StabilityCloth::stepper_factory(Integrator method, double damping_1_s) const {
-  if (method == Integrator::implicit_euler)
-    return implicit_euler_factory(*m_model, m_mass_kg, m_inv_mass, damping_1_s);
-  ExplicitSystem system;
-  system.internal_forces = forces();
+System StabilityCloth::system(double damping_1_s) const {
+  System system;
   system.mass_kg = m_mass_kg;
   system.inv_mass = m_inv_mass;
   system.damping_1_s = damping_1_s;
-  return explicit_stepper_factory(method, std::move(system));
+  system.terms = m_model->terms();
+  return system;
+}
+
+StepperFactory StabilityCloth::stepper_factory(Integrator method, double damping_1_s) const {
+  return sim::stepper_factory(method, system(damping_1_s));
 }
 
 }  // namespace weft::sim

@@ -22,15 +22,15 @@
 #include <vector>
 
 #include "sim/grid.h"
-#include "sim/integrators/explicit_steppers.h"
 #include "sim/integrators/integrator.h"
+#include "sim/integrators/time_integrator.h"
 #include "sim/mass_spring.h"
 #include "sim/material.h"
 #include "sim/types.h"
 
 namespace weft::sim {
 
-// Adds the internal forces at positions x (#V×3, m) to f (#V×3, N): ExplicitSystem's callback.
+// Adds the internal forces at positions x (#V×3, m) to f (#V×3, N).
 using InternalForces = std::function<void(const Matrix3X& x, Matrix3X& f)>;
 
 // --- 1. the largest eigenvalue of M⁻¹K ------------------------------------------------------
@@ -107,11 +107,9 @@ using StepFunction = std::function<bool(Matrix3X& x, Matrix3X& v, double h_s)>;
 // Makes a fresh stepper for each run (central difference remembers its previous step).
 using StepperFactory = std::function<StepFunction()>;
 
-// An ExplicitStepper on `system` (throws std::logic_error for implicit_euler).
-StepperFactory explicit_stepper_factory(Integrator method, ExplicitSystem system);
-// ImplicitEuler (direct solve) on `model`, without gravity; `model` must outlive the steppers.
-StepperFactory implicit_euler_factory(const MassSpringModel& model, Eigen::VectorXd mass_kg,
-                                      Eigen::VectorXd inv_mass, double damping_1_s);
+// The integrator `method` on `system` (make_time_integrator; implicit Euler by a direct solve).
+// Throws std::logic_error for dynamic_relaxation, which does not integrate physical time.
+StepperFactory stepper_factory(Integrator method, System system);
 
 struct BlowUpSettings {
   long steps = 1000;             // steps per run (fewer if it blows up first)
@@ -177,6 +175,8 @@ class StabilityCloth {
   const Eigen::VectorXd& inv_mass() const { return m_inv_mass; }  // 0 at the pins
   const Matrix3X& rest_positions() const { return m_mesh.rest_positions; }
   InternalForces forces() const;  // the model's springs and bending
+  // Its System (no gravity) with mass damping α.
+  System system(double damping_1_s) const;
 
   // λ_max(M⁻¹K) at rest.
   [[nodiscard]] LargestEigenvalue largest_eigenvalue(const EigenvalueSettings& s = {}) const;

@@ -1,6 +1,7 @@
 #include "sim/aerodynamics.h"
 
 #include <cmath>
+#include <sstream>
 
 namespace weft::sim {
 
@@ -16,6 +17,21 @@ Vec3 WindField::at(const Vec3& x_m, double time_s) const {
 
 Aerodynamics::Aerodynamics(std::vector<std::array<Index, 4>> quads, const AeroSettings& settings)
     : m_quads(std::move(quads)), m_settings(settings) {}
+
+std::string Aerodynamics::describe() const {
+  const AeroSettings& a = m_settings;
+  std::ostringstream line;
+  line << "air drag on " << panel_count() << " quads (C_d " << a.drag_coefficient << ", "
+       << a.air_density_kg_m3 << " kg/m³";
+  if (a.wind.velocity_m_s.norm() > 0.0) {
+    line << ", wind " << a.wind.velocity_m_s.norm() << " m/s";
+    if (a.wind.gust.amplitude > 0.0)
+      line << " gusting ±" << 100.0 * a.wind.gust.amplitude << " % every " << a.wind.gust.period_s
+           << " s";
+  }
+  line << ")";
+  return line.str();
+}
 
 void Aerodynamics::add_forces(const Matrix3X& x, const Matrix3X& v, double time_s,
                               Matrix3X& f) const {

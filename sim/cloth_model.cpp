@@ -5,6 +5,7 @@
 
 #include "sim/continuum/bw_membrane.h"
 #include "sim/continuum/hinge_bending.h"
+#include "sim/mass_spring.h"
 #include "sim/rft/rft.h"
 
 namespace weft::sim {
@@ -26,8 +27,8 @@ const char* cloth_model_name(ClothModel model) {
 
 ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
                             bool with_stretch) {
+  if (model == ClothModel::mass_spring) return MassSpringModel(mesh, material, with_stretch).terms();
   ForceTerms terms;
-  if (model == ClothModel::mass_spring) return terms;
   const bool bends = material.bend_warp_Nm > 0.0 || material.bend_weft_Nm > 0.0;
   switch (model) {
     case ClothModel::baraff_witkin:

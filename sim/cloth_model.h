@@ -1,7 +1,7 @@
 #pragma once
-// Which cloth model a simulation steps (scene key cloth.model), and the force terms of the
-// continuum ones. The mass-spring model (sim/mass_spring.h) is its own class; the continuum
-// models are sums of ForceTerms (sim/force_term.h) that the integrators step alike.
+// Which cloth model a simulation steps (scene key cloth.model), and its force terms: every
+// model is a sum of ForceTerms (sim/force_term.h) that the integrators step alike — springs
+// and angular bending (sim/mass_spring.h), or continuum membranes and bending.
 
 #include <array>
 
@@ -23,9 +23,9 @@ inline constexpr std::array<ClothModel, 4> all_cloth_models{
 
 const char* cloth_model_name(ClothModel model);
 
-// The terms of a continuum model; empty for mass_spring. Only what the material needs is
-// built: no bending term at zero bending rigidity, no membrane term when neither stretch (left
-// to constraints: with_stretch false) nor shear remains.
+// The terms of a model. Only what the material needs is built: no bending term at zero
+// bending rigidity, no membrane term (mass-spring: no warp/weft springs) when stretch is left
+// to constraints (with_stretch false), none at all when neither stretch nor shear remains.
 ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
                             bool with_stretch);
 

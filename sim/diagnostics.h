@@ -18,12 +18,27 @@ struct Diagnostics {
   double total_energy_J() const { return kinetic_energy_J + elastic_energy_J + gravity_energy_J; }
 };
 
-enum class Phase { forces, integrate, project, collide, check, count };
+// The phases of Simulator::step() (forces: the force evaluations inside integrate).
+// What the steps since the last Simulator::take_step_statistics() did.
+struct StepStatistics {
+  long steps = 0;
+  long projection_iterations = 0;     // summed over steps
+  int max_projection_iterations = 0;  // in any one step
+  long unconverged_steps = 0;         // steps whose projection missed its tolerance
+  double worst_projected_strain = 0.0;
+  double solve_s = 0.0;               // linear solves (implicit Euler and fast projection)
+  long failed_implicit_solves = 0;
+  long cg_iterations = 0;             // implicit Euler by conjugate gradients, summed over steps
+  long max_self_contacts = 0;         // self-collision contacts in any one step
+};
+
+enum class Phase { forces, integrate, project, collide, check, pins, obstacles, filter, count };
 
 inline constexpr std::array<std::string_view, static_cast<int>(Phase::count)> phase_names{
-    "forces", "integrate", "project", "collide", "check"};
+    "forces", "integrate", "project", "collide", "check", "pins", "obstacles", "filter"};
 
-// Accumulated wall time per phase, seconds.
+// Accumulated wall time per phase, seconds. Exclusive: time spent in a phase timed inside
+// another (forces inside integrate) counts for the inner phase only.
 class PhaseTimers {
  public:
   template <class F>
@@ -32,12 +47,17 @@ class PhaseTimers {
     struct Stop {
       PhaseTimers* timers;
       Phase phase;
+      int outer;
       std::chrono::steady_clock::time_point start;
       ~Stop() {
-        timers->m_seconds[static_cast<int>(phase)] +=
+        const double s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        timers->m_seconds[static_cast<int>(phase)] += s;
+        if (outer >= 0) timers->m_seconds[outer] -= s;
+        timers->m_running = outer;
       }
-    } stop{this, phase, start};
+    } stop{this, phase, m_running, start};
+    m_running = static_cast<int>(phase);
     return work();
   }
   double seconds(Phase phase) const { return m_seconds[static_cast<int>(phase)]; }
@@ -49,6 +69,7 @@ class PhaseTimers {
 
  private:
   std::array<double, static_cast<int>(Phase::count)> m_seconds{};
+  int m_running = -1;  // the phase being timed, −1: none
 };
 
 }  // namespace weft::sim

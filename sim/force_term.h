@@ -1,7 +1,11 @@
 #pragma once
-// A cloth force model as a sum of elements over small vertex stencils: the interface that the
-// continuum models (Baraff–Witkin triangles, sim/continuum/; rotation-free triangles,
-// sim/rft/) implement, so that the integrators need not know which model they step.
+// A cloth force model as a sum of elements over small vertex stencils: the one interface that
+// every force of a System (sim/system.h) implements — the mass-spring model's springs and
+// angular bending (sim/mass_spring.h), carried constraint tension
+// (sim/constraints/carried_tension.h), the continuum models (Baraff–Witkin triangles,
+// sim/continuum/; rotation-free triangles, sim/rft/) — so that the integrators need not know
+// which model they step. Air drag, which depends on the velocity and the time too, is its
+// velocity-dependent variant, VelocityForceTerm below.
 //
 // An element couples the vertices of its stencil (2 for a pair, 3 for a triangle, 4 for a
 // hinge, 6 for a rotation-free patch). Its energy E_e(x) is a function of those vertices
@@ -9,13 +13,14 @@
 // K_e = ∂²E_e/∂x² projected onto the positive semi-definite cone (so that the system matrix
 // stays SPD); the explicit integrators need only the forces.
 //
-// The mass-spring model (sim/mass_spring.h) keeps its own specialised path and is not a
-// ForceTerm.
+// Terms whose elements are vertex pairs (springs, carried tension) derive from PairForceTerm:
+// implicit Euler assembles those by their 3×3 block, as fast as a dedicated spring path.
 
 #include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/types.h"
@@ -58,6 +63,42 @@ class ForceTerm {
 };
 
 using ForceTerms = std::vector<std::shared_ptr<const ForceTerm>>;
+
+// A term of vertex pairs (a, b) whose stiffness is [H −H; −H H] for a symmetric 3×3 block H.
+class PairForceTerm : public ForceTerm {
+ public:
+  // The two vertices of element e.
+  virtual std::pair<Index, Index> pair(std::size_t e) const = 0;
+  // H of element e at x, N/m: PSD-projected when project_psd.
+  virtual Mat3 pair_stiffness(const Matrix3X& x, std::size_t e, bool project_psd) const = 0;
+
+  int stencil_size(std::size_t) const final { return 2; }
+  void stencil(std::size_t e, Index* vertices) const final {
+    const auto [a, b] = pair(e);
+    vertices[0] = a;
+    vertices[1] = b;
+  }
+  void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
+                         bool project_psd) const final {
+    const Mat3 H = pair_stiffness(x, e, project_psd);
+    K.resize(6, 6);
+    K << H, -H, -H, H;
+  }
+};
+
+// The velocity-dependent variant: forces of positions, velocities and time (air drag and
+// wind, sim/aerodynamics.h), without an energy or a stiffness. Every integrator takes them
+// explicitly, at the step's start time.
+class VelocityForceTerm {
+ public:
+  virtual ~VelocityForceTerm() = default;
+  virtual std::string describe() const = 0;
+  // f += the forces at positions x (m), velocities v (m/s) and time t (s), N.
+  virtual void add_forces(const Matrix3X& x, const Matrix3X& v, double time_s,
+                          Matrix3X& f) const = 0;
+};
+
+using VelocityForceTerms = std::vector<std::shared_ptr<const VelocityForceTerm>>;
 
 // For add_stiffness_row_bound: bound[v] += Σ_c |K_e(r, c)| maximised over v's three rows r,
 // for every element e, with K_e the projected stiffness at x (the rest positions, typically).

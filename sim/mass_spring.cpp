@@ -3,9 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "sim/energies/bend_angle.h"
 #include "sim/energies/spring.h"
+#include "sim/energies/spring_hessian.h"
 
 namespace weft::sim {
 namespace {
@@ -23,6 +25,8 @@ double rest_length(const ClothMesh& mesh, Index a, Index b) {
 }  // namespace
 
 MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs) {
+  std::vector<Spring> springs;
+  std::vector<AngularSpring> bends;
   const Index nu = mesh.nu, nv = mesh.nv;
   const double hu = rest_length(mesh, mesh.index(0, 0), mesh.index(1, 0));
   const double hv = rest_length(mesh, mesh.index(0, 0), mesh.index(0, 1));
@@ -43,12 +47,12 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
     for (Index j = 0; j < nv; ++j)
       for (Index i = 0; i + 1 < nu; ++i)
         if (mesh.warp_edge_cells(i, j) > 0)
-          m_springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
+          springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
                                yu * warp_width(i, j) / hu, SpringKind::warp});
     for (Index j = 0; j + 1 < nv; ++j)
       for (Index i = 0; i < nu; ++i)
         if (mesh.weft_edge_cells(i, j) > 0)
-          m_springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
+          springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
                                yv * weft_width(i, j) / hv, SpringKind::weft});
   }
 
@@ -56,8 +60,8 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
   const double k_shear = G * d * d / (2.0 * hu * hv);
   if (k_shear > 0.0) {
     for (const auto& q : mesh.quads) {
-      m_springs.push_back({q[0], q[2], d, k_shear, SpringKind::shear});
-      m_springs.push_back({q[1], q[3], d, k_shear, SpringKind::shear});
+      springs.push_back({q[0], q[2], d, k_shear, SpringKind::shear});
+      springs.push_back({q[1], q[3], d, k_shear, SpringKind::shear});
     }
   }
 
@@ -66,7 +70,7 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
     for (Index j = 0; j < nv; ++j)
       for (Index i = 1; i + 1 < nu; ++i)
         if (mesh.warp_edge_cells(i - 1, j) > 0 && mesh.warp_edge_cells(i, j) > 0)
-          m_bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
+          bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
                              m.bend_warp_Nm * (0.5 * (warp_width(i - 1, j) + warp_width(i, j))) / hu,
                              hu});
   }
@@ -74,23 +78,96 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
     for (Index j = 1; j + 1 < nv; ++j)
       for (Index i = 0; i < nu; ++i)
         if (mesh.weft_edge_cells(i, j - 1) > 0 && mesh.weft_edge_cells(i, j) > 0)
-          m_bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
+          bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
                              m.bend_weft_Nm * (0.5 * (weft_width(i, j - 1) + weft_width(i, j))) / hv,
                              hv});
   }
   // Rest angles from the rest shape (zero for a flat grid, kept general).
-  for (auto& b : m_bends) {
+  for (auto& b : bends) {
     const Vec3 x0 = row(mesh.rest_positions, b.v0), x1 = row(mesh.rest_positions, b.v1);
     b.rest_angle = turning_angle(x1 - x0, row(mesh.rest_positions, b.v2) - x1);
   }
+  m_springs = std::make_shared<SpringTerm>(std::move(springs));
+  m_bends = std::make_shared<AngularBendingTerm>(std::move(bends));
+}
+
+ForceTerms MassSpringModel::terms() const {
+  ForceTerms terms;
+  if (!m_springs->springs().empty()) terms.push_back(m_springs);
+  if (!m_bends->bends().empty()) terms.push_back(m_bends);
+  return terms;
 }
 
 void MassSpringModel::add_forces(const Matrix3X& x, Matrix3X& f) const {
+  m_springs->add_forces(x, f);
+  m_bends->add_forces(x, f);
+}
+
+double MassSpringModel::energy(const Matrix3X& x) const {
+  return m_springs->energy(x) + m_bends->energy(x);
+}
+
+Eigen::VectorXd MassSpringModel::stiffness_row_bound(Index vertex_count) const {
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(vertex_count);
+  m_springs->add_stiffness_row_bound(bound);
+  m_bends->add_stiffness_row_bound(bound);
+  return bound;
+}
+
+std::string SpringTerm::describe() const {
+  long warp_weft = 0, shear = 0;
+  for (const Spring& s : m_springs) (s.kind == SpringKind::shear ? shear : warp_weft) += 1;
+  std::string out;
+  if (warp_weft > 0) out += std::to_string(warp_weft) + " warp/weft springs";
+  if (shear > 0) out += (out.empty() ? "" : ", ") + std::to_string(shear) + " shear springs";
+  return out;
+}
+
+Mat3 SpringTerm::pair_stiffness(const Matrix3X& x, std::size_t e, bool project_psd) const {
+  const Spring& s = m_springs[e];
+  return project_psd ? spring_hessian_b_projected(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m)
+                     : spring_hessian_b(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+}
+
+double SpringTerm::energy(const Matrix3X& x) const {
+  double e = 0.0;
+  for (const Spring& s : m_springs) e += spring_energy(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+  return e;
+}
+
+void SpringTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
   for (const Spring& s : m_springs) {
     const Vec3 g = spring_gradient_b(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
     f.row(s.a) += g.transpose();
     f.row(s.b) -= g.transpose();
   }
+}
+
+void SpringTerm::add_stiffness_row_bound(Eigen::VectorXd& bound) const {
+  for (const Spring& s : m_springs) {
+    bound[s.a] += 2.0 * s.k_N_m;
+    bound[s.b] += 2.0 * s.k_N_m;
+  }
+}
+
+std::string AngularBendingTerm::describe() const {
+  return std::to_string(m_bends.size()) + " bending stencils";
+}
+
+void AngularBendingTerm::stencil(std::size_t e, Index* vertices) const {
+  vertices[0] = m_bends[e].v0;
+  vertices[1] = m_bends[e].v1;
+  vertices[2] = m_bends[e].v2;
+}
+
+double AngularBendingTerm::energy(const Matrix3X& x) const {
+  double e = 0.0;
+  for (const AngularSpring& b : m_bends)
+    e += bend_angle_energy(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
+  return e;
+}
+
+void AngularBendingTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
   for (const AngularSpring& b : m_bends) {
     const auto g = bend_angle_gradient(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
     f.row(b.v0) -= g[0].transpose();
@@ -99,30 +176,18 @@ void MassSpringModel::add_forces(const Matrix3X& x, Matrix3X& f) const {
   }
 }
 
-double MassSpringModel::energy(const Matrix3X& x) const {
-  double e = 0.0;
-  for (const Spring& s : m_springs) e += spring_energy(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
-  for (const AngularSpring& b : m_bends)
-    e += bend_angle_energy(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
-  return e;
+void AngularBendingTerm::element_stiffness(const Matrix3X&, std::size_t, ElementMatrix&,
+                                           bool) const {
+  throw std::logic_error("AngularBendingTerm: no stiffness (has_stiffness() is false)");
 }
 
-Eigen::VectorXd MassSpringModel::stiffness_row_bound(Index vertex_count) const {
-  Eigen::VectorXd bound = Eigen::VectorXd::Zero(vertex_count);
-  // A spring's 6×6 Hessian at rest is k [I −I; −I I] ⊗ d̂d̂ᵀ: each row of blocks sums to 2k.
-  for (const Spring& s : m_springs) {
-    bound[s.a] += 2.0 * s.k_N_m;
-    bound[s.b] += 2.0 * s.k_N_m;
-  }
-  // Near flat, θ ≈ (δ0 − 2δ1 + δ2)/l across the line: Hessian (k/l²)·[1 −2 1]ᵀ[1 −2 1], whose
-  // block rows sum to 4k/l² at the ends and 8k/l² in the middle.
+void AngularBendingTerm::add_stiffness_row_bound(Eigen::VectorXd& bound) const {
   for (const AngularSpring& b : m_bends) {
     const double c = b.k_Nm / (b.rest_l_m * b.rest_l_m);
     bound[b.v0] += 4.0 * c;
     bound[b.v1] += 8.0 * c;
     bound[b.v2] += 4.0 * c;
   }
-  return bound;
 }
 
 }  // namespace weft::sim

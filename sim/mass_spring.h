@@ -4,9 +4,14 @@
 //   angular bending springs on skip-one stencils along warp and weft lines.
 // Stiffnesses come from per-width material rigidities and the rest geometry, so that refining
 // the grid does not change the behaviour (seed 004: k_i ∝ 1/l_i).
+// The springs and the angular bending are two ForceTerms (sim/force_term.h), SpringTerm and
+// AngularBendingTerm, which a System steps like any other; MassSpringModel builds them.
 
+#include <memory>
+#include <string>
 #include <vector>
 
+#include "sim/force_term.h"
 #include "sim/grid.h"
 #include "sim/material.h"
 #include "sim/types.h"
@@ -29,6 +34,52 @@ struct AngularSpring {  // vertices x0, x1, x2 along a warp or weft line
   double rest_l_m;      // mean rest length of the two edges
 };
 
+// Linear springs (sim/energies/spring.h): ½ k (|x_b − x_a| − l)² each.
+class SpringTerm final : public PairForceTerm {
+ public:
+  explicit SpringTerm(std::vector<Spring> springs) : m_springs(std::move(springs)) {}
+  // "144 warp/weft springs, 128 shear springs" (the kinds present).
+  std::string describe() const override;
+  std::size_t element_count() const override { return m_springs.size(); }
+  std::pair<Index, Index> pair(std::size_t e) const override {
+    return {m_springs[e].a, m_springs[e].b};
+  }
+  Mat3 pair_stiffness(const Matrix3X& x, std::size_t e, bool project_psd) const override;
+  double energy(const Matrix3X& x) const override;
+  void add_forces(const Matrix3X& x, Matrix3X& f) const override;
+  // A spring's 6×6 Hessian at rest is k [I −I; −I I] ⊗ d̂d̂ᵀ: each row of blocks sums to 2k.
+  void add_stiffness_row_bound(Eigen::VectorXd& bound) const override;
+  const std::vector<Spring>& springs() const { return m_springs; }
+
+ private:
+  std::vector<Spring> m_springs;
+};
+
+// Angular bending springs (sim/energies/bend_angle.h) along warp and weft lines. No stiffness
+// for implicit Euler (has_stiffness() false: their forces enter its right-hand side only; the
+// stiffness is small, docs/models.md); the row bound is the near-flat one.
+class AngularBendingTerm final : public ForceTerm {
+ public:
+  explicit AngularBendingTerm(std::vector<AngularSpring> bends) : m_bends(std::move(bends)) {}
+  std::string describe() const override;  // "7936 bending stencils"
+  std::size_t element_count() const override { return m_bends.size(); }
+  int stencil_size(std::size_t) const override { return 3; }
+  void stencil(std::size_t e, Index* vertices) const override;
+  double energy(const Matrix3X& x) const override;
+  void add_forces(const Matrix3X& x, Matrix3X& f) const override;
+  bool has_stiffness() const override { return false; }
+  // Throws std::logic_error: the term has no stiffness.
+  void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
+                         bool project_psd) const override;
+  // Near flat, θ ≈ (δ0 − 2δ1 + δ2)/l across the line: Hessian (k/l²)·[1 −2 1]ᵀ[1 −2 1], whose
+  // block rows sum to 4k/l² at the ends and 8k/l² in the middle.
+  void add_stiffness_row_bound(Eigen::VectorXd& bound) const override;
+  const std::vector<AngularSpring>& bends() const { return m_bends; }
+
+ private:
+  std::vector<AngularSpring> m_bends;
+};
+
 // Stiffnesses for a cell of hu × hv metres (derivations in docs/models.md):
 //   shear diagonal  k = G d² / (2 hu hv)          (pure shear γ stretches the diagonals by ±hu hv γ / d)
 //   warp edge       k = (Y_u − G hu²/hv²) w / hu   (the diagonals already carry G hu²/hv² of the warp stretch)
@@ -44,7 +95,10 @@ class MassSpringModel {
   MassSpringModel(const ClothMesh& mesh, const Material& material, bool structural_springs = true);
   MassSpringModel() = default;
 
-  // f += −∇E(x), forces in N.
+  // The model's terms, springs then bending, each only when it has elements.
+  ForceTerms terms() const;
+
+  // f += −∇E(x), forces in N (both terms).
   void add_forces(const Matrix3X& x, Matrix3X& f) const;
   // Elastic energy, J.
   double energy(const Matrix3X& x) const;
@@ -52,12 +106,14 @@ class MassSpringModel {
   // masses m, the largest eigenvalue of M⁻¹K is at most max_i bound_i / m_i.
   Eigen::VectorXd stiffness_row_bound(Index vertex_count) const;
 
-  const std::vector<Spring>& springs() const { return m_springs; }
-  const std::vector<AngularSpring>& bends() const { return m_bends; }
+  // Warp and weft edges (if any), then shear diagonals.
+  const std::vector<Spring>& springs() const { return m_springs->springs(); }
+  const std::vector<AngularSpring>& bends() const { return m_bends->bends(); }
 
  private:
-  std::vector<Spring> m_springs;  // warp and weft edges (if any), then shear diagonals
-  std::vector<AngularSpring> m_bends;
+  std::shared_ptr<const SpringTerm> m_springs = std::make_shared<SpringTerm>(std::vector<Spring>{});
+  std::shared_ptr<const AngularBendingTerm> m_bends =
+      std::make_shared<AngularBendingTerm>(std::vector<AngularSpring>{});
 };
 
 }  // namespace weft::sim

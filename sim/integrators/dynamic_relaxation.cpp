@@ -51,22 +51,19 @@ double relative_residual(const Matrix3X& residual_N, const Eigen::VectorXd& mass
   return load2 > 0.0 ? std::sqrt(r2 / load2) : std::sqrt(r2);
 }
 
-DynamicRelaxation::DynamicRelaxation(ExplicitSystem system, const Eigen::VectorXd& row_bound_N_m,
-                                     double h_max_s, RelaxationSettings settings)
-    : m_system(std::move(system)), m_settings(settings), m_h_max_s(h_max_s) {
-  if (!m_system.internal_forces) throw std::logic_error("DynamicRelaxation: no internal forces");
-  if (m_system.mass_kg.size() != m_system.inv_mass.size()) {
-    throw std::logic_error("DynamicRelaxation: " + std::to_string(m_system.mass_kg.size()) +
-                           " masses but " + std::to_string(m_system.inv_mass.size()) +
-                           " inverse masses");
-  }
-  m_fictitious_mass_kg =
-      fictitious_masses_kg(row_bound_N_m, m_system.mass_kg, h_max_s, m_settings.mass_safety);
+DynamicRelaxation::DynamicRelaxation(const System& system, double h_max_s,
+                                     RelaxationSettings settings)
+    : m_settings(settings), m_h_max_s(h_max_s) {
+  system.check();
+  m_fictitious_mass_kg = fictitious_masses_kg(system.stiffness_row_bound(), system.mass_kg, h_max_s,
+                                              m_settings.mass_safety);
 }
 
-const RelaxationStatus& DynamicRelaxation::step(Matrix3X& x, Matrix3X& v, double h_s) {
-  const Index n = static_cast<Index>(m_system.mass_kg.size());
-  if (x.rows() != n || v.rows() != n) {
+StepReport DynamicRelaxation::step(const System& system, State& state, double h_s) {
+  Matrix3X& x = state.x;
+  Matrix3X& v = state.v;
+  const Index n = system.vertex_count();
+  if (x.rows() != n || v.rows() != n || m_fictitious_mass_kg.size() != n) {
     throw std::logic_error("DynamicRelaxation::step: " + std::to_string(x.rows()) +
                            " positions and " + std::to_string(v.rows()) + " velocities for " +
                            std::to_string(n) + " vertices");
@@ -76,19 +73,18 @@ const RelaxationStatus& DynamicRelaxation::step(Matrix3X& x, Matrix3X& v, double
                            " s, expected in (0, " + std::to_string(m_h_max_s) + "]");
   }
   const Eigen::VectorXd& m = m_fictitious_mass_kg;
-  const Eigen::VectorXd& inv_mass = m_system.inv_mass;
+  const Eigen::VectorXd& inv_mass = system.inv_mass;
 
   // R(x_n) = f(x_n) + M g: the physical load, no damping.
   m_residual.setZero(n, 3);
-  m_system.internal_forces(x, m_residual);
-  if (m_system.velocity_forces) {  // e.g. a steady wind's load on the cloth at rest
+  system.add_forces(x, m_residual);
+  if (system.has_velocity_forces()) {  // e.g. a steady wind's load on the cloth at rest
     m_zero_velocity.setZero(n, 3);
-    m_system.velocity_forces(x, m_zero_velocity, m_residual);
+    system.add_velocity_forces(x, m_zero_velocity, state.time_s, m_residual);
   }
-  const Eigen::RowVector3d g = m_system.gravity_m_s2.transpose();
-  for (Index i = 0; i < n; ++i) m_residual.row(i) += m_system.mass_kg[i] * g;
-  m_status.residual = relative_residual(m_residual, m_system.mass_kg, inv_mass,
-                                        m_system.gravity_m_s2);
+  const Eigen::RowVector3d g = system.gravity_m_s2.transpose();
+  for (Index i = 0; i < n; ++i) m_residual.row(i) += system.mass_kg[i] * g;
+  m_status.residual = relative_residual(m_residual, system.mass_kg, inv_mass, system.gravity_m_s2);
 
   // Kick: v_{n+½} = v_{n−½} + h M̃⁻¹ R_n (a half kick from rest after a start or a reset).
   const double kinetic_before = free_kinetic_energy_J(m, inv_mass, v);
@@ -100,6 +96,8 @@ const RelaxationStatus& DynamicRelaxation::step(Matrix3X& x, Matrix3X& v, double
 
   ++m_status.iterations;
   m_status.reset = !m_restart && kinetic_after < kinetic_before;
+  StepReport report;
+  report.kinetic_reset = m_status.reset;
   if (m_status.reset) {
     // The kinetic energy peaked between v_{n−½} and v_{n+½}: back to x* = x_n − (h/2) v_{n−½}
     // and start again from rest.
@@ -111,18 +109,18 @@ const RelaxationStatus& DynamicRelaxation::step(Matrix3X& x, Matrix3X& v, double
     ++m_status.kinetic_peaks;
     m_restart = true;
     m_status.kinetic_energy_J = 0.0;
-    return m_status;
+    return report;
   }
   x += h_s * v;  // pins move by their own velocity (0 when fixed), as in ExplicitStepper
   m_restart = false;
   m_status.kinetic_energy_J = kinetic_after;
-  return m_status;
+  return report;
 }
 
-const RelaxationStatus& DynamicRelaxation::relax(Matrix3X& x, Matrix3X& v, double tolerance,
-                                                 long max_iterations) {
+const RelaxationStatus& DynamicRelaxation::relax(const System& system, Matrix3X& x, Matrix3X& v,
+                                                 double tolerance, long max_iterations) {
   for (long k = 0; k < max_iterations; ++k) {
-    step(x, v, m_h_max_s);
+    step(system, x, v, m_h_max_s);
     if (m_status.residual <= tolerance) break;
   }
   return m_status;

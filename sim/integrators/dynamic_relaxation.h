@@ -14,7 +14,7 @@
 //
 // Mass scaling. Central difference is stable for h ω_max ≤ 2, and ω_max² = λ_max(M̃⁻¹K) is at
 // most max_i bound_i / m̃_i by Gershgorin, with bound_i ≥ Σ_j |K_ij| the row bound of the
-// stiffness (N/m, MassSpringModel::stiffness_row_bound + ForceTerm::add_stiffness_row_bound). So
+// stiffness (N/m, System::stiffness_row_bound: each ForceTerm's add_stiffness_row_bound). So
 //   m̃_i = s · (h² / 4) · bound_i,   s = mass_safety ≥ 1,
 // makes h stable at every vertex, whatever the physical masses (Underwood 1983's
 // m_ii ≥ (h²/4) Σ_j |k_ij|; Rezaiee-Pajand & Alamatian 2010, "The dynamic relaxation method
@@ -30,9 +30,9 @@
 // position x* = x_n − (h/2) v_{n−½} (the midpoint of x_{n−1} and x_n, where the largest
 // velocity was measured; the standard x* = x_{n+1} − (3/2) h v_{n+½} + (h²/2) M̃⁻¹ R_n is the same
 // point), every velocity is zeroed, and the next step restarts with a half kick
-// v_{½} = (h/2) M̃⁻¹ R(x*). Air damping (ExplicitSystem::damping_1_s) is not used; velocity-
-// dependent forces (ExplicitSystem::velocity_forces: air drag, wind) are evaluated at zero
-// velocity, i.e. the steady load of the wind on a cloth at rest.
+// v_{½} = (h/2) M̃⁻¹ R(x*). Air damping (System::damping_1_s) is not used; velocity-dependent
+// forces (System::velocity_terms: air drag, wind) are evaluated at zero velocity, i.e. the
+// steady load of the wind on a cloth at rest.
 //
 // Convergence is reported as the residual norm relative to the load, ‖R‖ / ‖M g‖ over the free
 // vertices (pins carry reactions, which are not out of balance), and the fictitious kinetic
@@ -44,7 +44,7 @@
 
 #include <Eigen/Core>
 
-#include "sim/integrators/explicit_steppers.h"
+#include "sim/integrators/time_integrator.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -78,28 +78,31 @@ struct RelaxationStatus {
   double kinetic_energy_J = 0.0;  // fictitious ½ Σ m̃ |v|² after the last step
 };
 
-class DynamicRelaxation {
+class DynamicRelaxation final : public TimeIntegrator {
  public:
-  // `system` gives the internal forces, the physical masses (the load M g), the pins (inv_mass
-  // 0) and gravity; `row_bound_N_m` (#V) the stiffness row bounds; the fictitious masses are
-  // made stable for every step up to h_max_s. Throws std::logic_error on misuse.
-  DynamicRelaxation(ExplicitSystem system, const Eigen::VectorXd& row_bound_N_m, double h_max_s,
-                    RelaxationSettings settings = {});
+  // `system` gives the forces, the physical masses (the load M g), the pins (inv_mass 0),
+  // gravity and the stiffness row bounds (System::stiffness_row_bound at construction); the
+  // fictitious masses are made stable for every step up to h_max_s. Throws std::logic_error on
+  // misuse.
+  DynamicRelaxation(const System& system, double h_max_s, RelaxationSettings settings = {});
 
-  // One iteration on positions x (m) and half-step velocities v (m per pseudo-second), #V×3,
-  // with 0 < h_s ≤ h_max_s. v may have been changed since the last step (the Simulator's
-  // velocity filter after collisions); the kinetic energy before the step is taken from it.
-  const RelaxationStatus& step(Matrix3X& x, Matrix3X& v, double h_s);
+  // One iteration on positions state.x (m) and half-step velocities state.v (m per
+  // pseudo-second), #V×3, with 0 < h_s ≤ h_max_s. v may have been changed since the last step
+  // (the Simulator's velocity filter after collisions); the kinetic energy before the step is
+  // taken from it. The report's kinetic_reset is status().reset.
+  using TimeIntegrator::step;
+  StepReport step(const System& system, State& state, double h_s) override;
+  Integrator method() const override { return Integrator::dynamic_relaxation; }
 
   // Steps with h_max_s until the relative residual is ≤ tolerance or max_iterations were run.
-  const RelaxationStatus& relax(Matrix3X& x, Matrix3X& v, double tolerance, long max_iterations);
+  const RelaxationStatus& relax(const System& system, Matrix3X& x, Matrix3X& v, double tolerance,
+                                long max_iterations);
 
   const Eigen::VectorXd& fictitious_mass_kg() const { return m_fictitious_mass_kg; }
   const RelaxationStatus& status() const { return m_status; }
   double max_step_s() const { return m_h_max_s; }
 
  private:
-  ExplicitSystem m_system;
   RelaxationSettings m_settings;
   double m_h_max_s;
   Eigen::VectorXd m_fictitious_mass_kg;  // #V, kg

@@ -2,26 +2,16 @@
 
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 namespace weft::sim {
 
-ExplicitStepper::ExplicitStepper(Integrator method, ExplicitSystem system)
-    : m_method(method), m_system(std::move(system)) {
+ExplicitStepper::ExplicitStepper(Integrator method, const System& system) : m_method(method) {
   // Misuse is a programming bug (STYLE 8): std::logic_error, in release too.
   if (method == Integrator::implicit_euler)
     throw std::logic_error("ExplicitStepper: implicit_euler is not explicit (ImplicitEuler)");
   if (method == Integrator::dynamic_relaxation)
     throw std::logic_error("ExplicitStepper: dynamic_relaxation has its own stepper");
-  if (!m_system.internal_forces) throw std::logic_error("ExplicitStepper: no internal forces");
-  if (m_system.mass_kg.size() != m_system.inv_mass.size()) {
-    throw std::logic_error("ExplicitStepper: " + std::to_string(m_system.mass_kg.size()) +
-                           " masses but " + std::to_string(m_system.inv_mass.size()) +
-                           " inverse masses");
-  }
-  if (!(m_system.damping_1_s >= 0.0))
-    throw std::logic_error("ExplicitStepper: negative damping " +
-                           std::to_string(m_system.damping_1_s) + " 1/s");
+  system.check();
 }
 
 int ExplicitStepper::force_evaluations_per_step() const {
@@ -35,76 +25,82 @@ int ExplicitStepper::force_evaluations_per_step() const {
   }
 }
 
-void ExplicitStepper::total_forces(const Matrix3X& x, const Matrix3X& v, double damping_1_s,
-                                   Matrix3X& F) {
+void ExplicitStepper::total_forces(const System& system, const Matrix3X& x, const Matrix3X& v,
+                                   double time_s, double damping_1_s, Matrix3X& F) {
   F.setZero(x.rows(), 3);
-  m_system.internal_forces(x, F);
-  if (m_system.velocity_forces) m_system.velocity_forces(x, v, F);
-  const Eigen::RowVector3d g = m_system.gravity_m_s2.transpose();
+  system.add_forces(x, F);
+  if (system.has_velocity_forces()) system.add_velocity_forces(x, v, time_s, F);
+  const Eigen::RowVector3d g = system.gravity_m_s2.transpose();
   for (Index i = 0; i < F.rows(); ++i)
-    F.row(i) += m_system.mass_kg[i] * (g - damping_1_s * v.row(i));
+    F.row(i) += system.mass_kg[i] * (g - damping_1_s * v.row(i));
 }
 
-void ExplicitStepper::kick(double h_s, const Matrix3X& F, Matrix3X& v) const {
+void ExplicitStepper::kick(const System& system, double h_s, const Matrix3X& F, Matrix3X& v) {
   for (Index i = 0; i < v.rows(); ++i)
-    if (m_system.inv_mass[i] > 0.0) v.row(i) += (h_s * m_system.inv_mass[i]) * F.row(i);
+    if (system.inv_mass[i] > 0.0) v.row(i) += (h_s * system.inv_mass[i]) * F.row(i);
 }
 
-void ExplicitStepper::step(Matrix3X& x, Matrix3X& v, double h_s) {
-  const Index n = static_cast<Index>(m_system.mass_kg.size());
-  if (x.rows() != n || v.rows() != n) {
+StepReport ExplicitStepper::step(const System& system, State& state, double h_s) {
+  Matrix3X& x = state.x;
+  Matrix3X& v = state.v;
+  const Index n = system.vertex_count();
+  if (x.rows() != n || v.rows() != n || system.inv_mass.size() != n) {
     throw std::logic_error("ExplicitStepper::step: " + std::to_string(x.rows()) +
                            " positions and " + std::to_string(v.rows()) + " velocities for " +
                            std::to_string(n) + " vertices");
   }
   if (!(h_s > 0.0))
     throw std::logic_error("ExplicitStepper::step: time step " + std::to_string(h_s) + " s");
-  const double alpha = m_system.damping_1_s;
+  const double alpha = system.damping_1_s;
+  const double t = state.time_s;
   switch (m_method) {
     case Integrator::symplectic_euler:  // the new velocity moves the positions
-      total_forces(x, v, alpha, m_force);
-      kick(h_s, m_force, v);
+      total_forces(system, x, v, t, alpha, m_force);
+      kick(system, h_s, m_force, v);
       x += h_s * v;
       break;
     case Integrator::explicit_euler:  // the old velocity moves the positions
-      total_forces(x, v, alpha, m_force);
+      total_forces(system, x, v, t, alpha, m_force);
       x += h_s * v;
-      kick(h_s, m_force, v);
+      kick(system, h_s, m_force, v);
       break;
     case Integrator::velocity_verlet:
-      total_forces(x, v, alpha, m_force);
-      kick(0.5 * h_s, m_force, v);
+      total_forces(system, x, v, t, alpha, m_force);
+      kick(system, 0.5 * h_s, m_force, v);
       x += h_s * v;
-      total_forces(x, v, alpha, m_force);  // at x_{n+1}, damping at the half-step velocity
-      kick(0.5 * h_s, m_force, v);
+      total_forces(system, x, v, t, alpha, m_force);  // at x_{n+1}, damping at v½
+      kick(system, 0.5 * h_s, m_force, v);
       break;
     case Integrator::rk4:
-      rk4_step(x, v, h_s);
+      rk4_step(system, state, h_s);
       break;
     case Integrator::central_difference:
-      central_difference_step(x, v, h_s);
+      central_difference_step(system, state, h_s);
       break;
     case Integrator::implicit_euler:
     case Integrator::dynamic_relaxation:
       throw std::logic_error(std::string("ExplicitStepper: ") + integrator_name(m_method));
   }
+  return {};
 }
 
 // Stage s evaluates k_s = (v_s, a(x_s, v_s)) at y_s = y_n + c_s h k_{s−1}, c = (0, ½, ½, 1), and
 // y_{n+1} = y_n + h/6 (k_1 + 2 k_2 + 2 k_3 + k_4). Pinned vertices: a = 0 and v = 0 in every
 // stage, so they stay put.
-void ExplicitStepper::rk4_step(Matrix3X& x, Matrix3X& v, double h_s) {
+void ExplicitStepper::rk4_step(const System& system, State& state, double h_s) {
   static constexpr double kWeight[4] = {1.0, 2.0, 2.0, 1.0};
   static constexpr double kNextOffset[3] = {0.5, 0.5, 1.0};  // c_{s+1}
+  Matrix3X& x = state.x;
+  Matrix3X& v = state.v;
   m_x_stage = x;
   m_v_stage = v;
   m_dx.setZero(x.rows(), 3);
   m_dv.setZero(x.rows(), 3);
   for (int s = 0; s < 4; ++s) {
-    total_forces(m_x_stage, m_v_stage, m_system.damping_1_s, m_force);
+    total_forces(system, m_x_stage, m_v_stage, state.time_s, system.damping_1_s, m_force);
     for (Index i = 0; i < x.rows(); ++i) {  // m_force becomes the acceleration a(x_s, v_s)
-      if (m_system.inv_mass[i] > 0.0) {
-        m_force.row(i) *= m_system.inv_mass[i];
+      if (system.inv_mass[i] > 0.0) {
+        m_force.row(i) *= system.inv_mass[i];
       } else {
         m_force.row(i).setZero();
       }
@@ -123,14 +119,16 @@ void ExplicitStepper::rk4_step(Matrix3X& x, Matrix3X& v, double h_s) {
 
 // Seed 002 eqs. 20–22 with centred mass damping; h̄ is the mean of the previous and current
 // steps (half a step at the start, from the synchronous initial velocity).
-void ExplicitStepper::central_difference_step(Matrix3X& x, Matrix3X& v, double h_s) {
+void ExplicitStepper::central_difference_step(const System& system, State& state, double h_s) {
+  Matrix3X& x = state.x;
+  Matrix3X& v = state.v;
   const double h_mean = 0.5 * (m_previous_h_s + h_s);
-  const double half_damping = 0.5 * m_system.damping_1_s * h_mean;
-  total_forces(x, v, 0.0, m_force);  // f(x_n) + M g: the damping is centred below
+  const double half_damping = 0.5 * system.damping_1_s * h_mean;
+  total_forces(system, x, v, state.time_s, 0.0, m_force);  // f(x_n) + M g: damping centred below
   for (Index i = 0; i < x.rows(); ++i) {
-    if (m_system.inv_mass[i] > 0.0) {
+    if (system.inv_mass[i] > 0.0) {
       v.row(i) =
-          ((1.0 - half_damping) * v.row(i) + (h_mean * m_system.inv_mass[i]) * m_force.row(i)) /
+          ((1.0 - half_damping) * v.row(i) + (h_mean * system.inv_mass[i]) * m_force.row(i)) /
           (1.0 + half_damping);
     }
   }

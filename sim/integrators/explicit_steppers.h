@@ -1,9 +1,9 @@
 #pragma once
 // Explicit time steppers for lumped-mass dynamics with gravity and mass-proportional air
 // damping (seed 002 eq. 27):
-//   M ẍ = F(x, ẋ) = f(x) + M (g − α ẋ),     a(x, v) = M⁻¹ F(x, v),
-// where f(x) are the position-dependent internal forces (springs, bending, carried constraint
-// tension: whatever the owner's callback computes). Pinned vertices have inverse mass 0: their
+//   M ẍ = F(x, ẋ) = f(x) + f_v(x, ẋ, t) + M (g − α ẋ),     a(x, v) = M⁻¹ F(x, v),
+// where f(x) are the System's force terms (springs, bending, membranes, carried constraint
+// tension) and f_v its velocity-dependent ones (air drag, at the step's start time t). Pinned vertices have inverse mass 0: their
 // acceleration is 0, so, started at rest, they never move. With step h:
 //
 //   symplectic Euler    v ← v + h a(x, v),  x ← x + h v                         1 force eval
@@ -32,49 +32,34 @@
 // (|R(iy)|² = 1 − y⁶/72 + y⁸/576; 2.785 is its bound on the negative real axis, not this one);
 // explicit Euler never (|1 + ihω|² = 1 + h²ω²: the energy grows at every h).
 
-#include <functional>
-
-#include "sim/integrators/integrator.h"
+#include "sim/integrators/time_integrator.h"
 #include "sim/types.h"
 
 namespace weft::sim {
 
-struct ExplicitSystem {
-  // Adds the internal forces at positions x (#V×3, m) to f (#V×3, N; zeroed by the stepper).
-  std::function<void(const Matrix3X& x, Matrix3X& f)> internal_forces;
-  // Optional: adds forces that depend on the velocity too (air drag, sim/aerodynamics.h) at
-  // (x, v) to f. Central difference passes its half-step velocity.
-  std::function<void(const Matrix3X& x, const Matrix3X& v, Matrix3X& f)> velocity_forces;
-  Eigen::VectorXd mass_kg;   // #V lumped masses
-  Eigen::VectorXd inv_mass;  // #V, 1/kg; 0 for pinned vertices
-  Vec3 gravity_m_s2 = Vec3::Zero();
-  double damping_1_s = 0.0;  // α ≥ 0
-};
-
-class ExplicitStepper {
+class ExplicitStepper final : public TimeIntegrator {
  public:
-  // Throws std::logic_error for implicit_euler, a missing callback or mismatched sizes.
-  ExplicitStepper(Integrator method, ExplicitSystem system);
+  // Throws std::logic_error for implicit_euler or dynamic_relaxation, or an inconsistent system.
+  ExplicitStepper(Integrator method, const System& system);
 
-  // Advances positions x (m) and velocities v (m/s), #V×3, by h_s > 0 seconds. Central
-  // difference: v is the half-step velocity (see above).
-  void step(Matrix3X& x, Matrix3X& v, double h_s);
+  // Central difference: state.v is the half-step velocity (see above).
+  using TimeIntegrator::step;
+  StepReport step(const System& system, State& state, double h_s) override;
 
-  Integrator method() const { return m_method; }
-  const ExplicitSystem& system() const { return m_system; }
+  Integrator method() const override { return m_method; }
   // Internal-force evaluations per step: 1, or 2 (velocity Verlet), or 4 (RK4).
   int force_evaluations_per_step() const;
 
  private:
-  // F = f(x) + M (g − α v) with damping α, N.
-  void total_forces(const Matrix3X& x, const Matrix3X& v, double damping_1_s, Matrix3X& F);
+  // F = f(x) + f_v(x, v, t) + M (g − α v) with damping α, N.
+  void total_forces(const System& system, const Matrix3X& x, const Matrix3X& v, double time_s,
+                    double damping_1_s, Matrix3X& F);
   // v += (h M⁻¹) F on the free vertices.
-  void kick(double h_s, const Matrix3X& F, Matrix3X& v) const;
-  void rk4_step(Matrix3X& x, Matrix3X& v, double h_s);
-  void central_difference_step(Matrix3X& x, Matrix3X& v, double h_s);
+  static void kick(const System& system, double h_s, const Matrix3X& F, Matrix3X& v);
+  void rk4_step(const System& system, State& state, double h_s);
+  void central_difference_step(const System& system, State& state, double h_s);
 
   Integrator m_method;
-  ExplicitSystem m_system;
   double m_previous_h_s = 0.0;                // central difference: 0 before the first step
   Matrix3X m_force;                           // #V×3 scratch, N
   Matrix3X m_x_stage, m_v_stage, m_dx, m_dv;  // RK4 and velocity Verlet scratch

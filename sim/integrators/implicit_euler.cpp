@@ -8,43 +8,46 @@
 #include <string>
 #include <vector>
 
-#include "sim/constraints/carried_tension.h"
-#include "sim/energies/spring_hessian.h"
 
 namespace weft::sim {
 
 // The 3#V×3#V system (degree of freedom 3i + c is coordinate c of vertex i, which is how the
 // row-major #V×3 matrices map to vectors)
-//   A = M (1 + h α) + h² K,   K = Σ_springs [H −H; −H H],  H = spring_hessian_b_projected,
+//   A = M (1 + h α) + h² K,   K = Σ_pairs [H −H; −H H] + Σ_elements K_e,
 // kept as its lower triangle (SparseSpdSolver's contract). Its pattern depends only on the
-// springs and the pins, so it is built and analysed once; each step writes the values through
+// terms' elements and the pins, so it is built and analysed once; each step writes the values through
 // `slots` — one entry of the compressed matrix's valuePtr per contribution, in the fixed order
 // of the constructor's loops — so refilling is one linear pass, without triplets or sorting.
 // A pinned vertex's rows and columns are the identity with a zero right-hand side (its DOFs are
 // eliminated: Δv = 0 there, and nothing couples it to the free vertices).
 struct ImplicitEuler::Impl {
-  MassSpringModel model;     // a copy: the integrator does not depend on its owner's address
-  Eigen::VectorXd mass_kg;   // #V
   std::vector<char> pinned;  // #V, inv_mass == 0
-  std::vector<EdgeConstraint> tension_edges;  // carried constraint forces (see the header)
-  ForceTerms terms;                           // continuum elements (shared, immutable)
-  SparseMatrix A;                             // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
+  // Pair terms first, then the other terms with stiffness: the order of the pattern and fill.
+  std::vector<const PairForceTerm*> pair_terms;
+  std::vector<const ForceTerm*> element_terms;
+  std::vector<std::size_t> element_counts;  // of every term of the system, to check each step
+  SparseMatrix A;                           // 3#V×3#V, lower triangle, kg (1 on pinned DOFs)
   std::vector<int> slots;  // valuePtr index of each contribution, in assembly order
   ImplicitSolveSettings solve_settings;
   std::unique_ptr<SparseSpdSolver> solver;  // direct
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> cg;
   Eigen::VectorXd last_dv;  // conjugate gradients' warm start
   Matrix3X forces;          // #V×3 scratch, N
+  Matrix3X velocity_forces; // #V×3 scratch, N
   Matrix3X kv;              // #V×3 scratch, K v_n, N/s
 
-  Impl(const MassSpringModel& m, Eigen::VectorXd mass, const Eigen::VectorXd& inv_mass,
-       const ImplicitSolveSettings& solve, std::vector<EdgeConstraint> tension, ForceTerms t);
+  Impl(const System& system, const ImplicitSolveSettings& solve);
+  // The terms of `system` into pair_terms and element_terms, checking their vertices.
+  void sort_terms(const System& system);
+  // Throws std::logic_error unless `system` has the structure this was built for.
+  void check_structure(const System& system, const Matrix3X& x, const Matrix3X& v) const;
   // Δv = A⁻¹ rhs into dv; false when the solve failed.
-  bool solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv, ImplicitStepResult& result);
+  bool solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv, StepReport& result);
   void build_pattern();
-  // Writes A's values for step h, damping α at positions x, and kv = K v.
-  void fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s,
-            const Eigen::VectorXd& tension_k);
+  // Writes A's values for step h at positions x, and kv = K v.
+  void fill(const System& system, const Matrix3X& x, const Matrix3X& v, double h_s);
+  // h (f − h K v + M (g − α v)) on the free DOFs, 0 on the pinned ones, N·s.
+  Eigen::VectorXd right_hand_side(const System& system, const Matrix3X& v, double h_s) const;
   // Adds the pair (a, b) with stiffness block H: [H −H; −H H] to K v and h² of it to A, at the
   // slots from k on (in build_pattern()'s order); returns the next slot.
   std::size_t add_pair(Index a, Index b, const Mat3& H, const Matrix3X& v, double h2,
@@ -86,39 +89,13 @@ void for_each_element_block(const Index* vertices, int size, const std::vector<c
 
 }  // namespace
 
-ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
-                          const Eigen::VectorXd& inv_mass, const ImplicitSolveSettings& solve,
-                          std::vector<EdgeConstraint> tension, ForceTerms t)
-    : model(m),
-      mass_kg(std::move(mass)),
-      tension_edges(std::move(tension)),
-      terms(std::move(t)),
-      solve_settings(solve) {
-  const Index n = static_cast<Index>(mass_kg.size());
-  // Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
-  if (inv_mass.size() != n)
-    throw std::logic_error("ImplicitEuler: " + std::to_string(inv_mass.size()) +
-                           " inverse masses for " + std::to_string(n) + " masses");
+ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& solve)
+    : solve_settings(solve) {
+  system.check();
+  const Index n = system.vertex_count();
   pinned.resize(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) pinned[static_cast<std::size_t>(i)] = inv_mass[i] == 0.0;
-  const auto check_pair = [n](Index a, Index b) {
-    if (a < 0 || b < 0 || a >= n || b >= n || a == b)
-      throw std::logic_error("ImplicitEuler: pair (" + std::to_string(a) + ", " +
-                             std::to_string(b) + ") does not join two of the " + std::to_string(n) +
-                             " vertices");
-  };
-  for (const Spring& s : model.springs()) check_pair(s.a, s.b);
-  for (const EdgeConstraint& e : tension_edges) check_pair(e.a, e.b);
-  Index stencil[kMaxStencil];
-  for (const auto& term : terms)
-    for (std::size_t e = 0; e < term->element_count(); ++e) {
-      term->stencil(e, stencil);
-      for (int k = 0; k < term->stencil_size(e); ++k)
-        if (stencil[k] < 0 || stencil[k] >= n)
-          throw std::logic_error("ImplicitEuler: " + term->describe() + ": element " +
-                                 std::to_string(e) + " names vertex " + std::to_string(stencil[k]) +
-                                 " of " + std::to_string(n));
-    }
+  for (Index i = 0; i < n; ++i) pinned[static_cast<std::size_t>(i)] = system.inv_mass[i] == 0.0;
+  sort_terms(system);
   forces = Matrix3X::Zero(n, 3);
   kv = Matrix3X::Zero(n, 3);
   build_pattern();
@@ -132,8 +109,49 @@ ImplicitEuler::Impl::Impl(const MassSpringModel& m, Eigen::VectorXd mass,
   }
 }
 
+// Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
+void ImplicitEuler::Impl::sort_terms(const System& system) {
+  const Index n = system.vertex_count();
+  Index stencil[kMaxStencil];
+  for (const auto& term : system.terms) {
+    element_counts.push_back(term->element_count());
+    for (std::size_t e = 0; e < term->element_count(); ++e) {
+      term->stencil(e, stencil);
+      const int size = term->stencil_size(e);
+      for (int k = 0; k < size; ++k)
+        if (stencil[k] < 0 || stencil[k] >= n)
+          throw std::logic_error("ImplicitEuler: " + term->describe() + ": element " +
+                                 std::to_string(e) + " names vertex " + std::to_string(stencil[k]) +
+                                 " of " + std::to_string(n));
+      if (size == 2 && stencil[0] == stencil[1])
+        throw std::logic_error("ImplicitEuler: " + term->describe() + ": element " +
+                               std::to_string(e) + " joins vertex " + std::to_string(stencil[0]) +
+                               " to itself");
+    }
+    if (const auto* pairs = dynamic_cast<const PairForceTerm*>(term.get())) {
+      pair_terms.push_back(pairs);
+    } else if (term->has_stiffness()) {
+      element_terms.push_back(term.get());
+    }
+  }
+}
+
+void ImplicitEuler::Impl::check_structure(const System& system, const Matrix3X& x,
+                                          const Matrix3X& v) const {
+  const Index n = static_cast<Index>(pinned.size());
+  if (x.rows() != n || v.rows() != n || system.vertex_count() != n)
+    throw std::logic_error("ImplicitEuler::step: positions or velocities have " +
+                           std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
+                           std::to_string(n));
+  bool same = system.terms.size() == element_counts.size();
+  for (std::size_t t = 0; same && t < element_counts.size(); ++t)
+    same = system.terms[t]->element_count() == element_counts[t];
+  if (!same)
+    throw std::logic_error("ImplicitEuler::step: the system's terms are not those it was made for");
+}
+
 bool ImplicitEuler::Impl::solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv,
-                                       ImplicitStepResult& result) {
+                                       StepReport& result) {
   if (solver) {
     if (!solver->factorize(A)) return false;
     dv = solver->solve(rhs);
@@ -150,9 +168,11 @@ bool ImplicitEuler::Impl::solve_system(const Eigen::VectorXd& rhs, Eigen::Vector
 }
 
 void ImplicitEuler::Impl::build_pattern() {
-  const Index n = static_cast<Index>(mass_kg.size());
+  const Index n = static_cast<Index>(pinned.size());
+  std::size_t pairs = 0;
+  for (const PairForceTerm* term : pair_terms) pairs += term->element_count();
   std::vector<Entry> entries;  // contributions in fill() order; duplicates allowed
-  entries.reserve(3 * static_cast<std::size_t>(n) + 21 * model.springs().size());
+  entries.reserve(3 * static_cast<std::size_t>(n) + 21 * pairs);
   for (int d = 0; d < 3 * n; ++d) entries.push_back({d, d});  // mass (or identity) diagonal
   const auto add_block = [&](Index p, Index q) {              // requires p ≥ q
     for_each_lower_entry(p, q, [&](int r, int c) { entries.push_back({3 * p + r, 3 * q + c}); });
@@ -166,11 +186,13 @@ void ImplicitEuler::Impl::build_pattern() {
     if (b_free) add_block(b, b);
     if (a_free && b_free) add_block(std::max(a, b), std::min(a, b));
   };
-  for (const Spring& s : model.springs()) add_pair_blocks(s.a, s.b);
-  for (const EdgeConstraint& e : tension_edges) add_pair_blocks(e.a, e.b);
+  for (const PairForceTerm* term : pair_terms)
+    for (std::size_t e = 0; e < term->element_count(); ++e) {
+      const auto [a, b] = term->pair(e);
+      add_pair_blocks(a, b);
+    }
   Index stencil[kMaxStencil];
-  for (const auto& term : terms) {
-    if (!term->has_stiffness()) continue;
+  for (const ForceTerm* term : element_terms) {
     for (std::size_t e = 0; e < term->element_count(); ++e) {
       term->stencil(e, stencil);
       for_each_element_block(stencil, term->stencil_size(e), pinned,
@@ -198,42 +220,51 @@ void ImplicitEuler::Impl::build_pattern() {
   }
 }
 
-// A = M (1 + h α) + h² K on the free DOFs, identity on the pinned ones; kv = K v (all springs,
+// A = M (1 + h α) + h² K on the free DOFs, identity on the pinned ones; kv = K v (all pairs,
 // so that a moving pin would be seen by its neighbours; pins have v = 0 here).
-void ImplicitEuler::Impl::fill(const Matrix3X& x, const Matrix3X& v, double h_s, double damping_1_s,
-                               const Eigen::VectorXd& tension_k) {
+void ImplicitEuler::Impl::fill(const System& system, const Matrix3X& x, const Matrix3X& v,
+                               double h_s) {
   double* values = A.valuePtr();
   std::fill(values, values + A.nonZeros(), 0.0);
-  const Index n = static_cast<Index>(mass_kg.size());
+  const Index n = static_cast<Index>(pinned.size());
   std::size_t k = 0;
   for (Index i = 0; i < n; ++i) {
-    const double diag =
-        pinned[static_cast<std::size_t>(i)] ? 1.0 : mass_kg[i] * (1.0 + h_s * damping_1_s);
+    const double diag = pinned[static_cast<std::size_t>(i)]
+                            ? 1.0
+                            : system.mass_kg[i] * (1.0 + h_s * system.damping_1_s);
     for (int c = 0; c < 3; ++c) values[slots[k++]] += diag;
   }
   kv.setZero();
   const double h2 = h_s * h_s;
-  for (const Spring& s : model.springs()) {
-    const Vec3 xa = x.row(s.a).transpose(), xb = x.row(s.b).transpose();
-    k = add_pair(s.a, s.b, spring_hessian_b_projected(xa, xb, s.rest_m, s.k_N_m), v, h2, k);
-  }
-  // A carried tension k > 0 is a zero-rest-length spring: stiffness k I (PSD). Compression
-  // (k < 0) would make A indefinite: its force is kept, its stiffness dropped.
-  for (std::size_t e = 0; e < tension_edges.size(); ++e) {
-    const double stiffness =
-        tension_k.size() > 0 ? std::max(0.0, tension_k[static_cast<Eigen::Index>(e)]) : 0.0;
-    k = add_pair(tension_edges[e].a, tension_edges[e].b, stiffness * Mat3::Identity(), v, h2, k);
-  }
+  for (const PairForceTerm* term : pair_terms)
+    for (std::size_t e = 0; e < term->element_count(); ++e) {
+      const auto [a, b] = term->pair(e);
+      k = add_pair(a, b, term->pair_stiffness(x, e, /*project_psd=*/true), v, h2, k);
+    }
   ElementMatrix K;
   Index stencil[kMaxStencil];
-  for (const auto& term : terms) {
-    if (!term->has_stiffness()) continue;
+  for (const ForceTerm* term : element_terms) {
     for (std::size_t e = 0; e < term->element_count(); ++e) {
       term->stencil(e, stencil);
       term->element_stiffness(x, e, K, /*project_psd=*/true);
       k = add_element(stencil, term->stencil_size(e), K, v, h2, k);
     }
   }
+}
+
+Eigen::VectorXd ImplicitEuler::Impl::right_hand_side(const System& system, const Matrix3X& v,
+                                                     double h_s) const {
+  const Index n = static_cast<Index>(pinned.size());
+  Eigen::VectorXd rhs(3 * n);  // N·s
+  const Eigen::RowVector3d g = system.gravity_m_s2.transpose();
+  const double alpha = system.damping_1_s;
+  for (Index i = 0; i < n; ++i) {
+    Eigen::RowVector3d bi = Eigen::RowVector3d::Zero();
+    if (!pinned[static_cast<std::size_t>(i)])
+      bi = h_s * (forces.row(i) - h_s * kv.row(i) + system.mass_kg[i] * (g - alpha * v.row(i)));
+    rhs.segment<3>(3 * i) = bi.transpose();
+  }
+  return rhs;
 }
 
 std::size_t ImplicitEuler::Impl::add_element(const Index* vertices, int size,
@@ -272,59 +303,37 @@ std::size_t ImplicitEuler::Impl::add_pair(Index a, Index b, const Mat3& H, const
   return k;
 }
 
-ImplicitEuler::ImplicitEuler(const MassSpringModel& model, Eigen::VectorXd mass_kg,
-                             Eigen::VectorXd inv_mass, const ImplicitSolveSettings& solve,
-                             std::vector<EdgeConstraint> tension_edges, ForceTerms terms)
-    : m_impl(std::make_unique<Impl>(model, std::move(mass_kg), inv_mass, solve,
-                                    std::move(tension_edges), std::move(terms))) {}
+ImplicitEuler::ImplicitEuler(const System& system, const ImplicitSolveSettings& solve)
+    : m_impl(std::make_unique<Impl>(system, solve)) {}
 
 ImplicitEuler::~ImplicitEuler() = default;
 
 // One Newton step of backward Euler (Baraff & Witkin 1998, with ∂f/∂x = −K, ∂f/∂v = −α M):
 //   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n + M g),   v_{n+1} = v_n + Δv.
-ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_s,
-                                       const Vec3& gravity_m_s2, double damping_1_s,
-                                       const Eigen::VectorXd& tension_k,
-                                       const Matrix3X& external_forces) {
+StepReport ImplicitEuler::step(const System& system, State& state, double h_s) {
   const auto start = std::chrono::steady_clock::now();
   Impl& im = *m_impl;
-  const Index n = static_cast<Index>(im.mass_kg.size());
-  if (x.rows() != n || v.rows() != n)
-    throw std::logic_error("ImplicitEuler::step: positions or velocities have " +
-                           std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
-                           std::to_string(n));
-
-  if (tension_k.size() != 0 &&
-      tension_k.size() != static_cast<Eigen::Index>(im.tension_edges.size()))
-    throw std::logic_error("ImplicitEuler::step: " + std::to_string(tension_k.size()) +
-                           " tensions for " + std::to_string(im.tension_edges.size()) + " edges");
-  im.fill(x, v, h_s, damping_1_s, tension_k);
+  const Matrix3X& x = state.x;
+  Matrix3X& v = state.v;
+  im.check_structure(system, x, v);
+  im.fill(system, x, v, h_s);
   im.forces.setZero();
-  im.model.add_forces(x, im.forces);  // springs and bending, N
-  for (const auto& term : im.terms) term->add_forces(x, im.forces);
-  add_tension_forces(im.tension_edges, tension_k, x, im.forces);
-  if (external_forces.rows() != 0 && external_forces.rows() != n)
-    throw std::logic_error("ImplicitEuler::step: " + std::to_string(external_forces.rows()) +
-                           " external forces for " + std::to_string(n) + " vertices");
-  if (external_forces.rows() == n) im.forces += external_forces;
-
-  Eigen::VectorXd rhs(3 * n);  // N·s
-  const Eigen::RowVector3d g = gravity_m_s2.transpose();
-  for (Index i = 0; i < n; ++i) {
-    Eigen::RowVector3d bi = Eigen::RowVector3d::Zero();
-    if (!im.pinned[static_cast<std::size_t>(i)])
-      bi = h_s *
-           (im.forces.row(i) - h_s * im.kv.row(i) + im.mass_kg[i] * (g - damping_1_s * v.row(i)));
-    rhs.segment<3>(3 * i) = bi.transpose();
+  system.add_forces(x, im.forces);  // every term, N
+  if (system.has_velocity_forces()) {  // explicitly, at (x_n, v_n)
+    im.velocity_forces.setZero(x.rows(), 3);
+    system.add_velocity_forces(x, v, state.time_s, im.velocity_forces);
+    im.forces += im.velocity_forces;
   }
+  const Eigen::VectorXd rhs = im.right_hand_side(system, v, h_s);
 
-  ImplicitStepResult result;
+  StepReport result;
   Eigen::VectorXd dv;  // m/s
   result.solved = im.solve_system(rhs, dv, result);
   if (result.solved) {
-    for (Index i = 0; i < n; ++i)
+    for (Index i = 0; i < x.rows(); ++i)
       if (!im.pinned[static_cast<std::size_t>(i)]) v.row(i) += dv.segment<3>(3 * i).transpose();
   }
+  state.x += h_s * v;
   result.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/energies/spring.h"
+#include "sim/mass_spring.h"
 #include "sim/simulator.h"
 #include "analysis/stability.h"
 
@@ -49,9 +50,12 @@ struct Chain {
       }
     };
   }
-  ExplicitSystem system(double damping_1_s) const {
-    ExplicitSystem s;
-    s.internal_forces = forces();
+  System system(double damping_1_s) const {
+    std::vector<Spring> springs;
+    for (Index i = 0; i + 1 < vertices(); ++i)
+      springs.push_back({i, i + 1, kRest, kStiffness, SpringKind::warp});
+    System s;
+    s.terms.push_back(std::make_shared<SpringTerm>(std::move(springs)));
     s.mass_kg = mass();
     s.inv_mass = inv_mass();
     s.damping_1_s = damping_1_s;
@@ -68,7 +72,7 @@ double relative_error(double value, double reference) {
 double observed_over_predicted(const Chain& chain, Integrator method, double damping_1_s,
                                double predicted_h_s, const BlowUpSettings& settings = {}) {
   const CriticalStepSearch search =
-      find_critical_step(explicit_stepper_factory(method, chain.system(damping_1_s)),
+      find_critical_step(stepper_factory(method, chain.system(damping_1_s)),
                          chain.rest(), chain.mass(), chain.inv_mass(), predicted_h_s, settings);
   EXPECT_TRUE(search.bracketed) << integrator_name(method);
   const double ratio = search.h_s() / predicted_h_s;
@@ -199,15 +203,12 @@ struct Tripod {
   }
   Eigen::VectorXd mass() const { return Eigen::VectorXd::Constant(4, kMass); }
   Eigen::VectorXd inv_mass() const { return Eigen::Vector4d(1.0 / kMass, 0.0, 0.0, 0.0); }
-  ExplicitSystem system(double damping_1_s) const {
-    ExplicitSystem s;
-    s.internal_forces = [](const Matrix3X& x, Matrix3X& f) {
-      for (Index anchor = 1; anchor < 4; ++anchor) {
-        const Vec3 grad = spring_gradient_b(x.row(anchor), x.row(0), kRest, kStiffness);
-        f.row(0) -= grad.transpose();
-        f.row(anchor) += grad.transpose();
-      }
-    };
+  System system(double damping_1_s) const {
+    std::vector<Spring> springs;  // anchor a to the vertex b = 0
+    for (Index anchor = 1; anchor < 4; ++anchor)
+      springs.push_back({anchor, 0, kRest, kStiffness, SpringKind::warp});
+    System s;
+    s.terms.push_back(std::make_shared<SpringTerm>(std::move(springs)));
     s.mass_kg = mass();
     s.inv_mass = inv_mass();
     s.damping_1_s = damping_1_s;
@@ -225,7 +226,7 @@ TEST(CriticalStep, ExplicitEulerNeedsDampingAndThenBlowsUpAtAlphaOverOmegaSquare
   BlowUpSettings long_run;
   long_run.steps = 5000;
   const BlowUpResult undamped = run_blow_up_test(
-      explicit_stepper_factory(Integrator::explicit_euler, spring.system(0.0))(), spring.rest(),
+      stepper_factory(Integrator::explicit_euler, spring.system(0.0))(), spring.rest(),
       spring.mass(), spring.inv_mass(), 0.1 / omega, long_run);
   EXPECT_FALSE(undamped.stable) << "max growth " << undamped.max_growth;
 
@@ -242,7 +243,7 @@ TEST(CriticalStep, ExplicitEulerNeedsDampingAndThenBlowsUpAtAlphaOverOmegaSquare
   EXPECT_DOUBLE_EQ(predicted_overdamped,
                    2.0 / (0.5 * overdamped + std::sqrt(0.25 * overdamped * overdamped - omega * omega)));
   const CriticalStepSearch search = find_critical_step(
-      explicit_stepper_factory(Integrator::explicit_euler, tripod.system(overdamped)),
+      stepper_factory(Integrator::explicit_euler, tripod.system(overdamped)),
       tripod.rest(), tripod.mass(), tripod.inv_mass(), predicted_overdamped);
   ASSERT_TRUE(search.bracketed);
   std::printf("explicit_euler     overdamped tripod: predicted %.5e s, observed %.5e s\n",

@@ -11,6 +11,7 @@
 
 #include "sim/energies/spring.h"
 #include "sim/integrators/dynamic_relaxation.h"
+#include "sim/mass_spring.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
 #include "tests/sim/cantilever_support.h"
@@ -24,8 +25,7 @@ namespace {
 double static_residual(const Simulator& sim, const Vec3& gravity_m_s2) {
   const Matrix3X& x = sim.state().x;
   Matrix3X f = Matrix3X::Zero(x.rows(), 3);
-  sim.model().add_forces(x, f);
-  for (const auto& term : sim.force_terms()) term->add_forces(x, f);
+  sim.system().add_forces(x, f);
   Eigen::VectorXd inv_mass = sim.masses_kg().cwiseInverse();
   for (Index p : sim.pinned()) inv_mass[p] = 0.0;
   for (Index i = 0; i < x.rows(); ++i) f.row(i) += sim.masses_kg()[i] * gravity_m_s2.transpose();
@@ -35,23 +35,21 @@ double static_residual(const Simulator& sim, const Vec3& gravity_m_s2) {
 // (1) A mass m hanging from a pinned point on a spring k relaxes to the static extension m g / k.
 TEST(DynamicRelaxation, HangingSpringReachesTheStaticExtension) {
   const double m = 0.01, k = 100.0, L = 0.2, g = 9.81;  // kg, N/m, m, m/s²
-  ExplicitSystem system;
-  system.internal_forces = [&](const Matrix3X& x, Matrix3X& f) {
-    const Vec3 force_b = -spring_gradient_b(x.row(0).transpose(), x.row(1).transpose(), L, k);
-    f.row(1) += force_b.transpose();
-    f.row(0) -= force_b.transpose();
-  };
+  System system;
+  system.terms.push_back(
+      std::make_shared<SpringTerm>(std::vector<Spring>{{0, 1, L, k, SpringKind::warp}}));
   system.mass_kg = Eigen::Vector2d(m, m);
   system.inv_mass = Eigen::Vector2d(0.0, 1.0 / m);  // vertex 0 pinned
   system.gravity_m_s2 = Vec3(0.0, 0.0, -g);
   // Row bound of the rest stiffness: |K_11| + |K_10| = 2k at both vertices.
+  EXPECT_EQ(system.stiffness_row_bound(), Eigen::Vector2d(2.0 * k, 2.0 * k));
   const double h = 1.0;  // one pseudo-second: only h²/m̃ matters
-  DynamicRelaxation dr(system, Eigen::Vector2d(2.0 * k, 2.0 * k), h);
+  DynamicRelaxation dr(system, h);
   EXPECT_DOUBLE_EQ(dr.fictitious_mass_kg()[1], 1.5 * 0.25 * h * h * 2.0 * k);  // s h²/4 · bound
 
   Matrix3X x(2, 3), v = Matrix3X::Zero(2, 3);
   x << 0.0, 0.0, 0.0, 0.0, 0.0, -L;
-  const RelaxationStatus s = dr.relax(x, v, 1e-12, 1000);
+  const RelaxationStatus s = dr.relax(system, x, v, 1e-12, 1000);
   const double extension = -x(1, 2) - L;
   std::printf("spring: extension %.9f m (m g / k = %.9f m) after %ld iterations, %ld peaks\n",
               extension, m * g / k, s.iterations, s.kinetic_peaks);

@@ -129,19 +129,23 @@ TEST(Simulator, DampedHangingClothComesToRest) {
 // A 1 m cloth hanging from two adjacent corners settles to the same shape at 16², 32² and 64²:
 // the drop of its centre of mass agrees within 5 % and converges. (The strain right at a
 // point pin is singular in the continuum and grows with refinement; integral measures do not.)
+// The static shape is reached by dynamic relaxation (sim/integrators/dynamic_relaxation.h),
+// not by seconds of damped dynamics: the equilibrium does not depend on the path.
 TEST(Simulator, TwoCornerSagIsResolutionIndependent) {
   std::vector<double> sag;
   for (Index n : {16, 32, 64}) {
     const ClothMesh mesh = square(n);
     SimSettings settings;
-    settings.air_damping_1_s = 3.0;  // near critical for the slowest sway; equilibrium does not depend on it
+    settings.integrator = Integrator::dynamic_relaxation;
     Simulator sim(mesh, fabric(200.0), resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), settings);
-    double peak = 0.0;
-    for (int k = 0; k < 16; ++k) {
-      sim.advance(0.5);
-      peak = std::max(peak, sim.diagnostics().kinetic_energy_J);
+    // ‖f + M g‖ / ‖M g‖ over the free vertices. Measured: from 1e-3 down to 1e-6 the sag moves
+    // by less than 1e-5 m at every size (16², 32², 64²: 2.7k, 10k, 16k iterations to 1e-3).
+    const double tolerance = 1e-3;
+    while (sim.relaxation()->status().iterations < 200000) {
+      sim.step(sim.time_step());
+      if (sim.relaxation()->status().residual <= tolerance) break;
     }
-    ASSERT_LT(sim.diagnostics().kinetic_energy_J, 1e-6 * peak) << n << "² has not settled";
+    ASSERT_LE(sim.relaxation()->status().residual, tolerance) << n << "² has not settled";
     sag.push_back(2.0 - centre_of_mass_z(sim));
   }
   const double lo = *std::min_element(sag.begin(), sag.end());

@@ -1,0 +1,144 @@
+#include "sim/contacts_and_constraints.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace weft::sim {
+namespace {
+
+const char* projection_name(ProjectionMethod method) {
+  switch (method) {
+    case ProjectionMethod::none:
+      return "none";
+    case ProjectionMethod::fast_projection:
+      return "fast_projection";
+    case ProjectionMethod::pairwise:
+      return "pairwise";
+  }
+  return "?";
+}
+
+}  // namespace
+
+ContactsAndConstraints::ContactsAndConstraints(const ClothMesh& mesh,
+                                               const Eigen::VectorXd& inv_mass,
+                                               const SimSettings& settings)
+    : m_settings(settings), m_inv_mass(inv_mass) {
+  m_projector = make_projector(mesh, inv_mass, settings.projection, settings.sparse_backend);
+  // Fast projection's multipliers give the constraint force to carry (carried_tension.h);
+  // pairwise projection has none.
+  if (m_projector && settings.projection.carry_tension &&
+      settings.projection.method == ProjectionMethod::fast_projection)
+    m_tension = std::make_shared<CarriedTensionTerm>(m_projector->constraints());
+  m_posed_obstacles = posed_obstacles(settings.obstacles, settings.obstacle_motions, 0.0);
+  if (settings.self_collision.enabled)
+    m_self = std::make_unique<SelfCollision>(mesh, settings.self_collision);
+}
+
+ContactsAndConstraints::~ContactsAndConstraints() = default;
+
+void ContactsAndConstraints::pose_obstacles(double t0_s, double t1_s) {
+  if (!any_moves(m_settings.obstacle_motions)) return;  // m_posed_obstacles stay as made
+  m_posed_obstacles = posed_obstacles(m_settings.obstacles, m_settings.obstacle_motions, t1_s);
+  m_obstacle_step_motions.clear();
+  for (const ObstacleMotion& motion : m_settings.obstacle_motions)
+    m_obstacle_step_motions.push_back(motion.motion_between(t0_s, t1_s));
+}
+
+bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, double h_s,
+                                     PhaseTimers& timers, StepStatistics& stats) {
+  bool collided = timers.time(Phase::collide, [&] { return collide(x_start, x, true, stats); });
+  if (!m_projector) return collided;
+  ProjectionResult total;
+  for (int round = 0; round <= kContactRounds; ++round) {
+    const ProjectionResult r = timers.time(Phase::project, [&] { return project(x, h_s); });
+    total.iterations += r.iterations;
+    total.solve_s += r.solve_s;
+    total.converged = r.converged;
+    total.max_strain = r.max_strain;
+    if (round == kContactRounds ||
+        !timers.time(Phase::collide, [&] { return collide(x_start, x, false, stats); }))
+      break;
+  }
+  record(total, stats);
+  return true;
+}
+
+ProjectionResult ContactsAndConstraints::project(Matrix3X& x, double h_s) {
+  const ProjectionResult r = m_projector->project(x);
+  if (m_tension) m_tension->accumulate(m_projector->multipliers(), h_s);
+  return r;
+}
+
+void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& stats) {
+  stats.projection_iterations += r.iterations;
+  stats.max_projection_iterations = std::max(stats.max_projection_iterations, r.iterations);
+  if (!r.converged) ++stats.unconverged_steps;
+  stats.worst_projected_strain = std::max(stats.worst_projected_strain, r.max_strain);
+  stats.solve_s += r.solve_s;
+}
+
+// Obstacle push-out, with Coulomb friction against the displacement since the start of the
+// step; then the cloth against itself, and the obstacles once more (frictionless) for the
+// vertices that moved, so that no vertex is left inside an obstacle.
+bool ContactsAndConstraints::collide(const Matrix3X& x_start, Matrix3X& x, bool with_friction,
+                                     StepStatistics& stats) {
+  const std::vector<Obstacle>& obstacles = m_posed_obstacles;
+  const double thickness = m_settings.collision_thickness_m;
+  const auto push_out = [&](bool friction) {
+    if (obstacles.empty()) return false;
+    if (friction && m_settings.collision_friction > 0.0) {
+      return push_out_of_obstacles(obstacles, m_obstacle_step_motions, thickness, m_inv_mass,
+                                   x_start, m_settings.collision_friction, x) > 0;
+    }
+    return push_out_of_obstacles(obstacles, thickness, m_inv_mass, x) > 0;
+  };
+  bool moved = push_out(with_friction);
+  if (m_self) {
+    const long contacts = m_self->resolve(x_start, m_inv_mass, x).total();
+    stats.max_self_contacts = std::max(stats.max_self_contacts, contacts);
+    if (contacts > 0) {
+      // Only the vertices self-collision moved can have been pushed into an obstacle.
+      if (!obstacles.empty())
+        push_out_of_obstacles(obstacles, thickness, m_inv_mass, m_self->moved_vertices(), x);
+      moved = true;
+    }
+  }
+  return moved;
+}
+
+std::string ContactsAndConstraints::explain_project() const {
+  std::ostringstream line;
+  if (!m_projector) return "project: off (no constraints)";
+  const ProjectionSettings& p = m_settings.projection;
+  line << "project: " << projection_name(p.method) << " on " << m_projector->constraints().size()
+       << (p.edges == ConstrainedEdges::warp_weft ? " warp/weft" : " triangle") << " edges, ";
+  if (p.method == ProjectionMethod::fast_projection)
+    line << "tolerance " << p.tolerance << ", at most " << p.max_iterations << " iterations";
+  else
+    line << p.max_iterations << " sweeps, max stretch " << p.max_stretch;
+  return line.str();
+}
+
+std::string ContactsAndConstraints::explain_collide() const {
+  std::ostringstream line;
+  if (m_settings.obstacles.empty()) {
+    line << "collide: " << (m_self ? "no obstacles" : "off (no obstacles, no self-collision)");
+  } else {
+    std::size_t meshes = 0, moving = 0;
+    for (const Obstacle& o : m_settings.obstacles) meshes += std::holds_alternative<MeshObstacle>(o);
+    for (const ObstacleMotion& m : m_settings.obstacle_motions) moving += m.moves();
+    line << "collide: " << m_settings.obstacles.size() << " obstacles (" << meshes << " meshes, "
+         << moving << " moving), thickness " << 1e3 * m_settings.collision_thickness_m
+         << " mm, friction " << m_settings.collision_friction;
+  }
+  if (m_self) {
+    line << "; self-collision over " << m_self->triangle_count() << " triangles and "
+         << m_self->edge_count() << " edges, thickness " << 1e3 * m_self->thickness_m()
+         << " mm, marbles of radius " << 1e3 * m_self->marble_radius_m()
+         << " mm, candidate margin " << 1e3 * m_self->margin_m() << " mm";
+  }
+  return line.str();
+}
+
+}  // namespace weft::sim

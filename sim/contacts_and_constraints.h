@@ -1,0 +1,66 @@
+#pragma once
+// The "contacts and constraints" phase of a step, after the unconstrained integration: the
+// obstacles (posed at the step's end, with friction against their motion), the cloth against
+// itself, and the inextensibility projection, which carries its tension into the next step's
+// forces (a CarriedTensionTerm of the System).
+//
+// With a projection, push-out and projection alternate (block Gauss–Seidel over contacts and
+// constraints), ending with a projection so that the step meets the tolerance; vertices may end
+// up to the residual of the last push-out inside the collision thickness. A single push-out
+// after the projection undid it where the cloth lies on an obstacle (measured on the
+// inextensible sphere drape: 30 % strain). Friction acts in the first push-out only: later ones
+// would drag contact vertices back toward their start positions.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/constraints/carried_tension.h"
+#include "sim/constraints/projection.h"
+#include "sim/diagnostics.h"
+#include "sim/grid.h"
+#include "sim/sim_settings.h"
+
+namespace weft::sim {
+
+class ContactsAndConstraints {
+ public:
+  // inv_mass: #V, 0 at pins and unused vertices (the System's).
+  ContactsAndConstraints(const ClothMesh& mesh, const Eigen::VectorXd& inv_mass,
+                         const SimSettings& settings);
+  ~ContactsAndConstraints();
+
+  // The carried tension force term (null unless fast projection carries tension).
+  std::shared_ptr<const ForceTerm> tension_term() const { return m_tension; }
+
+  // Moves the obstacles to their poses at t1 and records each one's rigid motion t0 → t1,
+  // which carries friction's start positions along (sim/collision/obstacle_motion.h).
+  void pose_obstacles(double t0_s, double t1_s);
+  // Corrects the positions x (#V×3, m) that a step of h_s seconds from x_start reached:
+  // push-outs and projections, timed as Phase::collide and Phase::project, counted in stats.
+  // True when x was changed (a projection ran or a contact moved a vertex).
+  bool resolve(const Matrix3X& x_start, Matrix3X& x, double h_s, PhaseTimers& timers,
+               StepStatistics& stats);
+
+  // `weft run --explain`'s "project:" and "collide:" lines.
+  std::string explain_project() const;
+  std::string explain_collide() const;
+  const ConstraintProjector* projector() const { return m_projector.get(); }
+  const SelfCollision* self_collision() const { return m_self.get(); }
+
+ private:
+  ProjectionResult project(Matrix3X& x, double h_s);  // one projection; carries its tension
+  bool collide(const Matrix3X& x_start, Matrix3X& x, bool with_friction, StepStatistics& stats);
+  static void record(const ProjectionResult& r, StepStatistics& stats);  // a step's, summed
+  static constexpr int kContactRounds = 2;  // push-outs between projections, per step
+
+  const SimSettings& m_settings;  // the owner's
+  const Eigen::VectorXd& m_inv_mass;  // the owner's System's
+  std::unique_ptr<ConstraintProjector> m_projector;
+  std::shared_ptr<CarriedTensionTerm> m_tension;  // when fast projection carries tension
+  std::unique_ptr<SelfCollision> m_self;          // when settings.self_collision.enabled
+  std::vector<Obstacle> m_posed_obstacles;        // where the obstacles are at the step's end
+  std::vector<RigidPose> m_obstacle_step_motions;  // each one's motion over the step; empty: none
+};
+
+}  // namespace weft::sim

@@ -1,0 +1,62 @@
+#pragma once
+// One interface for every time integrator: step(system, state, h) advances the positions and
+// velocities of `state` by h seconds under the forces of `system` (sim/system.h) and reports
+// what the step did. The explicit steppers (explicit_steppers.h), implicit Euler
+// (implicit_euler.h) and dynamic relaxation (dynamic_relaxation.h) implement it;
+// make_time_integrator() makes the one a scene names.
+
+#include <memory>
+
+#include "sim/integrators/integrator.h"
+#include "sim/linear/sparse_spd_solver.h"
+#include "sim/state.h"
+#include "sim/system.h"
+
+namespace weft::sim {
+
+// What one step did.
+struct StepReport {
+  bool solved = true;          // implicit Euler: false when the linear solve failed (v kept)
+  double solve_s = 0.0;        // implicit Euler: assembly, factorization and solve, s
+  int cg_iterations = 0;       // implicit Euler by conjugate gradients
+  bool kinetic_reset = false;  // dynamic relaxation: a kinetic-damping reset (v is now 0)
+};
+
+class TimeIntegrator {
+ public:
+  virtual ~TimeIntegrator() = default;
+  virtual Integrator method() const = 0;
+  // Advances state.x (m) and state.v (m/s), #V×3, by h_s > 0 seconds; state.time_s is the
+  // step's start time (velocity-dependent forces are taken there) and is left to the caller.
+  // Pinned vertices (inv_mass 0) keep their velocity and move by h v. Throws std::logic_error
+  // on mismatched sizes.
+  virtual StepReport step(const System& system, State& state, double h_s) = 0;
+  // The same on positions and velocities held apart, at time time_s.
+  StepReport step(const System& system, Matrix3X& x, Matrix3X& v, double h_s,
+                  double time_s = 0.0);
+};
+
+// How implicit Euler solves each step's linear system: a sparse direct factorization
+// (SparseBackend), or conjugate gradients with a Jacobi preconditioner, warm-started from the
+// previous step's Δv and stopped at a relative residual ‖r‖/‖b‖ ≤ tolerance (inexact Newton:
+// cheaper per step on large meshes; the step's accuracy is then that of the residual).
+enum class ImplicitSolve { direct, conjugate_gradient };
+
+struct ImplicitSolveSettings {
+  ImplicitSolve method = ImplicitSolve::direct;
+  SparseBackend backend = default_sparse_backend();  // direct
+  double cg_tolerance = 1e-4;                        // conjugate gradients: relative residual
+  int cg_max_iterations = 200;
+};
+
+struct IntegratorSettings {
+  ImplicitSolveSettings implicit_solve;  // implicit_euler
+  double relaxation_max_step_s = 0.0;    // dynamic_relaxation: fictitious masses stable up to it
+};
+
+// The integrator `method` for `system` (whose masses, pins and terms fix its structure: step
+// it with that system). Throws std::logic_error on misuse.
+std::unique_ptr<TimeIntegrator> make_time_integrator(Integrator method, const System& system,
+                                                     const IntegratorSettings& settings = {});
+
+}  // namespace weft::sim

@@ -1,0 +1,69 @@
+#pragma once
+// What a Simulator is asked to simulate besides the cloth itself: the model and integrator,
+// gravity and damping, the time step, constraints, obstacles, self-collision and air. The app
+// fills it from the scene file (app/scene_reader.cpp); the Simulator turns it into a System, a
+// TimeIntegrator and the contacts-and-constraints phase.
+
+#include <optional>
+#include <vector>
+
+#include "sim/aerodynamics.h"
+#include "sim/cloth_model.h"
+#include "sim/collision/obstacle.h"
+#include "sim/collision/obstacle_motion.h"
+#include "sim/collision/self_collision.h"
+#include "sim/constraints/projection.h"
+#include "sim/integrators/integrator.h"
+#include "sim/integrators/time_integrator.h"
+#include "sim/linear/sparse_spd_solver.h"
+#include "sim/types.h"
+
+namespace weft::sim {
+
+struct SimSettings {
+  ClothModel model = ClothModel::mass_spring;  // the forces (sim/cloth_model.h)
+  Integrator integrator = Integrator::symplectic_euler;
+  Vec3 gravity_m_s2{0.0, 0.0, -9.81};
+  double air_damping_1_s = 0.5;        // mass-proportional damping α: f = −α m v (seed 002 eq. 27)
+  // The scene's simulation.time_step (app/scene.cpp; "auto" leaves it empty). Empty:
+  // automatic. Every explicit integrator: time_step_safety × the critical step 2/ω_max,
+  // with ω_max² estimated from a Gershgorin bound on the largest eigenvalue of M⁻¹K (an upper
+  // bound, so 1.0 is still stable at rest; measured: the default scene with symplectic Euler is
+  // stable up to 1.2 and explodes at 1.5). 2/ω is the limit of symplectic Euler, velocity Verlet
+  // and central difference; RK4's is 2√2/ω (not used: the same step keeps a margin); explicit
+  // Euler has none on an undamped oscillator. Implicit Euler, unconditionally stable:
+  // implicit_default_step_s.
+  std::optional<double> time_step_s;
+  double time_step_safety = 0.8;
+  double implicit_default_step_s = 1.0 / 120.0;
+  // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
+  // explosion, not physics: free fall reaches 100 m/s only after 10 s).
+  double max_speed_m_s = 200.0;
+  // Inextensibility after the unconstrained step (the "project" phase). With a projection
+  // method the warp/weft springs are replaced by constraints.
+  ProjectionSettings projection;
+  SparseBackend sparse_backend = default_sparse_backend();  // implicit Euler and fast projection
+  // Implicit Euler's linear solve: direct (sparse_backend) or conjugate gradients to a relative
+  // residual of implicit_cg_tolerance (see ImplicitSolveSettings).
+  ImplicitSolve implicit_solve = ImplicitSolve::direct;
+  double implicit_cg_tolerance = 1e-4;
+  // Rigid obstacles (the "collide" phase) and how far the cloth keeps from their surfaces.
+  std::vector<Obstacle> obstacles;
+  // Keyframed motion of the obstacles: empty (none moves) or one per obstacle (an empty
+  // ObstacleMotion for one that stays). The collide phase of a step from t to t + h uses the
+  // obstacles posed at t + h, with friction relative to their motion over the step.
+  std::vector<ObstacleMotion> obstacle_motions;
+  double collision_thickness_m = 2e-3;
+  // Coulomb friction coefficient μ (dimensionless, ≥ 0) of the cloth against every obstacle,
+  // applied by the push-out from the step's start positions (sim/collision/obstacle.h). 0: the
+  // frictionless push-out; a cloth rests on a slope of angle θ when μ > tan θ.
+  double collision_friction = 0.0;
+  // The cloth against itself (the "collide" phase, after the obstacles; off unless enabled):
+  // sim/collision/self_collision.h.
+  SelfCollisionSettings self_collision;
+  // Air drag on every triangle and an optional wind field (sim/aerodynamics.h); off unless
+  // enabled. The existing air_damping is separate (a mass-proportional damping).
+  AeroSettings aero;
+};
+
+}  // namespace weft::sim
