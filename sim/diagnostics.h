@@ -2,8 +2,9 @@
 // Per-frame measurements of a simulation, and the time spent in each phase of a step.
 
 #include <array>
-#include <chrono>
 #include <string_view>
+
+#include "base/timer.h"
 
 namespace weft::sim {
 
@@ -28,16 +29,12 @@ class PhaseTimers {
  public:
   template <class F>
   auto time(Phase phase, F&& work) {
-    const auto start = std::chrono::steady_clock::now();
     struct Stop {
       PhaseTimers* timers;
       Phase phase;
-      std::chrono::steady_clock::time_point start;
-      ~Stop() {
-        timers->m_seconds[static_cast<int>(phase)] +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      }
-    } stop{this, phase, start};
+      base::Stopwatch watch;
+      ~Stop() { timers->m_seconds[static_cast<int>(phase)] += watch.seconds(); }
+    } stop{this, phase, base::Stopwatch()};
     return work();
   }
   double seconds(Phase phase) const { return m_seconds[static_cast<int>(phase)]; }

@@ -2,12 +2,12 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
-#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "base/timer.h"
 #include "sim/constraints/carried_tension.h"
 #include "sim/energies/spring_hessian.h"
 
@@ -286,7 +286,7 @@ ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_
                                        const Vec3& gravity_m_s2, double damping_1_s,
                                        const Eigen::VectorXd& tension_k,
                                        const Matrix3X& external_forces) {
-  const auto start = std::chrono::steady_clock::now();
+  const base::Stopwatch watch;
   Impl& im = *m_impl;
   const Index n = static_cast<Index>(im.mass_kg.size());
   if (x.rows() != n || v.rows() != n)
@@ -325,7 +325,7 @@ ImplicitStepResult ImplicitEuler::step(const Matrix3X& x, Matrix3X& v, double h_
     for (Index i = 0; i < n; ++i)
       if (!im.pinned[static_cast<std::size_t>(i)]) v.row(i) += dv.segment<3>(3 * i).transpose();
   }
-  result.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.solve_s = watch.seconds();
   return result;
 }
 
