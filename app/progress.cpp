@@ -19,7 +19,7 @@ std::string format_duration(double seconds) {
 
 Progress::Progress(std::FILE* stream, int total, std::string label)
     : m_stream(stream), m_total(total), m_label(std::move(label)),
-      m_terminal(isatty(fileno(stream)) != 0)) {}
+      m_terminal(isatty(fileno(stream)) != 0) {}
 
 double Progress::elapsed_s() const {
   return m_watch.seconds();
