@@ -16,6 +16,7 @@
 
 #include "app/html_escape.h"
 #include "app/run_command.h"
+#include "base/constants.h"
 #include "render/photo_compare/photo_compare.h"
 
 namespace weft::app {
@@ -70,7 +71,7 @@ nlohmann::json result_json(const CompareOptions& o, const render::Silhouette& ps
   j["transform"] = {{"scale", c.transform.scale},
                     {"tx_px", c.transform.tx_px},
                     {"ty_px", c.transform.ty_px},
-                    {"angle_deg", c.transform.angle_rad * 180.0 / M_PI},
+                    {"angle_deg", c.transform.angle_rad * 180.0 / base::kPi},
                     {"given", c.transform_given}};
   j["silhouettes"] = {{"photo", silhouette_json(ps)}, {"render", silhouette_json(rs)}};
   j["iou"] = c.iou;
@@ -190,7 +191,7 @@ render::Similarity parse_transform(const std::string& text) {
   t.scale = v[0];
   t.tx_px = v[1];
   t.ty_px = v[2];
-  if (v.size() == 4) t.angle_rad = v[3] * M_PI / 180.0;
+  if (v.size() == 4) t.angle_rad = v[3] * base::kPi / 180.0;
   return t;
 }
 

@@ -16,6 +16,7 @@
 #include "app/run_command.h"
 #include "app/run_report.h"
 #include "app/scene.h"
+#include "base/timer.h"
 
 namespace weft::app {
 namespace {
@@ -148,7 +149,7 @@ int run_gallery(const GalleryOptions& options) {
 
   std::vector<GalleryEntry> entries;
   const int n = static_cast<int>(files.size());
-  const auto start = std::chrono::steady_clock::now();
+  const base::Stopwatch watch;
   for (int k = 0; k < n; ++k) {
     GalleryEntry entry;
     entry.path = files[static_cast<std::size_t>(k)];
@@ -169,8 +170,7 @@ int run_gallery(const GalleryOptions& options) {
   std::vector<std::string> failed;
   for (const GalleryEntry& e : entries)
     if (!e.error.empty()) failed.push_back(e.name + " (" + e.error + ")");
-  const double elapsed_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed_s = watch.seconds();
   std::printf("weft gallery: %d of %d scenes rendered into %s (README.md; %s)\n",
               n - static_cast<int>(failed.size()), n, options.out.c_str(),
               format_duration(elapsed_s).c_str());

@@ -5,11 +5,10 @@
 #include <cstdio>
 
 #include "app/scene.h"
+#include "base/constants.h"
 
 namespace weft::app {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 // Where a value sits: file and key path, for error messages.
 struct Where {
@@ -404,7 +403,7 @@ double ObjectReader::angle_deg(const std::string& key, std::optional<double> fal
   if (v->is_number()) {
     degrees = read_number(*v, where, Range{});
   } else if (v->is_string()) {
-    degrees = read_quantity(*v, where, Quantity::angle, Range{}) * 180.0 / pi;
+    degrees = read_quantity(*v, where, Quantity::angle, Range{}) * 180.0 / base::kPi;
   } else {
     fail(key, "expected " + expected + ", got " + describe(*v));
   }
@@ -467,7 +466,7 @@ Eigen::Vector3d ObjectReader::quantity_vec3(const std::string& key, Quantity kin
 std::size_t ObjectReader::enumeration_index(const std::string& key,
                                             const std::vector<std::string>& names,
                                             bool is_required) {
-  const std::string expected = "one of " + join(names, "'");
+  const std::string expected = base::choices_text(names);
   const Json* v = find(key, is_required, expected);
   if (!v) return names.size();
   if (v->is_string()) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app/units.h"
+#include "base/enum_names.h"
 
 namespace weft::app {
 
@@ -105,6 +106,11 @@ class ObjectReader {
   E enumeration(const std::string& key, const std::vector<std::pair<std::string, E>>& choices,
                 std::optional<E> fallback);
 
+  // The same for an enum with a base::EnumNames table (base/enum_names.h), listed in its order.
+  template <class E, std::size_t N>
+  E enumeration(const std::string& key, const base::EnumNames<E, N>& names,
+                std::optional<E> fallback);
+
   // A nested object. When absent, a reader over an empty object: every key takes its default.
   ObjectReader object(const std::string& key);
   ObjectReader required_object(const std::string& key);
@@ -139,6 +145,13 @@ E ObjectReader::enumeration(const std::string& key,
   for (const auto& c : choices) names.push_back(c.first);
   const std::size_t k = enumeration_index(key, names, !fallback.has_value());
   return k < choices.size() ? choices[k].second : *fallback;
+}
+
+template <class E, std::size_t N>
+E ObjectReader::enumeration(const std::string& key, const base::EnumNames<E, N>& names,
+                            std::optional<E> fallback) {
+  const std::size_t k = enumeration_index(key, base::enum_name_list(names), !fallback.has_value());
+  return k < names.size() ? names[k].value : *fallback;
 }
 
 }  // namespace weft::app

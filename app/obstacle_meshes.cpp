@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "render/primitives.h"
 
 namespace weft::app {
@@ -20,7 +21,7 @@ bool is_rendered_ground(const sim::PlaneObstacle& plane, const render::RenderSet
 render::RenderMesh make_obstacle_mesh(const sim::MeshObstacle& mesh) {
   const sim::Matrix3X& vertices = mesh.solid->vertices_m();
   const auto& triangles = mesh.solid->triangles();
-  const double cos_crease = std::cos(mesh_crease_angle_deg * 3.14159265358979323846 / 180.0);
+  const double cos_crease = std::cos(mesh_crease_angle_deg * base::kPi / 180.0);
   std::vector<Eigen::Vector3d> world(static_cast<std::size_t>(vertices.rows()));
   for (std::size_t i = 0; i < world.size(); ++i)
     world[i] = mesh.pose.apply(vertices.row(static_cast<Eigen::Index>(i)).transpose());

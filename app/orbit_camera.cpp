@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
+
 namespace weft::app {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 }  // namespace
 
@@ -35,7 +35,7 @@ render::Camera orbit_camera(const render::Camera& base, const Eigen::Vector3d& c
   Eigen::Vector3d horizontal(offset.x(), offset.y(), 0.0);
   const bool vertical = horizontal.norm() <= 1e-12 * distance_m;
   horizontal = vertical ? Eigen::Vector3d(0.0, -1.0, 0.0) : horizontal.normalized();
-  const double elevation_rad = settings.elevation_deg ? *settings.elevation_deg * pi / 180.0
+  const double elevation_rad = settings.elevation_deg ? *settings.elevation_deg * base::kPi / 180.0
                                                       : std::asin(offset.z() / distance_m);
   // Without an elevation override and with a horizontal offset, keep the base offset's exact
   // direction (frame 0 reproduces the base eye bit for bit up to the rotation by zero).
@@ -45,7 +45,7 @@ render::Camera orbit_camera(const render::Camera& base, const Eigen::Vector3d& c
                             std::sin(elevation_rad) * Eigen::Vector3d::UnitZ())
           : Eigen::Vector3d(offset / distance_m);
 
-  const double azimuth_rad = orbit_azimuth_deg(i, n) * pi / 180.0;
+  const double azimuth_rad = orbit_azimuth_deg(i, n) * base::kPi / 180.0;
   const Eigen::Matrix3d turn =
       Eigen::AngleAxisd(azimuth_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   render::Camera camera = base;

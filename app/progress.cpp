@@ -19,10 +19,10 @@ std::string format_duration(double seconds) {
 
 Progress::Progress(std::FILE* stream, int total, std::string label)
     : m_stream(stream), m_total(total), m_label(std::move(label)),
-      m_terminal(isatty(fileno(stream)) != 0), m_start(std::chrono::steady_clock::now()) {}
+      m_terminal(isatty(fileno(stream)) != 0) {}
 
 double Progress::elapsed_s() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+  return m_watch.seconds();
 }
 
 void Progress::update(int done, const std::string& detail) {

@@ -1,9 +1,10 @@
 #pragma once
 // Progress of a long run on stderr: a redrawn bar on a terminal, plain lines otherwise.
 
-#include <chrono>
 #include <cstdio>
 #include <string>
+
+#include "base/timer.h"
 
 namespace weft::app {
 
@@ -22,7 +23,7 @@ class Progress {
   int m_total;
   std::string m_label;
   bool m_terminal;
-  std::chrono::steady_clock::time_point m_start;
+  base::Stopwatch m_watch;
   double m_last_line_s = -1e9;
 };
 

@@ -17,6 +17,7 @@
 #include "app/json_reader.h"
 #include "app/mesh_file.h"
 #include "app/units.h"
+#include "base/constants.h"
 #include "sim/material_presets.h"
 
 // Defined in the .cpp that app/embed_default_scene.cmake generates from assets/scenes/default.json.
@@ -158,7 +159,7 @@ void read_cloth(ObjectReader r, Scene& scene) {
   if (std::fabs(g.warp_axis.dot(g.weft_axis)) > unit_tolerance) {
     char got[64];
     std::snprintf(got, sizeof got, "one at %.6g deg to it",
-                  std::acos(g.warp_axis.dot(g.weft_axis)) * 180.0 / 3.14159265358979323846);
+                  std::acos(g.warp_axis.dot(g.weft_axis)) * 180.0 / base::kPi);
     r.fail("weft_axis", std::string("expected a unit vector orthogonal to warp_axis, got ") + got);
   }
   scene.material = read_material(r.object("material"));
@@ -184,7 +185,7 @@ sim::MeshObstacle read_mesh_obstacle(ObjectReader& o) {
   sim::MeshObstacle mesh;
   mesh.pose.translation_m =
       o.quantity_vec3("translate", Quantity::length, Eigen::Vector3d::Zero());
-  mesh.pose.yaw_rad = o.angle_deg("rotate_z", 0.0) * 3.14159265358979323846 / 180.0;
+  mesh.pose.yaw_rad = o.angle_deg("rotate_z", 0.0) * base::kPi / 180.0;
   const std::filesystem::path path =
       file.is_absolute() ? file : std::filesystem::path(o.file()).parent_path() / file;
   try {
@@ -210,7 +211,7 @@ sim::ObstacleMotion read_obstacle_motion(ObjectReader& r) {
     sim::ObstacleKeyframe frame;
     frame.time_s = f.quantity("time", Quantity::time, required);
     frame.translate_m = f.quantity_vec3("translate", Quantity::length, Eigen::Vector3d::Zero());
-    frame.rotate_z_rad = f.angle_deg("rotate_z", 0.0) * 3.14159265358979323846 / 180.0;
+    frame.rotate_z_rad = f.angle_deg("rotate_z", 0.0) * base::kPi / 180.0;
     f.finish();
     keyframes.push_back(frame);
   }
@@ -255,7 +256,7 @@ sim::Obstacle read_obstacle(ObjectReader r, sim::ObstacleMotion& motion) {
     const std::vector<double> half =
         o.quantities("half_size", Quantity::length, 3, required, Range::gt(0.0));
     b.half_size_m = Eigen::Vector3d(half[0], half[1], half[2]);
-    b.yaw_rad = o.angle_deg("yaw", 0.0) * 3.14159265358979323846 / 180.0;
+    b.yaw_rad = o.angle_deg("yaw", 0.0) * base::kPi / 180.0;
     obstacle = b;
   } else if (kind == "cylinder") {
     sim::CylinderObstacle c;
@@ -321,10 +322,7 @@ sim::ProjectionSettings read_constraints(ObjectReader r) {
 sim::SparseBackend read_linear_solver(ObjectReader& r, sim::SparseBackend fallback) {
   using sim::SparseBackend;
   const std::string key = "linear_solver";
-  std::vector<std::pair<std::string, SparseBackend>> choices;
-  for (SparseBackend b : {SparseBackend::cholmod, SparseBackend::eigen_ldlt})
-    choices.emplace_back(sim::sparse_backend_name(b), b);
-  const SparseBackend backend = r.enumeration<SparseBackend>(key, choices, fallback);
+  const SparseBackend backend = r.enumeration(key, sim::sparse_backend_names, {fallback});
   const std::vector<SparseBackend> available = sim::available_sparse_backends();
   if (std::find(available.begin(), available.end(), backend) == available.end()) {
     std::string names;
@@ -375,13 +373,8 @@ sim::SelfCollisionSettings read_self_collision(ObjectReader r) {
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics) {
   dynamics = r.boolean("dynamics", dynamics);
-  std::vector<std::pair<std::string, sim::ClothModel>> models;
-  for (sim::ClothModel m : sim::all_cloth_models) models.emplace_back(sim::cloth_model_name(m), m);
-  s.model = r.enumeration<sim::ClothModel>("model", models, s.model);
-  std::vector<std::pair<std::string, sim::Integrator>> integrators;
-  for (sim::Integrator i : sim::all_integrators)
-    integrators.emplace_back(sim::integrator_name(i), i);
-  s.integrator = r.enumeration<sim::Integrator>("integrator", integrators, s.integrator);
+  s.model = r.enumeration("model", sim::cloth_model_names, {s.model});
+  s.integrator = r.enumeration("integrator", sim::integrator_names, {s.integrator});
   s.sparse_backend = read_linear_solver(r, s.sparse_backend);
   s.implicit_solve = r.enumeration<sim::ImplicitSolve>(
       "implicit_solver",
@@ -482,12 +475,12 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
     ground.finish();
   }
 
-  s.shading = r.enumeration("shading", render::shading_choices(), std::optional(s.shading));
+  s.shading = r.enumeration("shading", render::shading_names, {s.shading});
   s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
   if (s.msaa_samples & (s.msaa_samples - 1))
     r.fail("msaa", "expected 1, 2, 4 or 8 samples, got " + std::to_string(s.msaa_samples));
-  s.renderer = r.enumeration("renderer", render::renderer_choices(), std::optional(s.renderer));
-  s.gl = r.enumeration("gl", render::gl_backend_choices(), std::optional(s.gl));
+  s.renderer = r.enumeration("renderer", render::renderer_names, {s.renderer});
+  s.gl = r.enumeration("gl", render::gl_backend_names, {s.gl});
   read_raytrace(r.object("raytrace"), s.raytrace);
   read_cloth_surface(r, s.cloth_surface);  // subdivision, thickness, texture
   r.finish();
@@ -556,8 +549,10 @@ std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
   try {
     simulator = std::make_unique<sim::Simulator>(std::move(mesh), scene.material, std::move(pinned),
                                                  scene.sim);
-  } catch (const std::invalid_argument& e) {
+  } catch (const sim::MaterialError& e) {
     throw SceneError(scene.source + ": cloth.material: " + e.what());
+  } catch (const std::invalid_argument& e) {  // other settings the simulator cannot take
+    throw SceneError(scene.source + ": " + e.what());
   }
   if (scene.tension_field)
     simulator->set_initial_positions(folded_start(*scene.tension_field, scene.grid, scene.material,

@@ -23,13 +23,13 @@
 #include "app/renderer_choice.h"
 #include "app/scene.h"
 #include "app/version.h"
+#include "base/constants.h"
 #include "sim/simulator.h"
 
 namespace weft::app {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double pi = 3.14159265358979323846;
 constexpr int max_turntable_frames = 3600;
 constexpr int contact_sheet_max_width_px = 960;  // thumbnails shrink to keep the sheet this wide
 
@@ -164,7 +164,7 @@ std::string angle_label(double azimuth_deg) {
 render::Camera framing_camera(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                               const Eigen::Vector3d& direction, double fov_y_deg, double aspect) {
   const double radius_m = std::max(0.5 * (hi - lo).norm(), 1e-6);
-  const double half_fov_y = 0.5 * fov_y_deg * pi / 180.0;
+  const double half_fov_y = 0.5 * fov_y_deg * base::kPi / 180.0;
   const double half_fov_x = std::atan(std::tan(half_fov_y) * aspect);
   const double half_fov = std::min(half_fov_y, half_fov_x);
   const double distance_m = radius_m / (0.85 * std::sin(half_fov));

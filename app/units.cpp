@@ -4,10 +4,10 @@
 #include <cmath>
 #include <system_error>
 
+#include "base/constants.h"
+
 namespace weft::app {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 constexpr Dimension mass{1, 0, 0};
 constexpr Dimension length{0, 1, 0};
 constexpr Dimension time{0, 0, 1};
@@ -180,7 +180,7 @@ const std::vector<NamedUnit>& unit_table() {
       {"MPa", {1e6, pressure}},
       {"GPa", {1e9, pressure}},
       {"rad", {1.0, none}},
-      {"deg", {pi / 180.0, none}},
+      {"deg", {base::kPi / 180.0, none}},
   };
   return table;
 }

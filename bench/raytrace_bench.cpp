@@ -13,7 +13,6 @@
 // Run: build/bench/raytrace_bench [--repeats 3] [--threads N] [--only raster]
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,9 +20,11 @@
 #include <ctime>
 #include <exception>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "base/constants.h"
+#include "base/thread_pool.h"
+#include "base/timer.h"
 #include "render/primitives.h"
 #include "render/raster.h"
 #include "render/raytrace/ray_tracer.h"
@@ -31,8 +32,6 @@
 namespace {
 
 using namespace weft::render;
-
-constexpr double pi = 3.14159265358979323846;
 constexpr double sphere_radius_m = 0.05;
 const Eigen::Vector3d sphere_center_m(0.0, 0.0, 0.25);
 
@@ -45,13 +44,13 @@ RenderMesh sphere_drape(int n) {
   return make_grid_mesh(n, n, [r](double u, double v) {
     const double x = 0.3 * (u - 0.5), y = 0.3 * (v - 0.5);
     const double s = std::hypot(x, y), phi = std::atan2(y, x);
-    if (s <= 0.5 * pi * r) {
+    if (s <= 0.5 * weft::base::kPi * r) {
       const double theta = s / r;
       return Eigen::Vector3d(sphere_center_m + r * Eigen::Vector3d(std::sin(theta) * std::cos(phi),
                                                                    std::sin(theta) * std::sin(phi),
                                                                    std::cos(theta)));
     }
-    const double d = s - 0.5 * pi * r;
+    const double d = s - 0.5 * weft::base::kPi * r;
     const double fold = 0.6 * std::min(d / 0.05, 1.0) * std::sin(8.0 * phi);
     const double rho = r + 0.35 * d * (1.0 + fold);
     const double angle = phi + 0.04 * fold;
@@ -83,9 +82,9 @@ double median(std::vector<double> v) {
 
 template <class F>
 double seconds(F&& f) {
-  const auto start = std::chrono::steady_clock::now();
+  const weft::base::Stopwatch watch;
   f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return watch.seconds();
 }
 
 }  // namespace
@@ -93,7 +92,7 @@ double seconds(F&& f) {
 int main(int argc, char** argv) {
   int repeats = 3;
   bool raster_only = false;  // --only raster: skip the ray tracer
-  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int threads = static_cast<int>(weft::base::hardware_threads());
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--repeats"))
       repeats = std::max(1, std::atoi(argv[i + 1]));

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
+
 namespace weft::render {
 
 Eigen::Matrix4f Camera::view_matrix() const {
@@ -46,8 +48,7 @@ Eigen::Matrix4f Camera::projection_matrix(double aspect) const {
     throw std::invalid_argument("Camera: need 0 < near_m < far_m, got near_m = " +
                                 std::to_string(near_m) + ", far_m = " + std::to_string(far_m));
   }
-  const double pi = 3.14159265358979323846;
-  const double focal = 1.0 / std::tan(0.5 * fov_y_deg * pi / 180.0);
+  const double focal = 1.0 / std::tan(0.5 * fov_y_deg * base::kPi / 180.0);
   Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();
   projection(0, 0) = focal / aspect;
   projection(1, 1) = focal;

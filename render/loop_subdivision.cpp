@@ -21,11 +21,11 @@
 #include <utility>
 #include <vector>
 
+#include "base/constants.h"
+
 namespace weft::render {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 struct Edge {
   std::uint32_t a = 0, b = 0;          // ends, a < b
@@ -40,7 +40,7 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
 
 // Loop's weight of each neighbour of an interior vertex of valence n.
 double loop_beta(int n) {
-  const double c = 3.0 / 8.0 + 0.25 * std::cos(2.0 * pi / n);
+  const double c = 3.0 / 8.0 + 0.25 * std::cos(2.0 * base::kPi / n);
   return (5.0 / 8.0 - c * c) / n;
 }
 

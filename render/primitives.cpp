@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
+
 namespace weft::render {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 void check_finite_positive(const char* function, const char* what, double value_m) {
   if (!(value_m > 0.0) || !std::isfinite(value_m)) {
@@ -53,7 +53,7 @@ RenderMesh revolve(const Eigen::Vector3d& origin, const Eigen::Vector3d& axis,
     first.push_back(static_cast<std::uint32_t>(mesh.positions.size()));
     const int count = q.r > 0.0 ? segments : 1;
     for (int j = 0; j < count; ++j) {
-      const double azimuth = 2.0 * pi * j / segments;
+      const double azimuth = 2.0 * base::kPi * j / segments;
       const Eigen::Vector3d radial = std::cos(azimuth) * e1 + std::sin(azimuth) * e2;
       mesh.positions.push_back((origin + q.z * axis + q.r * radial).cast<float>());
       mesh.normals.push_back((q.normal_r * radial + q.normal_z * axis).cast<float>());
@@ -105,9 +105,9 @@ RenderMesh make_sphere_mesh(const Eigen::Vector3d& center_m, double radius_m, in
   // j of a ring at azimuth 2π j / segments; last: south pole.
   add_vertex(Eigen::Vector3d::UnitZ());
   for (int k = 1; k < rings; ++k) {
-    const double polar = pi * k / rings;
+    const double polar = base::kPi * k / rings;
     for (int j = 0; j < segments; ++j) {
-      const double azimuth = 2.0 * pi * j / segments;
+      const double azimuth = 2.0 * base::kPi * j / segments;
       add_vertex({std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
                   std::cos(polar)});
     }
@@ -226,10 +226,10 @@ RenderMesh make_capsule_mesh(const Eigen::Vector3d& a_m, const Eigen::Vector3d& 
   // Exact 0 and 1 at the pole and the equator, so that a zero-length capsule's two equators
   // coincide (no band between them) and the poles are single vertices.
   const auto sin_polar = [&](int k) {
-    return k == 0 ? 0.0 : k == rings_per_cap ? 1.0 : std::sin(0.5 * pi * k / rings_per_cap);
+    return k == 0 ? 0.0 : k == rings_per_cap ? 1.0 : std::sin(0.5 * base::kPi * k / rings_per_cap);
   };
   const auto cos_polar = [&](int k) {
-    return k == 0 ? 1.0 : k == rings_per_cap ? 0.0 : std::cos(0.5 * pi * k / rings_per_cap);
+    return k == 0 ? 1.0 : k == rings_per_cap ? 0.0 : std::cos(0.5 * base::kPi * k / rings_per_cap);
   };
   for (int k = 0; k <= rings_per_cap; ++k)
     profile.push_back(

@@ -9,29 +9,6 @@
 
 namespace weft::render {
 
-namespace {
-
-template <class E>
-const char* name_of(const NamedChoices<E>& choices, E value) {
-  for (const auto& [name, v] : choices) {
-    if (v == value) return name.c_str();
-  }
-  return choices.front().first.c_str();  // unreachable for a valid enumerator
-}
-
-// "expected 'a', 'b' or 'c', got 'name'".
-template <class E>
-E value_of(const NamedChoices<E>& choices, const std::string& name, const std::string& where) {
-  std::string expected;
-  for (std::size_t k = 0; k < choices.size(); ++k) {
-    if (choices[k].first == name) return choices[k].second;
-    expected += (k == 0 ? "'" : k + 1 == choices.size() ? " or '" : ", '") + choices[k].first + "'";
-  }
-  throw std::invalid_argument(where + ": expected " + expected + ", got '" + name + "'");
-}
-
-}  // namespace
-
 void validate(const RenderSettings& s, int max_size) {
   const auto fail = [](const std::string& what) {
     throw std::invalid_argument("RenderSettings: " + what);
@@ -54,38 +31,24 @@ void validate(const RenderSettings& s, int max_size) {
   }
 }
 
-const NamedChoices<Shading>& shading_choices() {
-  static const NamedChoices<Shading> choices{{"lit", Shading::lit},
-                                             {"normals", Shading::normals}};
-  return choices;
-}
-
-const NamedChoices<RendererKind>& renderer_choices() {
-  static const NamedChoices<RendererKind> choices{{"raster", RendererKind::raster},
-                                                  {"raytrace", RendererKind::raytrace}};
-  return choices;
-}
-
-const NamedChoices<GlBackend>& gl_backend_choices() {
-  static const NamedChoices<GlBackend> choices{
-      {"auto", GlBackend::automatic}, {"osmesa", GlBackend::osmesa}, {"egl", GlBackend::egl}};
-  return choices;
+std::vector<std::string> renderer_choices() {
+  return base::enum_name_list(renderer_names);
 }
 
 const char* renderer_name(RendererKind kind) {
-  return name_of(renderer_choices(), kind);
+  return base::enum_name(renderer_names, kind);
 }
 
 const char* gl_backend_name(GlBackend backend) {
-  return name_of(gl_backend_choices(), backend);
+  return base::enum_name(gl_backend_names, backend);
 }
 
 RendererKind renderer_from_name(const std::string& name, const std::string& where) {
-  return value_of(renderer_choices(), name, where);
+  return base::parse_enum(renderer_names, name, where);
 }
 
 GlBackend gl_backend_from_name(const std::string& name, const std::string& where) {
-  return value_of(gl_backend_choices(), name, where);
+  return base::parse_enum(gl_backend_names, name, where);
 }
 
 }  // namespace weft::render

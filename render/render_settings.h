@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "render/camera.h"
 #include "render/cloth_surface.h"
 #include "render/raytrace/raytrace_settings.h"
@@ -67,19 +68,22 @@ struct RenderObject {
   Eigen::Vector3f color{0.70f, 0.74f, 0.80f};  // linear 0..1; the default obstacle_color
 };
 
-// The names of the enumerations above, one table each (the scene reader, the command line and
-// the error messages all read these): "lit", "normals"; "raster", "raytrace"; "auto",
-// "osmesa", "egl".
-template <class E>
-using NamedChoices = std::vector<std::pair<std::string, E>>;
-const NamedChoices<Shading>& shading_choices();
-const NamedChoices<RendererKind>& renderer_choices();
-const NamedChoices<GlBackend>& gl_backend_choices();
+// The names of the enumerations above, one base::EnumNames table each (the scene reader, the
+// command line and the error messages all read these), in the order errors list them.
+inline constexpr base::EnumNames<Shading, 2> shading_names{
+    {{Shading::lit, "lit"}, {Shading::normals, "normals"}}};
+inline constexpr base::EnumNames<RendererKind, 2> renderer_names{
+    {{RendererKind::raster, "raster"}, {RendererKind::raytrace, "raytrace"}}};
+inline constexpr base::EnumNames<GlBackend, 3> gl_backend_names{
+    {{GlBackend::automatic, "auto"}, {GlBackend::osmesa, "osmesa"}, {GlBackend::egl, "egl"}}};
+
+// The renderers' names, for a command-line option's check.
+std::vector<std::string> renderer_choices();
 
 const char* renderer_name(RendererKind kind);
 const char* gl_backend_name(GlBackend backend);
 // The value `name` names; otherwise throws std::invalid_argument starting with `where` and
-// listing the choices ("render.gl: expected 'auto', 'osmesa' or 'egl', got 'vulkan'").
+// listing the choices ("render.gl: expected one of 'auto', 'osmesa', 'egl', got 'vulkan'").
 RendererKind renderer_from_name(const std::string& name, const std::string& where);
 GlBackend gl_backend_from_name(const std::string& name, const std::string& where);
 

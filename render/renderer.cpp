@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "base/check.h"
 #include "render/cloth_surface.h"
 #include "render/raster.h"
 
@@ -51,7 +52,9 @@ std::unique_ptr<Renderer> make_renderer(const RenderSettings& settings) {
           "WEFT_WITH_EMBREE_RT=OFF)");
 #endif
   }
-  throw std::logic_error("make_renderer: unknown RendererKind");
+  WEFT_CHECK(false, "make_renderer: unknown RendererKind " +
+                        std::to_string(static_cast<int>(settings.renderer)));
+  return nullptr;
 }
 
 }  // namespace weft::render

@@ -10,21 +10,6 @@
 
 namespace weft::sim {
 
-const char* cloth_model_name(ClothModel model) {
-  switch (model) {
-    case ClothModel::mass_spring:
-      return "mass_spring";
-    case ClothModel::baraff_witkin:
-      return "baraff_witkin";
-    case ClothModel::rft3:
-      return "rft3";
-    case ClothModel::rft6:
-      return "rft6";
-  }
-  throw std::logic_error("cloth_model_name: unknown model " +
-                         std::to_string(static_cast<int>(model)));
-}
-
 ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
                             bool with_stretch) {
   if (model == ClothModel::mass_spring) return MassSpringModel(mesh, material, with_stretch).terms();

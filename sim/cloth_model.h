@@ -5,6 +5,7 @@
 
 #include <array>
 
+#include "base/enum_names.h"
 #include "sim/force_term.h"
 #include "sim/grid.h"
 #include "sim/material.h"
@@ -21,7 +22,16 @@ enum class ClothModel {
 inline constexpr std::array<ClothModel, 4> all_cloth_models{
     ClothModel::mass_spring, ClothModel::baraff_witkin, ClothModel::rft3, ClothModel::rft6};
 
-const char* cloth_model_name(ClothModel model);
+// The scene-file names (cloth.model), in all_cloth_models' order.
+inline constexpr base::EnumNames<ClothModel, 4> cloth_model_names{
+    {{ClothModel::mass_spring, "mass_spring"},
+     {ClothModel::baraff_witkin, "baraff_witkin"},
+     {ClothModel::rft3, "rft3"},
+     {ClothModel::rft6, "rft6"}}};
+
+inline const char* cloth_model_name(ClothModel model) {
+  return base::enum_name(cloth_model_names, model);
+}
 
 // The terms of a model. Only what the material needs is built: no bending term at zero
 // bending rigidity, no membrane term (mass-spring: no warp/weft springs) when stretch is left

@@ -2,8 +2,9 @@
 // Per-frame measurements of a simulation, and the time spent in each phase of a step.
 
 #include <array>
-#include <chrono>
 #include <string_view>
+
+#include "base/timer.h"
 
 namespace weft::sim {
 
@@ -43,20 +44,18 @@ class PhaseTimers {
  public:
   template <class F>
   auto time(Phase phase, F&& work) {
-    const auto start = std::chrono::steady_clock::now();
     struct Stop {
       PhaseTimers* timers;
       Phase phase;
       int outer;
-      std::chrono::steady_clock::time_point start;
+      base::Stopwatch watch;
       ~Stop() {
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double s = watch.seconds();
         timers->m_seconds[static_cast<int>(phase)] += s;
         if (outer >= 0) timers->m_seconds[outer] -= s;
         timers->m_running = outer;
       }
-    } stop{this, phase, m_running, start};
+    } stop{this, phase, m_running, base::Stopwatch()};
     m_running = static_cast<int>(phase);
     return work();
   }

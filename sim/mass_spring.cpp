@@ -35,7 +35,7 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
   const double yu = m.stretch_warp_N_m - G * (hu * hu) / (hv * hv);
   const double yv = m.stretch_weft_N_m - G * (hv * hv) / (hu * hu);
   if (structural_springs && (yu <= 0.0 || yv <= 0.0))
-    throw std::invalid_argument(
+    throw MaterialError(
         "shear rigidity " + std::to_string(G) + " N/m is too large for the stretch rigidities at "
         "this cell aspect ratio (the shear springs alone would exceed the stretch stiffness)");
 

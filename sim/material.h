@@ -2,7 +2,17 @@
 // Fabric parameters in SI units, per unit width/area so that they do not depend on the mesh.
 // Named fabrics (presets) with their sources: sim/material_presets.h.
 
+#include <stdexcept>
+
 namespace weft::sim {
+
+// A material the model cannot be built from (e.g. a negative rigidity, or shear springs stiffer
+// than the stretch ones): bad input about the material, and only that. The scene reader labels
+// these, and only these, with the material's key (app::make_simulator).
+class MaterialError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 // Textile units, as KES and FAST report them, in SI. A weight is converted to a mass with
 // standard gravity g0 = 9.80665 m/s² (docs/scene.md, "Units").

@@ -6,11 +6,11 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "base/constants.h"
+
 namespace weft::sim {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 bool finite_nonnegative(double v) { return std::isfinite(v) && v >= 0.0; }
 
@@ -98,7 +98,7 @@ ShadowMask rasterize_shadow(const Matrix3X& x, const Triangles& triangles, doubl
 
 double shadow_area_error_bound_m2(double perimeter_m, double cell_m, int boundary_loops) {
   const double r = std::sqrt(2.0) * cell_m;  // a cell's diagonal
-  return 2.0 * r * perimeter_m + kPi * r * r * boundary_loops;
+  return 2.0 * r * perimeter_m + base::kPi * r * r * boundary_loops;
 }
 
 double specimen_rest_area_m2(const ClothMesh& mesh) {
@@ -136,7 +136,7 @@ std::optional<DrapeSupport> find_support(const std::vector<Obstacle>& obstacles,
       s.kind = "cylinder";
       s.axis_m = cyl->center_m.head<2>();
       s.top_z_m = cyl->center_m.z() + 0.5 * cyl->height_m;
-      s.area_m2 = kPi * cyl->radius_m * cyl->radius_m;
+      s.area_m2 = base::kPi * cyl->radius_m * cyl->radius_m;
       under = (c - s.axis_m).norm() <= cyl->radius_m;
     } else if (const auto* box = std::get_if<BoxObstacle>(&obstacles[k])) {
       s.kind = "box";
@@ -150,7 +150,7 @@ std::optional<DrapeSupport> find_support(const std::vector<Obstacle>& obstacles,
       s.kind = "sphere";
       s.axis_m = sphere->center_m.head<2>();
       s.top_z_m = sphere->center_m.z() + sphere->radius_m;
-      s.area_m2 = kPi * sphere->radius_m * sphere->radius_m;
+      s.area_m2 = base::kPi * sphere->radius_m * sphere->radius_m;
       under = (c - s.axis_m).norm() <= sphere->radius_m;
     }
     if (!under || s.top_z_m > cloth_center_m.z()) continue;
@@ -169,8 +169,8 @@ std::vector<double> outline_radii(const ShadowMask& shadow, const Vec2& center_m
       if (!shadow.inside[static_cast<std::size_t>(iy) * shadow.nx + ix]) continue;
       const Vec2 d = shadow.cell_center_m(ix, iy) - center_m;
       double theta = std::atan2(d.y(), d.x());
-      if (theta < 0.0) theta += 2.0 * kPi;
-      const int k = std::min(bins - 1, static_cast<int>(theta / (2.0 * kPi) * bins));
+      if (theta < 0.0) theta += 2.0 * base::kPi;
+      const int k = std::min(bins - 1, static_cast<int>(theta / (2.0 * base::kPi) * bins));
       radius[static_cast<std::size_t>(k)] = std::max(radius[static_cast<std::size_t>(k)], d.norm());
     }
   }

@@ -1,4 +1,4 @@
-// Embree 3 device, scene and triangle-geometry owners (see embree_scene.h).
+// Embree 3 triangle-geometry owners (see embree_scene.h).
 
 #include "render/raytrace/embree_scene.h"
 
@@ -10,47 +10,6 @@ namespace weft::render::rt {
 static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "positions are copied as-is");
 static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t),
               "triangles are copied as-is");
-
-EmbreeDevice::EmbreeDevice() : m_device(rtcNewDevice("threads=1")) {
-  if (!m_device) {
-    throw std::runtime_error("Embree: cannot create a device (error code " +
-                             std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
-  }
-  rtcSetDeviceErrorFunction(m_device, &EmbreeDevice::on_error, this);
-}
-
-EmbreeDevice::~EmbreeDevice() {
-  rtcReleaseDevice(m_device);
-}
-
-void EmbreeDevice::check(const std::string& what) {
-  if (m_error.empty()) return;
-  const std::string message = m_error;
-  m_error.clear();
-  throw std::runtime_error("Embree: " + what + ": " + message);
-}
-
-void EmbreeDevice::on_error(void* self, RTCError code, const char* message) {
-  auto* device = static_cast<EmbreeDevice*>(self);
-  if (device->m_error.empty())
-    device->m_error = message ? message : "error code " + std::to_string(static_cast<int>(code));
-}
-
-EmbreeScene::EmbreeScene(EmbreeDevice& device) : m_scene(rtcNewScene(device.get())) {
-  device.check("creating a scene");
-  if (!m_scene) throw std::runtime_error("Embree: cannot create a scene");
-  rtcSetSceneBuildQuality(m_scene, RTC_BUILD_QUALITY_HIGH);
-  device.check("setting the scene's build quality");
-}
-
-EmbreeScene::~EmbreeScene() {
-  rtcReleaseScene(m_scene);
-}
-
-void EmbreeScene::commit(EmbreeDevice& device) {
-  rtcCommitScene(m_scene);
-  device.check("building the scene's BVH");
-}
 
 TriangleGeometry::~TriangleGeometry() {
   clear();

@@ -1,7 +1,6 @@
 #pragma once
-// RAII owners for the ray tracer's Embree 3 objects: a device with its error hook installed, a
-// scene, and triangle-mesh geometries whose vertex buffers can be updated frame by frame.
-// (sim/collision/mesh_obstacle.cpp has its own minimal owners: sim/ must not depend on render/.)
+// The ray tracer's triangle-mesh geometries, whose vertex buffers can be updated frame by frame,
+// attached to base's Embree scene owner.
 
 #include <embree3/rtcore.h>
 
@@ -11,42 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "base/embree.h"
+
 namespace weft::render::rt {
 
-// An Embree device. Its BVH builds run on one thread, so the tree, and with it every ray's hit,
-// does not depend on any thread count. The error hook records the first error; check() turns
-// it into std::runtime_error (throwing through Embree's C API is not allowed).
-class EmbreeDevice {
- public:
-  EmbreeDevice();
-  ~EmbreeDevice();
-  EmbreeDevice(const EmbreeDevice&) = delete;
-  EmbreeDevice& operator=(const EmbreeDevice&) = delete;
-
-  RTCDevice get() const { return m_device; }
-  // Throws std::runtime_error("Embree: <what>: <message>") if an error was reported.
-  void check(const std::string& what);
-
- private:
-  static void on_error(void* self, RTCError code, const char* message);
-  RTCDevice m_device = nullptr;
-  std::string m_error;
-};
-
-// An Embree scene built for offline frames (RTC_BUILD_QUALITY_HIGH).
-class EmbreeScene {
- public:
-  explicit EmbreeScene(EmbreeDevice& device);
-  ~EmbreeScene();
-  EmbreeScene(const EmbreeScene&) = delete;
-  EmbreeScene& operator=(const EmbreeScene&) = delete;
-  RTCScene get() const { return m_scene; }
-  // rtcCommitScene, then device.check().
-  void commit(EmbreeDevice& device);
-
- private:
-  RTCScene m_scene = nullptr;
-};
+// The device and scene owners are base's (base/embree.h): one device per ray tracer, its BVH
+// builds on one thread; the scene is built at RTC_BUILD_QUALITY_HIGH for offline frames.
+using base::EmbreeDevice;
+using base::EmbreeScene;
 
 // One triangle mesh attached to a scene. set() keeps the geometry when only the positions
 // changed (copies them into Embree's vertex buffer, rtcUpdateGeometryBuffer, recommit) and

@@ -5,23 +5,21 @@
 //      stay the same (only the vertex buffer is rewritten), objects likewise, the ground is a
 //      square under the camera target as the rasterizer's; commit (BVH build, one thread),
 //   3. a FrameView of the camera, lights and surfaces (integrator.h),
-//   4. threads take 16×16 tiles off a shared counter and write their pixels' bytes; a pixel's
-//      value depends on its own samples only, so the image is the same for any thread count.
+//   4. the pool's threads (base/thread_pool.h) take 16×16 tiles in order and write their pixels'
+//      bytes; a pixel's value depends on its own samples only, so the image is the same for any
+//      thread count.
 
 #include "render/raytrace/ray_tracer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
+#include "base/constants.h"
+#include "base/thread_pool.h"
 #include "render/primitives.h"
 #include "render/raytrace/embree_scene.h"
 #include "render/raytrace/integrator.h"
@@ -33,7 +31,6 @@ namespace {
 
 constexpr int max_image_side = 16384;
 constexpr int tile_side = 16;
-constexpr double pi = 3.14159265358979323846;
 
 void validate_raytrace(const RayTraceSettings& r) {
   const auto fail = [](const std::string& what) {
@@ -56,9 +53,10 @@ void validate_raytrace(const RayTraceSettings& r) {
     fail("threads must be in 0..4096 (0: all hardware threads), got " + std::to_string(r.threads));
 }
 
+// Threads for the tiles: the setting (0: all hardware threads), at most one per tile.
 int thread_count(const RayTraceSettings& r, int tiles) {
-  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return std::clamp(r.threads > 0 ? r.threads : hardware, 1, std::max(tiles, 1));
+  return static_cast<int>(std::clamp<std::size_t>(base::thread_count(r.threads), 1,
+                                                  static_cast<std::size_t>(std::max(tiles, 1))));
 }
 
 float max_abs_coordinate(const RenderMesh& mesh) {
@@ -120,7 +118,7 @@ void set_camera(const Camera& camera, int width, int height, rt::FrameView& view
 void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.shading = s.shading;
   view.sun = s.light_direction.normalized().cast<float>();
-  view.sun_cos_max = static_cast<float>(std::cos(s.raytrace.sun_angular_radius_deg * pi / 180.0));
+  view.sun_cos_max = static_cast<float>(std::cos(base::deg_to_rad(s.raytrace.sun_angular_radius_deg)));
   view.sun_intensity = static_cast<float>(s.light_intensity);
   view.sky = static_cast<float>(s.ambient);
   view.background = rt::reflectance_from_color(s.background);
@@ -137,50 +135,33 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.seed = s.raytrace.seed;
 }
 
-// Step 4: threads take tiles off a shared counter and write their pixels' bytes into `image`;
-// returns the rays they traced. The first exception of any thread is rethrown.
-RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Image& image) {
+// Step 4: the pool's threads take the 16×16 tiles in order, one task per tile, and write their
+// pixels' bytes into `image`; returns the rays traced, counted per tile and summed in tile order.
+// The exception of the lowest failing tile is rethrown.
+// `pool` is made (again) when it does not have the threads the settings ask for.
+RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Image& image,
+                      std::unique_ptr<base::ThreadPool>& pool) {
   const int width = image.width(), height = image.height();
   const int tiles_x = (width + tile_side - 1) / tile_side;
   const int tiles_y = (height + tile_side - 1) / tile_side;
   const int tiles = tiles_x * tiles_y;
-  const int threads = thread_count(r, tiles);
-  std::atomic<int> next_tile{0};
-  std::vector<RayCounts> counts(static_cast<std::size_t>(threads));
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
+  std::vector<RayCounts> counts(static_cast<std::size_t>(tiles));
   std::uint8_t* const bytes = image.data();
-  const auto work = [&](int worker) {
-    try {
-      RayCounts& mine = counts[static_cast<std::size_t>(worker)];
-      for (int tile = next_tile++; tile < tiles; tile = next_tile++) {
-        const int x0 = (tile % tiles_x) * tile_side, y0 = (tile / tiles_x) * tile_side;
-        const int x1 = std::min(x0 + tile_side, width), y1 = std::min(y0 + tile_side, height);
-        for (int y = y0; y < y1; ++y) {
-          for (int x = x0; x < x1; ++x) {
-            const Eigen::Vector3f radiance = rt::render_pixel(view, x, y, mine);
-            std::uint8_t* out = bytes + 3 * (static_cast<std::size_t>(y) * width + x);
-            for (int c = 0; c < 3; ++c) out[c] = rt::encode_channel(radiance[c]);
-          }
-        }
+  const int threads = thread_count(r, tiles);
+  if (!pool || pool->size() != static_cast<std::size_t>(threads))
+    pool = std::make_unique<base::ThreadPool>(threads);
+  pool->run(counts.size(), [&](std::size_t k) {
+    const int tile = static_cast<int>(k);
+    const int x0 = (tile % tiles_x) * tile_side, y0 = (tile / tiles_x) * tile_side;
+    const int x1 = std::min(x0 + tile_side, width), y1 = std::min(y0 + tile_side, height);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        const Eigen::Vector3f radiance = rt::render_pixel(view, x, y, counts[k]);
+        std::uint8_t* out = bytes + 3 * (static_cast<std::size_t>(y) * width + x);
+        for (int c = 0; c < 3; ++c) out[c] = rt::encode_channel(radiance[c]);
       }
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next_tile = tiles;  // the others stop after their tile
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) {
-    try {
-      pool.emplace_back(work, t);
-    } catch (const std::system_error&) {
-      break;  // no more threads to be had: the tiles are shared among those running
-    }
-  }
-  work(0);
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  });
 
   RayCounts total;
   for (const RayCounts& c : counts) {
@@ -196,10 +177,11 @@ RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Imag
 
 struct RayTracer::Impl {
   rt::EmbreeDevice device;  // declared first: released last
-  rt::EmbreeScene scene{device};
+  rt::EmbreeScene scene{device, RTC_BUILD_QUALITY_HIGH};
   rt::TriangleGeometry cloth_geometry, ground_geometry;
   std::vector<std::unique_ptr<rt::TriangleGeometry>> object_geometries;
   RayCounts last_counts;
+  std::unique_ptr<base::ThreadPool> pool;  // the tiles' threads, kept from frame to frame
 
   Image render(const RenderMesh& cloth, const RenderSettings& s,
                const std::vector<RenderObject>& objects);
@@ -260,7 +242,7 @@ Image RayTracer::Impl::render(const RenderMesh& cloth, const RenderSettings& s,
   update_scene(meshes);
   const rt::FrameView view = frame_view(meshes, s, objects);
   Image image(s.width, s.height);
-  last_counts = trace_tiles(view, s.raytrace, image);
+  last_counts = trace_tiles(view, s.raytrace, image, pool);
   return image;
 }
 

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
+
 namespace weft::render::rt {
 
 namespace {
-
-constexpr float pi = 3.14159265358979323846f;
 
 float smoothstep(float edge0, float edge1, float x) {
   const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
@@ -46,7 +46,7 @@ unsigned char encode_channel(float radiance) {
 float charlie_distribution(float n_dot_h, float roughness) {
   const float inv_r = 1.0f / roughness;
   const float sin2 = std::max(0.0f, 1.0f - n_dot_h * n_dot_h);
-  return (2.0f + inv_r) * std::pow(sin2, 0.5f * inv_r) / (2.0f * pi);
+  return (2.0f + inv_r) * std::pow(sin2, 0.5f * inv_r) / (2.0f * base::kPiF);
 }
 
 float sheen_visibility(float n_dot_l, float n_dot_v) {
@@ -62,7 +62,7 @@ float sheen_response(const Eigen::Vector3f& n, const Eigen::Vector3f& l, const E
   const float length = half.norm();
   if (!(length > 0.0f)) return 0.0f;
   const float n_dot_h = n.dot(half) / length;
-  return pi * charlie_distribution(n_dot_h, roughness) * sheen_visibility(n_dot_l, n_dot_v) *
+  return base::kPiF * charlie_distribution(n_dot_h, roughness) * sheen_visibility(n_dot_l, n_dot_v) *
          n_dot_l;
 }
 

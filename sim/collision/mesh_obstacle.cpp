@@ -17,61 +17,11 @@
 #include <string>
 #include <utility>
 
+#include "base/embree.h"
 #include "sim/collision/proximity.h"
 
 namespace weft::sim {
 namespace {
-
-// An Embree device with its error hook installed. One build thread: the meshes are small and
-// the machine is shared; queries run on the caller's thread anyway. The hook records the first
-// error, which check() turns into an exception (throwing through Embree's C API is not safe).
-class EmbreeDevice {
- public:
-  EmbreeDevice() : m_device(rtcNewDevice("threads=1")) {
-    if (!m_device) {
-      throw std::runtime_error("Embree: cannot create a device (error code " +
-                               std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
-    }
-    rtcSetDeviceErrorFunction(m_device, &EmbreeDevice::on_error, this);
-  }
-  ~EmbreeDevice() { rtcReleaseDevice(m_device); }
-  EmbreeDevice(const EmbreeDevice&) = delete;
-  EmbreeDevice& operator=(const EmbreeDevice&) = delete;
-
-  RTCDevice get() const { return m_device; }
-  // Throws std::runtime_error("Embree: <what>: <message>") if an error was reported.
-  void check(const std::string& what) {
-    if (m_error.empty()) return;
-    const std::string message = m_error;
-    m_error.clear();
-    throw std::runtime_error("Embree: " + what + ": " + message);
-  }
-
- private:
-  static void on_error(void* self, RTCError code, const char* message) {
-    auto* device = static_cast<EmbreeDevice*>(self);
-    if (device->m_error.empty())
-      device->m_error = message ? message : "error code " + std::to_string(static_cast<int>(code));
-  }
-  RTCDevice m_device;
-  std::string m_error;
-};
-
-// An Embree scene; released before its device (member order in MeshSolid::Bvh).
-class EmbreeScene {
- public:
-  explicit EmbreeScene(EmbreeDevice& device) : m_scene(rtcNewScene(device.get())) {
-    device.check("creating a scene");
-    if (!m_scene) throw std::runtime_error("Embree: cannot create a scene");
-  }
-  ~EmbreeScene() { rtcReleaseScene(m_scene); }
-  EmbreeScene(const EmbreeScene&) = delete;
-  EmbreeScene& operator=(const EmbreeScene&) = delete;
-  RTCScene get() const { return m_scene; }
-
- private:
-  RTCScene m_scene;
-};
 
 using GeometryOwner = std::unique_ptr<RTCGeometryTy, decltype(&rtcReleaseGeometry)>;
 
@@ -154,9 +104,11 @@ TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3
   return {point, TriangleFeature::face};
 }
 
+// One build thread (base::EmbreeDevice): the meshes are small and the machine is shared; queries
+// run on the caller's thread anyway. The scene is released before its device (member order).
 struct MeshSolid::Bvh {
-  EmbreeDevice device;
-  EmbreeScene scene{device};
+  base::EmbreeDevice device;
+  base::EmbreeScene scene{device};
 };
 
 MeshSolid::MeshSolid(Matrix3X vertices_m, std::vector<std::array<Index, 3>> triangles)
@@ -220,7 +172,7 @@ MeshSolid::MeshSolid(Matrix3X vertices_m, std::vector<std::array<Index, 3>> tria
   m_query_margin_m = 1e-5 * m_vertices_m.cwiseAbs().maxCoeff();
 
   m_bvh = std::make_unique<Bvh>();
-  EmbreeDevice& device = m_bvh->device;
+  base::EmbreeDevice& device = m_bvh->device;
   GeometryOwner geometry(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE),
                          &rtcReleaseGeometry);
   device.check("creating the triangle geometry");
@@ -237,8 +189,7 @@ MeshSolid::MeshSolid(Matrix3X vertices_m, std::vector<std::array<Index, 3>> tria
     for (int k = 0; k < 3; ++k) index[3 * f + k] = static_cast<std::uint32_t>(m_triangles[f][k]);
   rtcCommitGeometry(geometry.get());
   rtcAttachGeometry(m_bvh->scene.get(), geometry.get());
-  rtcCommitScene(m_bvh->scene.get());
-  device.check("building the BVH");
+  m_bvh->scene.commit(device);
 }
 
 MeshSolid::~MeshSolid() = default;

@@ -3,25 +3,19 @@
 #include "sim/collision/self_collision.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "base/check.h"
+#include "base/timer.h"
 #include "sim/collision/proximity.h"
 #include "sim/collision/self_intersection.h"
-#include "sim/parallel_shares.h"
 
 namespace weft::sim {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
 
@@ -140,7 +134,8 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
     throw std::invalid_argument(
         "self_collision.threads must be in 0..4096 (0: all hardware threads), got " +
         std::to_string(settings.threads));
-  m_expansions.resize(thread_count(settings.threads));
+  m_pool = std::make_unique<base::ThreadPool>(settings.threads);
+  m_expansions.resize(m_pool->size());
   m_moved_since_built_m.assign(static_cast<std::size_t>(m_rest.rows()), 0.0);
   m_marble_radius_m =
       settings.marble_radius_m > 0.0 ? settings.marble_radius_m : 0.5 * settings.thickness_m;
@@ -217,7 +212,7 @@ bool SelfCollision::is_edge_edge_candidate(Index e, Index f) const {
 // then, and any other pair's farther than the watch distance, which bounds it by the
 // patches' motions relative to the centre of all their centres.
 bool SelfCollision::candidates_hold(const Matrix3X& x) {
-  const auto start = Clock::now();
+  const base::Stopwatch watch;
   m_patches.motions(x, m_x_built, m_motions);
   const double contact_m = std::max(m_settings.thickness_m, 2.0 * m_marble_radius_m);
   const double closest_m = contact_m + crossing_depth_m();
@@ -237,7 +232,7 @@ bool SelfCollision::candidates_hold(const Matrix3X& x) {
       farthest_m = std::max(farthest_m, m.spread_m + (m.centre - common).norm());
     hold = 2.0 * farthest_m <= m_watch_m - closest_m;
   }
-  m_broad_s += seconds_since(start);
+  m_broad_s += watch.seconds();
   return hold;
 }
 
@@ -248,7 +243,7 @@ bool SelfCollision::candidates_hold(const Matrix3X& x) {
 // x_start. A candidate whose distance at the rebuild, less how far its sides can have moved
 // since (measure_displacements), is farther than that is left out without looking at it.
 void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
-  const auto start = Clock::now();
+  const base::Stopwatch watch;
   const double t = m_settings.thickness_m, band_m = active_band_m();
   const double reach_m = t + crossing_depth_m();
   const auto moved = [&](Index v) { return m_moved_since_built_m[static_cast<std::size_t>(v)]; };
@@ -284,7 +279,7 @@ void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
       m_active.vv.push_back(candidate.ids);
   }
   m_x_active = x;
-  m_broad_s += seconds_since(start);
+  m_broad_s += watch.seconds();
 }
 
 // Candidates: pairs within contact distance + margin at x that are not neighbours; resolve()
@@ -292,7 +287,7 @@ void SelfCollision::select_active(const Matrix3X& x, const Matrix3X& x_start) {
 // give the patch pairs to look in; each is expanded into its feature pairs, which are kept
 // when a box test, the rest-state exclusion and the exact distance agree.
 void SelfCollision::rebuild(const Matrix3X& x) {
-  const auto start = Clock::now();
+  const base::Stopwatch watch;
   const double reach_m = m_settings.thickness_m + m_margin_m;
   const double marble_reach_m = 2.0 * m_marble_radius_m + m_margin_m;
   const std::size_t threads = m_expansions.size();
@@ -301,21 +296,21 @@ void SelfCollision::rebuild(const Matrix3X& x) {
   m_triangle_boxes.resize(m_triangles.size());
   m_edge_boxes.resize(m_edges.size());
   const std::size_t box_shares = std::clamp<std::size_t>(patches / 64, 1, threads);
-  run_in_shares(box_shares, [&](std::size_t k) {
-    m_patches.refit(x, share_begin(patches, box_shares, k), share_begin(patches, box_shares, k + 1));
-    const std::size_t triangles_end = share_begin(m_triangles.size(), box_shares, k + 1);
-    for (std::size_t t = share_begin(m_triangles.size(), box_shares, k); t < triangles_end; ++t) {
+  m_pool->run(box_shares, [&](std::size_t k) {
+    m_patches.refit(x, base::share_begin(patches, box_shares, k), base::share_begin(patches, box_shares, k + 1));
+    const std::size_t triangles_end = base::share_begin(m_triangles.size(), box_shares, k + 1);
+    for (std::size_t t = base::share_begin(m_triangles.size(), box_shares, k); t < triangles_end; ++t) {
       const auto& tri = m_triangles[t];
       m_triangle_boxes[t] =
           inflated(bounding_box(row(x, tri[0]), row(x, tri[1]), row(x, tri[2])), reach_m);
     }
-    const std::size_t edges_end = share_begin(m_edges.size(), box_shares, k + 1);
-    for (std::size_t e = share_begin(m_edges.size(), box_shares, k); e < edges_end; ++e)
+    const std::size_t edges_end = base::share_begin(m_edges.size(), box_shares, k + 1);
+    for (std::size_t e = base::share_begin(m_edges.size(), box_shares, k); e < edges_end; ++e)
       m_edge_boxes[e] =
           inflated(bounding_box(row(x, m_edges[e][0]), row(x, m_edges[e][1])), 0.5 * reach_m);
   });
   const double patch_reach_m = std::max(reach_m, marble_reach_m);
-  m_patches.pairs_within(m_watch_m, patch_reach_m, m_culling, m_watched, threads);
+  m_patches.pairs_within(m_watch_m, patch_reach_m, m_culling, m_watched, m_pool.get());
   m_patch_pairs.clear();
   for (const PatchPair& pair : m_watched)
     if (!pair.culled && pair.gap_m <= patch_reach_m) m_patch_pairs.push_back(pair.ids);
@@ -324,9 +319,9 @@ void SelfCollision::rebuild(const Matrix3X& x) {
   // then merged, so the list does not depend on the number of threads.
   const std::size_t shares =
       std::clamp<std::size_t>(m_patch_pairs.size() / min_pairs_per_thread, 1, threads);
-  run_in_shares(shares, [&](std::size_t k) {
-    expand(share_begin(m_patch_pairs.size(), shares, k),
-           share_begin(m_patch_pairs.size(), shares, k + 1), x, m_expansions[k]);
+  m_pool->run(shares, [&](std::size_t k) {
+    expand(base::share_begin(m_patch_pairs.size(), shares, k),
+           base::share_begin(m_patch_pairs.size(), shares, k + 1), x, m_expansions[k]);
   });
   m_candidates.vt.clear();
   m_candidates.ee.clear();
@@ -345,7 +340,7 @@ void SelfCollision::rebuild(const Matrix3X& x) {
   m_x_built = x;
   m_built = true;
   ++m_rebuilds;
-  m_broad_s += seconds_since(start);
+  m_broad_s += watch.seconds();
 }
 
 // The feature pairs within reach at x of patch pairs [begin, end) into expansion.found.
@@ -571,12 +566,12 @@ int SelfCollision::sweep(const PairLists& lists, const Matrix3X& x_start,
 
 SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
                                          Matrix3X& x) {
-  if (x_start.rows() != x.rows() || inv_mass.size() != x.rows() || x.rows() != m_rest.rows())
-    throw std::invalid_argument("SelfCollision::resolve: " + std::to_string(x.rows()) +
-                                " positions, " + std::to_string(x_start.rows()) +
-                                " start positions and " + std::to_string(inv_mass.size()) +
-                                " inverse masses for a mesh of " + std::to_string(m_rest.rows()) +
-                                " vertices");
+  WEFT_CHECK(x_start.rows() == x.rows() && inv_mass.size() == x.rows() &&
+                 x.rows() == m_rest.rows(),
+             "SelfCollision::resolve: " + std::to_string(x.rows()) + " positions, " +
+                 std::to_string(x_start.rows()) + " start positions and " +
+                 std::to_string(inv_mass.size()) + " inverse masses for a mesh of " +
+                 std::to_string(m_rest.rows()) + " vertices");
   SelfContactCounts counts;
   // Two Verlet lists, checked at every call: the candidates within the margin, rebuilt when
   // a pair left out may have come within the contact distance plus the crossing depth, so
@@ -584,9 +579,9 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
   // crossing depth)/2, and else as candidates_hold() tells patch pair by patch pair; and the
   // active pairs, reselected from the candidates when some vertex has moved half the band.
   if (m_built) {
-    const auto check_start = Clock::now();
+    const base::Stopwatch check_watch;
     measure_displacements(x);
-    m_broad_s += seconds_since(check_start);
+    m_broad_s += check_watch.seconds();
   }
   if (!m_built || (m_most_moved_since_built_m > 0.5 * (m_margin_m - crossing_depth_m()) &&
                    !candidates_hold(x))) {
@@ -596,7 +591,7 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
   } else if (m_moved_since_active_m > 0.5 * active_band_m()) {
     select_active(x, x_start);
   }
-  const auto start = Clock::now();
+  const base::Stopwatch watch;
   m_moved.clear();
   m_near.vt.clear();
   m_near.ee.clear();
@@ -606,7 +601,7 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
     contacts = sweep(m_near, x_start, inv_mass, x, nullptr, nullptr);
   std::sort(m_moved.begin(), m_moved.end());
   m_moved.erase(std::unique(m_moved.begin(), m_moved.end()), m_moved.end());
-  m_narrow_s += seconds_since(start);
+  m_narrow_s += watch.seconds();
   return counts;
 }
 

@@ -45,8 +45,10 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "base/thread_pool.h"
 #include "sim/collision/surface_patches.h"
 #include "sim/grid.h"
 #include "sim/types.h"
@@ -186,7 +188,8 @@ class SelfCollision {
   std::vector<PatchPair> m_watched;
   std::vector<PatchMotion> m_motions;
   std::vector<Aabb> m_triangle_boxes, m_edge_boxes;
-  std::vector<Expansion> m_expansions;  // one per thread
+  std::unique_ptr<base::ThreadPool> m_pool;  // settings.threads threads, started once
+  std::vector<Expansion> m_expansions;       // one per thread
   // The candidate list and the positions it was built at; the active pairs and the positions
   // they were selected at; the pairs near contact in the current call's first sweep.
   CandidateLists m_candidates;

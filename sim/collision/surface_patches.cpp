@@ -5,15 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
-#include "sim/parallel_shares.h"
+#include "base/check.h"
+#include "base/constants.h"
+
 
 namespace weft::sim {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
 
@@ -25,13 +24,12 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
                                const std::vector<std::array<Index, 3>>& triangles,
                                const std::vector<std::array<Index, 2>>& edges, Index cells_per_side)
     : m_triangles(triangles) {
-  if (cells_per_side < 1)
-    throw std::invalid_argument("surface patches: cells per side must be >= 1, got " +
-                                std::to_string(cells_per_side));
-  if (triangles.size() != 2 * mesh.quads.size())
-    throw std::invalid_argument("surface patches: expected the mesh's " +
-                                std::to_string(2 * mesh.quads.size()) + " triangles, got " +
-                                std::to_string(triangles.size()));
+  // What SelfCollision hands in: the mesh's own triangles and unique edges.
+  WEFT_CHECK(cells_per_side >= 1,
+             "surface patches: cells per side " + std::to_string(cells_per_side));
+  WEFT_CHECK(triangles.size() == 2 * mesh.quads.size(),
+             "surface patches: expected the mesh's " + std::to_string(2 * mesh.quads.size()) +
+                 " triangles, got " + std::to_string(triangles.size()));
   const Index patches_u = (mesh.nu - 2) / cells_per_side + 1;
   const Index patches_v = (mesh.nv - 2) / cells_per_side + 1;
   m_patches_u = patches_u;
@@ -39,9 +37,8 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
   std::vector<Index> patch_of_triangle(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& quad = mesh.quads[t / 2];
-    if (triangles[t][0] != quad[0])
-      throw std::invalid_argument("surface patches: triangle " + std::to_string(t) +
-                                  " is not from grid cell " + std::to_string(t / 2));
+    WEFT_CHECK(triangles[t][0] == quad[0], "surface patches: triangle " + std::to_string(t) +
+                                               " is not from grid cell " + std::to_string(t / 2));
     const std::array<Index, 2> grid{(quad[0] % mesh.nu) / cells_per_side,
                                     (quad[0] / mesh.nu) / cells_per_side};
     Index& p = m_patch_of_grid[static_cast<std::size_t>(grid[1] * patches_u + grid[0])];
@@ -68,9 +65,8 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
       const std::array<Index, 2> edge{std::min(tri[k], tri[(k + 1) % 3]),
                                       std::max(tri[k], tri[(k + 1) % 3])};
       const auto it = std::lower_bound(edges.begin(), edges.end(), edge);
-      if (it == edges.end() || *it != edge)
-        throw std::invalid_argument("surface patches: edge list lacks an edge of triangle " +
-                                    std::to_string(t));
+      WEFT_CHECK(it != edges.end() && *it == edge,
+                 "surface patches: edge list lacks an edge of triangle " + std::to_string(t));
       const auto e = static_cast<std::size_t>(it - edges.begin());
       if (!edge_owned[e]) {
         edge_owned[e] = true;
@@ -134,7 +130,7 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
     }
     const double length = patch.normal_sum.norm();
     if (degenerate || !(length > 0.0)) {
-      patch.cone_angle_rad = pi;
+      patch.cone_angle_rad = base::kPi;
       continue;
     }
     const Vec3 axis = patch.normal_sum / length;
@@ -165,7 +161,7 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& fla
   std::array<Index, 4> members{};  // neighbours span at most 2 × 2 patches
   std::size_t count = 0;
   Vec3 sum = Vec3::Zero();
-  double flat_rad = pi;
+  double flat_rad = base::kPi;
   for (Index j = std::min(a[1], b[1]); j <= std::max(a[1], b[1]); ++j)
     for (Index i = std::min(a[0], b[0]); i <= std::max(a[0], b[0]); ++i) {
       const Index k = m_patch_of_grid[static_cast<std::size_t>(j * m_patches_u + i)];
@@ -191,9 +187,9 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& fla
 
 void SurfacePatches::near_pairs(double reach_m, const ConeCulling& culling,
                                 std::vector<std::array<Index, 2>>& pairs,
-                                std::size_t shares) const {
+                                base::ThreadPool* pool) const {
   std::vector<PatchPair> within;
-  pairs_within(reach_m, reach_m, culling, within, shares);
+  pairs_within(reach_m, reach_m, culling, within, pool);
   pairs.clear();
   for (const PatchPair& pair : within)
     if (!pair.culled) pairs.push_back(pair.ids);
@@ -201,7 +197,8 @@ void SurfacePatches::near_pairs(double reach_m, const ConeCulling& culling,
 }
 
 void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
-                                  std::vector<PatchPair>& pairs, std::size_t shares) const {
+                                  std::vector<PatchPair>& pairs,
+                                  base::ThreadPool* pool) const {
   pairs.clear();
   if (m_patches.empty()) return;
   // Sort and sweep (Baraff 1992) along the axis the boxes spread most: the patches are few
@@ -241,12 +238,13 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCull
     bound[4][i] = box.lo[v], bound[5][i] = box.hi[v];
   }
   // The sweep's outer loop in contiguous shares; their pairs joined in order.
-  shares = std::clamp<std::size_t>(shares, 1, std::max<std::size_t>(1, order.size() / 64));
+  const std::size_t shares = std::clamp<std::size_t>(pool ? pool->size() : 1, 1,
+                                                     std::max<std::size_t>(1, order.size() / 64));
   std::vector<std::vector<PatchPair>> found(shares);
-  run_in_shares(shares, [&](std::size_t k) {
+  const auto sweep = [&](std::size_t k) {
     std::vector<PatchPair>& out = found[k];
-    const std::size_t end = share_begin(order.size(), shares, k + 1);
-    for (std::size_t i = share_begin(order.size(), shares, k); i < end; ++i) {
+    const std::size_t end = base::share_begin(order.size(), shares, k + 1);
+    for (std::size_t i = base::share_begin(order.size(), shares, k); i < end; ++i) {
       const Index p = order[i];
       const SurfacePatch& a = m_patches[static_cast<std::size_t>(p)];
       out.push_back({{p, p}, 0.0, a.cone_angle_rad < flat_angles_rad[static_cast<std::size_t>(p)]});
@@ -263,7 +261,11 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCull
         out.push_back({{std::min(p, q), std::max(p, q)}, gap_m, culled});
       }
     }
-  });
+  };
+  if (pool)
+    pool->run(shares, sweep);
+  else
+    sweep(0);
   for (const auto& share : found) pairs.insert(pairs.end(), share.begin(), share.end());
 }
 

@@ -32,6 +32,8 @@
 #include <array>
 #include <vector>
 
+#include "base/constants.h"
+#include "base/thread_pool.h"
 #include "sim/collision/spatial_hash.h"
 #include "sim/grid.h"
 #include "sim/types.h"
@@ -80,7 +82,7 @@ struct PatchMotion {
 // when that has no solution or exclusion_m is 0.
 struct ConeCulling {
   double exclusion_m = 0.0;
-  double max_angle_rad = 60.0 * 3.14159265358979323846 / 180.0;
+  double max_angle_rad = 60.0 * base::kPi / 180.0;
   double flat_angle_rad(double reach_m, double least_stretch) const;
 };
 
@@ -99,16 +101,17 @@ class SurfacePatches {
 
   // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
   // within reach_m of each other and that the normal cones do not rule out (`culling`; a
-  // default ConeCulling rules out nothing). Sorted. Call refit first. Up to `shares` threads
-  // (parallel_shares.h) sweep; the pairs are the same.
+  // default ConeCulling rules out nothing). Sorted. Call refit first. The threads of `pool`
+  // (base/thread_pool.h; none: this thread alone) sweep; the pairs are the same.
   void near_pairs(double reach_m, const ConeCulling& culling,
-                  std::vector<std::array<Index, 2>>& pairs, std::size_t shares = 1) const;
+                  std::vector<std::array<Index, 2>>& pairs,
+                  base::ThreadPool* pool = nullptr) const;
   // Every patch pair whose boxes are at most watch_m apart along each axis (a pair left out
   // is farther apart than watch_m), with its gap; those within reach_m (≤ watch_m) that the
   // cones rule out, as near_pairs() drops them, are marked culled. In the order of a sweep
   // along one axis, the same for any number of shares.
   void pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
-                    std::vector<PatchPair>& pairs, std::size_t shares = 1) const;
+                    std::vector<PatchPair>& pairs, base::ThreadPool* pool = nullptr) const;
 
   // Each patch's motion from `reference` to x (both #V×3), one per patch.
   void motions(const Matrix3X& x, const Matrix3X& reference,

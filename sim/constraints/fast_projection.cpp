@@ -1,19 +1,13 @@
 #include "sim/constraints/fast_projection.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
+#include "base/timer.h"
 #include "sim/constraints/inextensibility.h"
 
 namespace weft::sim {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Index of (row, col) in a compressed column-major matrix's value array.
 int slot_of(const SparseMatrix& m, int row, int col) {
@@ -161,12 +155,12 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
 
   while (result.max_strain > m_settings.tolerance && result.iterations < m_settings.max_iterations) {
     ++result.iterations;
-    const auto start = Clock::now();
+    const base::Stopwatch watch;
     fill_matrix();
     const bool factorized = factorize_with_fallback();
     Eigen::VectorXd mu;
     if (factorized) mu = m_solver->solve(m_c);
-    result.solve_s += seconds_since(start);
+    result.solve_s += watch.seconds();
     if (!factorized || !mu.allFinite()) break;
 
     // δ = −M⁻¹ Jᵀ μ, with ∇_b C = 2 d / l = −∇_a C.

@@ -8,18 +8,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
+
 namespace weft::sim {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Pieces per strip when walking a half-cosine strip by arc length: the chord error of 32
 // pieces is below 1e-3 of the strip's z change.
 constexpr int kCosinePieces = 32;
 
 double column_cosine(const FoldPattern& p, double x_m) {
-  return std::max(0.0, std::cos(kPi * x_m / p.span_m));
+  return std::max(0.0, std::cos(base::kPi * x_m / p.span_m));
 }
 
 // The strip from wrinkle line k (upper) to line k − 1 at a column with cosine c.
@@ -36,7 +36,7 @@ Strip strip(const FoldPattern& p, int k, double c) {
 
 FoldPoint on_strip(const FoldPattern& p, const Strip& s, double x_m, double t) {
   const double blend =
-      p.interpolation == FoldInterpolation::linear ? t : 0.5 * (1.0 - std::cos(kPi * t));
+      p.interpolation == FoldInterpolation::linear ? t : 0.5 * (1.0 - std::cos(base::kPi * t));
   return {x_m, s.depth0 + (s.depth1 - s.depth0) * t, s.z0 + (s.z1 - s.z0) * blend};
 }
 

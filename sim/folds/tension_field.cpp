@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <limits>
 
+#include "base/constants.h"
+
 namespace weft::sim {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // a0 = 1.01 h: the paper's first approximation of the lowest wrinkle line's amplitude (§5.2).
 constexpr double kLowestAmplitudeFactor = 1.01;
@@ -127,9 +127,9 @@ double boundary_length_m(double span_m, double amplitude_m, int intervals) {
   if (intervals < 2 || intervals % 2 != 0)
     throw std::invalid_argument("boundary_length_m: Simpson's rule needs an even number >= 2 of "
                                 "intervals, got " + std::to_string(intervals));
-  const double k = kPi * amplitude_m / span_m;  // slope scale of A cos(πx/l)
+  const double k = base::kPi * amplitude_m / span_m;  // slope scale of A cos(πx/l)
   const auto integrand = [&](double x) {
-    const double s = std::sin(kPi * x / span_m);
+    const double s = std::sin(base::kPi * x / span_m);
     return std::sqrt(1.0 + k * k * s * s);
   };
   const double step = span_m / intervals;

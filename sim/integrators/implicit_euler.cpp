@@ -2,12 +2,12 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
-#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "base/timer.h"
 
 namespace weft::sim {
 
@@ -311,7 +311,7 @@ ImplicitEuler::~ImplicitEuler() = default;
 // One Newton step of backward Euler (Baraff & Witkin 1998, with ∂f/∂x = −K, ∂f/∂v = −α M):
 //   (M (1 + h α) + h² K) Δv = h (f(x_n) − α M v_n − h K v_n + M g),   v_{n+1} = v_n + Δv.
 StepReport ImplicitEuler::step(const System& system, State& state, double h_s) {
-  const auto start = std::chrono::steady_clock::now();
+  const base::Stopwatch watch;
   Impl& im = *m_impl;
   const Matrix3X& x = state.x;
   Matrix3X& v = state.v;
@@ -334,7 +334,7 @@ StepReport ImplicitEuler::step(const System& system, State& state, double h_s) {
       if (!im.pinned[static_cast<std::size_t>(i)]) v.row(i) += dv.segment<3>(3 * i).transpose();
   }
   state.x += h_s * v;
-  result.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.solve_s = watch.seconds();
   return result;
 }
 

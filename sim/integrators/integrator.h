@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
+
 namespace weft::sim {
 
 enum class Integrator {
@@ -40,26 +42,19 @@ inline std::vector<Integrator> physical_time_integrators() {
   return result;
 }
 
+// The scene-file names of the integrators, in all_integrators' order.
+inline constexpr base::EnumNames<Integrator, 7> integrator_names{{
+    {Integrator::symplectic_euler, "symplectic_euler"},
+    {Integrator::implicit_euler, "implicit_euler"},
+    {Integrator::explicit_euler, "explicit_euler"},
+    {Integrator::rk4, "rk4"},
+    {Integrator::velocity_verlet, "velocity_verlet"},
+    {Integrator::central_difference, "central_difference"},
+    {Integrator::dynamic_relaxation, "dynamic_relaxation"}}};
+
 // The scene-file name of an integrator.
 inline const char* integrator_name(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::symplectic_euler:
-      return "symplectic_euler";
-    case Integrator::implicit_euler:
-      return "implicit_euler";
-    case Integrator::explicit_euler:
-      return "explicit_euler";
-    case Integrator::rk4:
-      return "rk4";
-    case Integrator::velocity_verlet:
-      return "velocity_verlet";
-    case Integrator::central_difference:
-      return "central_difference";
-    case Integrator::dynamic_relaxation:
-      return "dynamic_relaxation";
-  }
-  throw std::logic_error("integrator_name: unknown integrator " +
-                         std::to_string(static_cast<int>(integrator)));
+  return base::enum_name(integrator_names, integrator);
 }
 
 }  // namespace weft::sim

@@ -4,7 +4,6 @@
 #include "sim/linear/sparse_spd_solver.h"
 
 #include <Eigen/SparseCholesky>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,9 +15,6 @@ namespace weft::sim {
 namespace {
 
 using linear_detail::require;
-
-constexpr std::array<SparseBackend, 2> k_all_backends{SparseBackend::eigen_ldlt,
-                                                      SparseBackend::cholmod};
 
 // L D Lᵀ of P A Pᵀ with P from AMD, column by column; only A's lower triangle is read.
 class EigenLdltSolver final : public SparseSpdSolver {
@@ -72,33 +68,10 @@ class EigenLdltSolver final : public SparseSpdSolver {
   std::string m_failure;
 };
 
-std::string known_backend_names() {
-  std::string names;
-  for (SparseBackend backend : k_all_backends) {
-    if (!names.empty()) names += ", ";
-    names += sparse_backend_name(backend);
-  }
-  return names;
-}
-
 }  // namespace
 
 SparseBackend sparse_backend_from_name(const std::string& name) {
-  for (SparseBackend backend : k_all_backends) {
-    if (name == sparse_backend_name(backend)) return backend;
-  }
-  throw std::invalid_argument("unknown sparse solver back-end \"" + name +
-                              "\"; known: " + known_backend_names());
-}
-
-const char* sparse_backend_name(SparseBackend backend) {
-  switch (backend) {
-    case SparseBackend::eigen_ldlt:
-      return "eigen_ldlt";
-    case SparseBackend::cholmod:
-      return "cholmod";
-  }
-  throw std::logic_error("sparse_backend_name: invalid SparseBackend value");
+  return base::parse_enum(sparse_backend_names, name, "sparse solver back-end");
 }
 
 std::vector<SparseBackend> available_sparse_backends() {

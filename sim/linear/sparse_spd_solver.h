@@ -7,15 +7,23 @@
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
+
 namespace weft::sim {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 enum class SparseBackend { eigen_ldlt, cholmod };
 
+// The back-ends' names (simulation.linear_solver), in the order an error lists them.
+inline constexpr base::EnumNames<SparseBackend, 2> sparse_backend_names{
+    {{SparseBackend::cholmod, "cholmod"}, {SparseBackend::eigen_ldlt, "eigen_ldlt"}}};
+
 // "eigen_ldlt", "cholmod"; throws std::invalid_argument listing the known names.
 SparseBackend sparse_backend_from_name(const std::string& name);
-const char* sparse_backend_name(SparseBackend backend);
+inline const char* sparse_backend_name(SparseBackend backend) {
+  return base::enum_name(sparse_backend_names, backend);
+}
 // The back-ends this build has (cholmod only when built with CHOLMOD).
 std::vector<SparseBackend> available_sparse_backends();
 // The default: the faster of the available back-ends as measured by bench/sparse_solver_bench.

@@ -6,6 +6,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "sim/material.h"
+
 namespace weft::sim {
 
 std::vector<RftPatch> make_rft_patches(const ClothMesh& mesh) {
@@ -51,7 +53,7 @@ std::vector<RftPatch> make_rft_patches(const ClothMesh& mesh) {
 
 void check_rft_rigidity(double value, const char* key) {
   if (!(value >= 0.0) || !std::isfinite(value))
-    throw std::invalid_argument(std::string(key) + ": expected a finite rigidity >= 0, got " +
+    throw MaterialError(std::string(key) + ": expected a finite rigidity >= 0, got " +
                                 std::to_string(value));
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <random>
 
+#include "base/constants.h"
 #include "sim/folds/fold_geometry.h"
 #include "sim/folds/tension_field.h"
 #include "sim/grid.h"
@@ -15,8 +16,6 @@
 
 namespace weft::sim {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 std::vector<double> sampled(int samples, const std::function<double(double)>& f) {
   std::vector<double> v;
@@ -28,18 +27,18 @@ TEST(CurtainFolds, ZigzagCountsEachExtremeOfASineOnce) {
   // sin over m half periods from a zero: m interior extremes, plus both ends when they are
   // farther than the hysteresis from the neighbouring extremes (they are: at 0).
   for (int m = 1; m <= 9; ++m) {
-    const auto v = sampled(401, [&](double s) { return std::sin(m * pi * s); });
+    const auto v = sampled(401, [&](double s) { return std::sin(m * base::kPi * s); });
     EXPECT_EQ(count_alternating_extremes(v, 0.2), m + 2) << m << " half periods";
   }
   // From a crest: the start is an extreme, the ends at 0 … the count is the same rule.
-  const auto cos3 = sampled(401, [](double s) { return std::cos(3 * pi * s); });
+  const auto cos3 = sampled(401, [](double s) { return std::cos(3 * base::kPi * s); });
   EXPECT_EQ(count_alternating_extremes(cos3, 0.2), 4);
 }
 
 TEST(CurtainFolds, WigglesBelowTheHysteresisDoNotCount) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> noise(-0.04, 0.04);
-  const auto v = sampled(401, [&](double s) { return std::sin(4 * pi * s) + noise(rng); });
+  const auto v = sampled(401, [&](double s) { return std::sin(4 * base::kPi * s) + noise(rng); });
   EXPECT_EQ(count_alternating_extremes(v, 0.2), 6);
   EXPECT_EQ(count_alternating_extremes(std::vector<double>(50, 1.0), 0.2), 0);
   EXPECT_EQ(count_alternating_extremes({}, 0.2), 0);

@@ -9,14 +9,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/grid.h"
 #include "analysis/measure/drape_measure.h"
 #include "analysis/measure/settle.h"
 
 namespace weft::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Mesh {
   Matrix3X x;
@@ -31,7 +30,7 @@ Mesh fan(const Vec2& center, int n, Radius r, double z = 0.2) {
   m.x.resize(n + 1, 3);
   m.x.row(0) << center.x(), center.y(), z;
   for (int k = 0; k < n; ++k) {
-    const double theta = 2.0 * kPi * k / n;
+    const double theta = 2.0 * base::kPi * k / n;
     m.x.row(k + 1) << center.x() + r(theta) * std::cos(theta),
         center.y() + r(theta) * std::sin(theta), z;
     m.triangles.push_back({0, k + 1, (k + 1) % n + 1});
@@ -54,9 +53,9 @@ TEST(ShadowArea, FlatDiscWithinTheStatedBoundAtEveryScale) {
     const double radius = 0.1 * scale, cell = radius / 200.0;
     const Mesh disc = fan(Vec2(0.31, -0.17) * scale, 4096, [&](double) { return radius; }, 0.2 * scale);
     const double exact = polygon_area(disc);
-    ASSERT_NEAR(exact, kPi * radius * radius, 1e-6 * exact);  // the polygon is the circle
+    ASSERT_NEAR(exact, base::kPi * radius * radius, 1e-6 * exact);  // the polygon is the circle
     const ShadowMask shadow = rasterize_shadow(disc.x, disc.triangles, cell);
-    const double bound = shadow_area_error_bound_m2(2.0 * kPi * radius, cell);
+    const double bound = shadow_area_error_bound_m2(2.0 * base::kPi * radius, cell);
     EXPECT_NEAR(shadow.area_m2(), exact, bound) << "scale " << scale;
     EXPECT_LT(bound, 0.03 * exact);  // the bound is a useful one at 200 cells per radius
   }
@@ -67,7 +66,7 @@ TEST(ShadowArea, ErrorShrinksWithTheCell) {
   const double exact = polygon_area(disc);
   for (double cell : {4e-3, 1e-3, 2.5e-4}) {
     const double error = std::abs(rasterize_shadow(disc.x, disc.triangles, cell).area_m2() - exact);
-    EXPECT_LE(error, shadow_area_error_bound_m2(2.0 * kPi * 0.1, cell)) << "cell " << cell;
+    EXPECT_LE(error, shadow_area_error_bound_m2(2.0 * base::kPi * 0.1, cell)) << "cell " << cell;
   }
 }
 
@@ -76,7 +75,7 @@ Mesh turned_square(double side_m, double z_m, Index n = 21) {
   GridSpec spec;
   spec.size_u_m = spec.size_v_m = side_m;
   spec.nu = spec.nv = n;
-  const double c = std::cos(kPi / 6.0), s = std::sin(kPi / 6.0);
+  const double c = std::cos(base::kPi / 6.0), s = std::sin(base::kPi / 6.0);
   spec.warp_axis = Vec3(c, s, 0.0);
   spec.weft_axis = Vec3(-s, c, 0.0);
   spec.origin = Vec3(0.0, 0.0, z_m) - 0.5 * side_m * (spec.warp_axis + spec.weft_axis);
@@ -148,12 +147,12 @@ TEST(SpecimenArea, SumsTheKeptQuadsOnly) {
   const double cell_area = 0.01 * 0.01;
   EXPECT_NEAR(specimen_rest_area_m2(disc), cell_area * static_cast<double>(disc.quads.size()), 1e-12);
   EXPECT_LT(disc.quads.size(), 40u * 40u);
-  EXPECT_NEAR(specimen_rest_area_m2(disc), kPi * 0.2 * 0.2, 0.02 * kPi * 0.2 * 0.2);
+  EXPECT_NEAR(specimen_rest_area_m2(disc), base::kPi * 0.2 * 0.2, 0.02 * base::kPi * 0.2 * 0.2);
 }
 
 // A flat specimen keeps its whole area: DC = 1 (Cusick's definition), whatever the support.
 TEST(DrapeCoefficient, FlatUnsupportedSpecimenIsOne) {
-  const double side = 0.5, cell = 5e-4, support = kPi * 0.1 * 0.1;
+  const double side = 0.5, cell = 5e-4, support = base::kPi * 0.1 * 0.1;
   const Mesh sheet = turned_square(side, 0.3);
   const double dc =
       drape_coefficient(rasterize_shadow(sheet.x, sheet.triangles, cell).area_m2(), support,
@@ -214,7 +213,7 @@ TEST(Support, TheHighestObstacleUnderTheClothCentre) {
   ASSERT_TRUE(s);
   EXPECT_EQ(s->obstacle, 1u);
   EXPECT_EQ(s->kind, "cylinder");
-  EXPECT_NEAR(s->area_m2, kPi * 0.01, 1e-15);
+  EXPECT_NEAR(s->area_m2, base::kPi * 0.01, 1e-15);
   EXPECT_NEAR(s->top_z_m, 0.21, 1e-15);
 
   BoxObstacle box{Vec3(0.0, 0.0, 0.15), Vec3(0.05, 0.02, 0.15), 0.5};  // top at 0.30, turned
@@ -230,7 +229,7 @@ TEST(Support, TheHighestObstacleUnderTheClothCentre) {
   s = find_support(obstacles, centre);
   ASSERT_TRUE(s);
   EXPECT_EQ(s->kind, "sphere");
-  EXPECT_NEAR(s->area_m2, kPi * 0.0025, 1e-15);
+  EXPECT_NEAR(s->area_m2, base::kPi * 0.0025, 1e-15);
   EXPECT_EQ(s->axis_m, Vec2(0.0, 0.0));
 
   // Nothing is a support for a cloth below it, or beside it; a tilted cylinder never is.
@@ -255,7 +254,7 @@ TEST(Folds, StarOutlinesGiveTheirNumberOfLobes) {
     const double tolerance =
         1.05 * cell / std::sqrt(2.0) * (1.0 + std::sqrt(1.0 + slope * slope) + slope);
     for (int b = 0; b < 360; ++b) {
-      const double lo = 2.0 * kPi * b / 360.0, hi = 2.0 * kPi * (b + 1) / 360.0;
+      const double lo = 2.0 * base::kPi * b / 360.0, hi = 2.0 * base::kPi * (b + 1) / 360.0;
       double r_max = 0.0;
       for (int s = 0; s <= 20; ++s) {
         const double t = lo + (hi - lo) * s / 20.0;
@@ -273,7 +272,7 @@ TEST(Folds, StarOutlinesGiveTheirNumberOfLobes) {
 TEST(Folds, SmallRipplesAndACircleAreNotFolds) {
   std::vector<double> r(360);
   for (int b = 0; b < 360; ++b) {
-    const double t = 2.0 * kPi * (b + 0.5) / 360.0;
+    const double t = 2.0 * base::kPi * (b + 0.5) / 360.0;
     r[b] = 0.2 * (1.0 + 0.1 * std::cos(8.0 * t) + 0.006 * std::cos(60.0 * t));
   }
   EXPECT_EQ(count_folds(r, {}), 8);
@@ -314,7 +313,7 @@ TEST(SettleTime, ExponentialDecayIsExact) {
 // |v| = v0 e^(−t/τ) |cos ωt| crosses the threshold for the last time before its envelope does,
 // and within half a period of it.
 TEST(SettleTime, DampedOscillationSettlesWithItsEnvelope) {
-  const double v0 = 2.0, tau = 0.4, omega = 2.0 * kPi * 1.5, threshold = 0.01;
+  const double v0 = 2.0, tau = 0.4, omega = 2.0 * base::kPi * 1.5, threshold = 0.01;
   std::vector<double> t, v;
   for (int i = 0; i <= 400; ++i) {
     t.push_back(i / 100.0);
@@ -324,7 +323,7 @@ TEST(SettleTime, DampedOscillationSettlesWithItsEnvelope) {
   const auto settle = settle_time_s(t, v, threshold);
   ASSERT_TRUE(settle);
   EXPECT_LE(*settle, envelope + 0.01);
-  EXPECT_GE(*settle, envelope - kPi / omega - 0.01);
+  EXPECT_GE(*settle, envelope - base::kPi / omega - 0.01);
 }
 
 TEST(SettleTime, LateMotionAndBadInput) {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/energies/spring.h"
 #include "sim/mass_spring.h"
 #include "sim/simulator.h"
@@ -16,8 +17,6 @@
 
 namespace weft::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Masses m on springs k (rest length L) along x: vertex 0 pinned at the origin, then `free`
 // vertices, then (fixed_far_end) one more pinned vertex. Only the axial motion is stiff at rest
@@ -102,7 +101,7 @@ TEST(LargestEigenvalue, FixedChainMatchesItsAnalyticSpectrum) {
   chain.fixed_far_end = true;
   const double n = chain.free;
   const double exact = 4.0 * Chain::kStiffness / Chain::kMass *
-                       std::pow(std::sin(n * kPi / (2.0 * (n + 1.0))), 2);
+                       std::pow(std::sin(n * base::kPi / (2.0 * (n + 1.0))), 2);
   const LargestEigenvalue e = largest_eigenvalue_mass_stiffness(
       chain.forces(), chain.rest(), chain.mass(), chain.inv_mass());
   std::printf("chain of %d: lambda %.10e, exact %.10e, %d Lanczos steps\n", chain.free,

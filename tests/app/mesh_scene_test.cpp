@@ -14,6 +14,7 @@
 
 #include "app/mesh_file.h"
 #include "app/scene.h"
+#include "base/constants.h"
 #include "scene_test_support.h"
 #include "sim/collision/mesh_obstacle.h"
 #include "sim/collision/obstacle.h"
@@ -209,12 +210,12 @@ TEST(MeshScene, MeshKeysScaleTurnAndPlaceTheFileRelativeToTheScene) {
   ASSERT_EQ(s.sim.obstacles.size(), 1u);
   const auto& mesh = std::get<sim::MeshObstacle>(s.sim.obstacles[0]);
   EXPECT_DOUBLE_EQ(mesh.solid->vertices_m().cwiseAbs().maxCoeff(), 0.1);  // 0.2 × 0.5
-  EXPECT_DOUBLE_EQ(mesh.pose.yaw_rad, 30.0 * 3.14159265358979323846 / 180.0);
+  EXPECT_DOUBLE_EQ(mesh.pose.yaw_rad, 30.0 * base::kPi / 180.0);
   EXPECT_TRUE(mesh.pose.translation_m.isApprox(sim::Vec3(0.01, 0.0, 0.5)));
   EXPECT_FALSE(s.sim.obstacle_motions[0].moves());
   // The same cube as the box it is.
   const sim::BoxObstacle box{sim::Vec3(0.01, 0.0, 0.5), sim::Vec3(0.1, 0.1, 0.1),
-                             30.0 * 3.14159265358979323846 / 180.0};
+                             30.0 * base::kPi / 180.0};
   for (const sim::Vec3& p : {sim::Vec3(0.05, 0.02, 0.55), sim::Vec3(0.2, 0.1, 0.62)})
     EXPECT_NEAR(sim::signed_distance(s.sim.obstacles[0], p), sim::signed_distance(box, p), 1e-7);
 }
@@ -250,7 +251,7 @@ TEST(MeshScene, MotionKeyframesAreReadAndChecked) {
   ASSERT_EQ(s.sim.obstacle_motions.size(), 1u);
   const sim::RigidPose mid = s.sim.obstacle_motions[0].pose_at(1.0);
   EXPECT_TRUE(mid.translation_m.isApprox(sim::Vec3(0.05, 0, 0)));
-  EXPECT_NEAR(mid.yaw_rad, 3.14159265358979323846 / 4, 1e-15);
+  EXPECT_NEAR(mid.yaw_rad, base::kPi / 4, 1e-15);
 
   Json backwards = moving;
   backwards["motion"][1]["time"] = "0 s";

@@ -83,6 +83,34 @@ TEST(ModelScene, OnlyTheNeededTermsAreBuilt) {
   EXPECT_CONTAINS(constrained, "Baraff–Witkin shear");
 }
 
+// make_simulator labels material errors, and only those, with the material's key: another
+// setting the simulator refuses is still bad input, but not called a material error.
+std::string make_simulator_error(const Scene& scene) {
+  try {
+    make_simulator(scene);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(MakeSimulator, OnlyMaterialErrorsAreCalledMaterialErrors) {
+  Json j = model_scene("mass_spring");
+  j["simulation"]["constraints"] = {{"method", "none"}};  // stretch springs: shear must be below
+  j["cloth"]["material"] = {{"shear", "5000 N/m"}};
+  const std::string material = make_simulator_error(test::parse_json_scene(j));
+  EXPECT_CONTAINS(material, "scene.json: cloth.material: shear rigidity");
+
+  Scene scene = test::parse_json_scene(model_scene("mass_spring"));
+  scene.sim.self_collision.enabled = true;
+  scene.sim.self_collision.threads = -1;  // not a material error
+  const std::string other = make_simulator_error(scene);
+  EXPECT_CONTAINS(other, "scene.json: ");
+  EXPECT_CONTAINS(other, "self_collision.threads");
+  EXPECT_EQ(other.find("material"), std::string::npos) << other;
+}
+
+
 // The continuum models run under every integrator kind: explicit at their automatic step,
 // implicit, and with fast projection; the sheet hangs below its pins and stays finite.
 class ContinuumModelScene : public ::testing::TestWithParam<const char*> {};

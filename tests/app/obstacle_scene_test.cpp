@@ -10,6 +10,7 @@
 #include "app/json_reader.h"
 #include "app/obstacle_meshes.h"
 #include "app/scene.h"
+#include "base/constants.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {
@@ -164,7 +165,7 @@ TEST(ObstacleScene, BoxCylinderAndCapsuleLandInSIUnits) {
   const auto& box = std::get<sim::BoxObstacle>(s.sim.obstacles[0]);
   EXPECT_TRUE(box.center_m.isApprox(Eigen::Vector3d(0, 0, 0.05), 1e-15));
   EXPECT_TRUE(box.half_size_m.isApprox(Eigen::Vector3d(0.05, 0.04, 0.05), 1e-15));
-  EXPECT_NEAR(box.yaw_rad, 3.14159265358979323846 / 6.0, 1e-15);  // a bare angle is degrees
+  EXPECT_NEAR(box.yaw_rad, base::kPi / 6.0, 1e-15);  // a bare angle is degrees
   const auto& cylinder = std::get<sim::CylinderObstacle>(s.sim.obstacles[1]);
   EXPECT_TRUE(cylinder.center_m.isApprox(Eigen::Vector3d(1.0, 0, 0.2), 1e-15));
   EXPECT_EQ(cylinder.axis, Eigen::Vector3d(0, 0, 1));

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "app/turntable_command.h"
+#include "base/constants.h"
 
 namespace {
 
@@ -17,8 +18,6 @@ using weft::app::orbit_camera;
 using weft::app::OrbitSettings;
 using weft::render::Camera;
 using Eigen::Vector3d;
-
-constexpr double pi = 3.14159265358979323846;
 constexpr double tol = 1e-12;
 
 Camera scene_camera() {
@@ -30,12 +29,12 @@ Camera scene_camera() {
 }
 
 double elevation_deg(const Vector3d& offset) {
-  return std::atan2(offset.z(), std::hypot(offset.x(), offset.y())) * 180.0 / pi;
+  return std::atan2(offset.z(), std::hypot(offset.x(), offset.y())) * 180.0 / weft::base::kPi;
 }
 
 // Azimuth of the horizontal part of `offset`, degrees in [0, 360).
 double azimuth_deg(const Vector3d& offset) {
-  const double a = std::atan2(offset.y(), offset.x()) * 180.0 / pi;
+  const double a = std::atan2(offset.y(), offset.x()) * 180.0 / weft::base::kPi;
   return a < 0.0 ? a + 360.0 : a;
 }
 
@@ -138,7 +137,7 @@ TEST(FramingCamera, TheWholeBoxIsInViewAllAroundTheOrbit) {
   const double fov_y = 40.0, aspect = 4.0 / 3.0;
   const Camera base = weft::app::framing_camera(lo, hi, Vector3d(2.0, -2.5, 0.7), fov_y, aspect);
   EXPECT_NEAR((base.target - 0.5 * (lo + hi)).norm(), 0.0, tol);
-  const double tan_y = std::tan(0.5 * fov_y * pi / 180.0), tan_x = aspect * tan_y;
+  const double tan_y = std::tan(0.5 * fov_y * weft::base::kPi / 180.0), tan_x = aspect * tan_y;
   for (int i = 0; i < 12; ++i) {
     const Camera c = orbit_camera(base, base.target, i, 12);
     const Vector3d forward = (c.target - c.eye).normalized();

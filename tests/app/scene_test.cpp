@@ -9,11 +9,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/constants.h"
+
 namespace weft::app {
 namespace {
 
 constexpr double gram_force = 9.80665e-3;  // N
-constexpr double pi = 3.14159265358979323846;
 
 void expect_close(double actual, double expected) {
   EXPECT_NEAR(actual, expected, 1e-12 * std::fabs(expected)) << "actual " << actual;
@@ -117,7 +118,7 @@ TEST(Scene, CompleteSceneLandsInSIUnits) {
   EXPECT_EQ(r.height, 240);
   EXPECT_EQ(r.camera.eye, Eigen::Vector3d(1, 2, 3));
   expect_close(r.camera.target.x(), 0.1);
-  expect_close(r.camera.fov_y_deg, 0.5 * 180.0 / pi);
+  expect_close(r.camera.fov_y_deg, 0.5 * 180.0 / base::kPi);
   expect_close(r.camera.near_m, 0.005);
   EXPECT_EQ(r.camera.far_m, 50.0);
   EXPECT_EQ(r.light_direction, Eigen::Vector3d(0, 0, 2));

@@ -5,12 +5,13 @@
 #include <cmath>
 #include <string>
 
+#include "base/constants.h"
+
 namespace weft::app {
 namespace {
 
 constexpr double g0 = 9.80665;             // standard gravity, m/s²
 constexpr double gram_force = 9.80665e-3;  // N
-constexpr double pi = 3.14159265358979323846;
 
 // Relative comparison at 1e-12.
 void expect_close(double actual, double expected) {
@@ -74,7 +75,7 @@ TEST(Units, EachKindInItsUnits) {
   expect_close(parse_quantity("1.5 mN/mm", Quantity::force_per_length), 1.5);
   expect_close(parse_quantity("1.5 kg/s^2", Quantity::force_per_length), 1.5);
   expect_close(parse_quantity("36 km/h", Quantity::speed), 10.0);
-  expect_close(parse_quantity("30 deg", Quantity::angle), 30.0 * pi / 180.0);
+  expect_close(parse_quantity("30 deg", Quantity::angle), 30.0 * base::kPi / 180.0);
   expect_close(parse_quantity("0.5 rad", Quantity::angle), 0.5);
   expect_close(parse_quantity("+1e-3 m", Quantity::length), 1e-3);
 }
@@ -93,7 +94,7 @@ TEST(Units, ExpressionGrammar) {
   const Unit gram_force_unit = parse_unit("gf");
   expect_close(gram_force_unit.factor, gram_force);
   expect_close(parse_unit("kgf").factor, g0);
-  expect_close(parse_unit("deg").factor, pi / 180.0);
+  expect_close(parse_unit("deg").factor, base::kPi / 180.0);
   EXPECT_EQ(parse_unit("deg").dimension, (Dimension{}));
 }
 

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "base/constants.h"
+
 namespace weft::render {
 namespace {
 
@@ -152,7 +154,7 @@ TEST(Canvas, FilledCircleHasTheDiscsAreaAndSymmetry) {
   const double r = 12.0;
   canvas.circle(20, 20, r, kInk, true);
   const std::set<Pixel> pixels = inked(canvas);
-  const double area = M_PI * r * r;  // pixel count of a disc ≈ its area, error O(r)
+  const double area = base::kPi * r * r;  // pixel count of a disc ≈ its area, error O(r)
   EXPECT_NEAR(static_cast<double>(pixels.size()), area, 0.03 * area);
   for (const auto& [x, y] : pixels) {
     EXPECT_TRUE(pixels.count({40 - x, y}) && pixels.count({x, 40 - y}) && pixels.count({y, x}))
@@ -172,7 +174,7 @@ TEST(Canvas, CircleOutlineIsARingAroundTheRadius) {
   for (const auto& [x, y] : pixels) EXPECT_LE(std::abs(std::hypot(x - 20, y - 20) - r), 0.5);
   EXPECT_FALSE(pixels.count({20, 20}));
   // A ring one pixel wide: about its circumference in pixels (within 10 %).
-  EXPECT_NEAR(static_cast<double>(pixels.size()), 2 * M_PI * r, 0.3 * 2 * M_PI * r);
+  EXPECT_NEAR(static_cast<double>(pixels.size()), 2 * base::kPi * r, 0.3 * 2 * base::kPi * r);
 }
 
 // Text is anti-aliased DejaVu Sans (render/font.h): the pixels it touches, not one ink.

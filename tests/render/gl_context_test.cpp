@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "render/gl_context.h"
 #include "render/image_diff.h"
 #include "render/primitives.h"
@@ -58,20 +59,19 @@ struct Scene {
 };
 
 Scene draped_sphere() {
-  constexpr double pi = 3.14159265358979323846;
   const Eigen::Vector3d centre(0.0, 0.0, 0.25);
   const double r = 0.052;
   Scene scene;
   scene.cloth = make_grid_mesh(48, 48, [&](double u, double v) {
     const double x = 0.3 * (u - 0.5), y = 0.3 * (v - 0.5);
     const double s = std::hypot(x, y), phi = std::atan2(y, x);
-    if (s <= 0.5 * pi * r) {
+    if (s <= 0.5 * base::kPi * r) {
       const double theta = s / r;
       return Eigen::Vector3d(centre + r * Eigen::Vector3d(std::sin(theta) * std::cos(phi),
                                                           std::sin(theta) * std::sin(phi),
                                                           std::cos(theta)));
     }
-    const double d = s - 0.5 * pi * r;
+    const double d = s - 0.5 * base::kPi * r;
     const double rho = r + 0.35 * d * (1.0 + 0.5 * std::sin(8.0 * phi));
     return Eigen::Vector3d(centre + Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), -d));
   });

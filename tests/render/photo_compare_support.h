@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "base/constants.h"
 #include "render/image.h"
 
 namespace weft::render::test {
@@ -37,7 +38,7 @@ inline Image draw_curtain(const CurtainSpec& s) {
           const double u = (x + (i + 0.5) / n - 0.5 - s.cx) / s.scale;
           const double v = (y + (j + 0.5) / n - 0.5 - s.cy) / s.scale;
           if (curtain_inside(u, v)) {
-            const double shade = 0.65 + 0.35 * std::cos(2 * M_PI * s.folds * u / 60.0);
+            const double shade = 0.65 + 0.35 * std::cos(2 * base::kPi * s.folds * u / 60.0);
             r += shade * s.cloth.r;
             g += shade * s.cloth.g;
             b += shade * s.cloth.b;

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "base/constants.h"
+
 namespace weft::render {
 namespace {
 
@@ -66,7 +68,7 @@ TEST(Primitives, SphereIsClosedWithOutwardCounterClockwiseTriangles) {
   const auto F = static_cast<long>(mesh.triangles.size());
   EXPECT_EQ(V - E + F, 2);
   // The inscribed polyhedron's area is a little below 4πr².
-  const double sphere_area = 4.0 * 3.14159265358979323846 * 0.2 * 0.2;
+  const double sphere_area = 4.0 * base::kPi * 0.2 * 0.2;
   EXPECT_LT(area, sphere_area);
   EXPECT_GT(area, 0.95 * sphere_area);
 }
@@ -169,10 +171,10 @@ TEST(Primitives, CylinderIsClosedOnItsSurfaceAndHasItsPrismVolume) {
 
 TEST(Primitives, CapsuleIsClosedOnItsSurfaceWithNearlyItsVolume) {
   const Eigen::Vector3d a(0.0, -0.1, 0.3), b(0.05, 0.1, 0.3);
-  const double radius = 0.03, pi = 3.14159265358979323846;
+  const double radius = 0.03;
   const RenderMesh mesh = make_capsule_mesh(a, b, radius, 32, 8);
   const double length = (b - a).norm();
-  const double exact = pi * radius * radius * length + 4.0 / 3.0 * pi * std::pow(radius, 3);
+  const double exact = base::kPi * radius * radius * length + 4.0 / 3.0 * base::kPi * std::pow(radius, 3);
   const double volume = closed_volume(mesh);
   EXPECT_LT(volume, exact);  // inscribed
   EXPECT_GT(volume, 0.97 * exact);
@@ -185,7 +187,7 @@ TEST(Primitives, CapsuleIsClosedOnItsSurfaceWithNearlyItsVolume) {
   }
   // a = b: a closed sphere.
   const RenderMesh ball = make_capsule_mesh(a, a, radius, 32, 8);
-  EXPECT_GT(closed_volume(ball), 0.97 * 4.0 / 3.0 * pi * std::pow(radius, 3));
+  EXPECT_GT(closed_volume(ball), 0.97 * 4.0 / 3.0 * base::kPi * std::pow(radius, 3));
 }
 
 TEST(Primitives, BadInputThrows) {

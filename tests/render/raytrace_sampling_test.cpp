@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "base/constants.h"
 #include "render/raytrace/sampling.h"
 #include "render/raytrace/shading.h"
 
@@ -57,14 +58,14 @@ TEST(RayTraceSampling, CharlieDistributionIsNormalised) {
   for (float roughness : {0.3f, 0.5f, 1.0f}) {
     // ∫ D cos θ dω = 2π ∫_0^{π/2} D(cos θ) cos θ sin θ dθ, midpoint rule.
     const int steps = 20000;
-    const double h = 0.5 * 3.14159265358979323846 / steps;
+    const double h = 0.5 * base::kPi / steps;
     double integral = 0.0;
     for (int k = 0; k < steps; ++k) {
       const double theta = (k + 0.5) * h;
       integral += charlie_distribution(static_cast<float>(std::cos(theta)), roughness) *
                   std::cos(theta) * std::sin(theta) * h;
     }
-    EXPECT_NEAR(2.0 * 3.14159265358979323846 * integral, 1.0, 1e-3) << "roughness " << roughness;
+    EXPECT_NEAR(2.0 * base::kPi * integral, 1.0, 1e-3) << "roughness " << roughness;
   }
 }
 

@@ -8,11 +8,10 @@
 #include <cmath>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/simulator.h"
 
 namespace weft::sim::cantilever {
-
-inline constexpr double kPi = 3.14159265358979323846;
 
 // Kang & Yu's wool: sim::Material's defaults.
 inline const Material kWool{};
@@ -22,7 +21,7 @@ enum class StripAlong { warp, weft };
 struct Bent {
   double drop_m = 0.0;        // clamp edge height − tip height
   double horizontal_m = 0.0;  // from the clamp edge to the tip, along the strip
-  double chord_deg() const { return std::atan2(drop_m, horizontal_m) * 180.0 / kPi; }
+  double chord_deg() const { return std::atan2(drop_m, horizontal_m) * 180.0 / base::kPi; }
 };
 
 inline double bending_rigidity(const Material& m, StripAlong along) {

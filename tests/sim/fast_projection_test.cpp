@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "base/constants.h"
 #include "sim/constraints/inextensibility.h"
 #include "sim/constraints/pairwise_projection.h"
 
@@ -186,7 +187,7 @@ TEST(FastProjection, NearlyCollinearEdgesStayFiniteAndHonest) {
   std::vector<EdgeConstraint> constraints;
   Eigen::VectorXd w = Eigen::VectorXd::Ones(n);
   w[0] = w[n - 1] = 0.0;
-  for (int i = 0; i < n; ++i) x.row(i) << 0.1 * i, 0.0, -0.002 * std::sin(M_PI * i / (n - 1));
+  for (int i = 0; i < n; ++i) x.row(i) << 0.1 * i, 0.0, -0.002 * std::sin(base::kPi * i / (n - 1));
   for (int i = 0; i + 1 < n; ++i) constraints.push_back({i, i + 1, 0.1});
   const double before = max_edge_strain(constraints, x);
   FastProjection p(constraints, w, fast(1e-6, 30), default_sparse_backend());

@@ -9,13 +9,12 @@
 #include <limits>
 #include <string>
 
+#include "base/constants.h"
 #include "sim/folds/fold_geometry.h"
 #include "sim/folds/tension_field.h"
 
 namespace weft::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Table 1 of seed 001: L = 140 cm, d = 10 cm, t = 0.25 mm, E = 165 MPa, w = 15e-7 N/mm².
 TensionFieldInputs table1(double h_cm, std::optional<double> ratio) {
@@ -71,8 +70,8 @@ TEST(TensionField, AmplitudesAreGeometricWithRatioQ) {
 // ∫_{−l/2}^{l/2} √(1 + (πA/l)² sin²(πx/l)) dx = (2l/π) √(1 + k²) E(k/√(1 + k²)), k = πA/l,
 // E the complete elliptic integral of the second kind (modulus convention of std::comp_ellint_2).
 double arc_length_closed_form(double span, double amplitude) {
-  const double k = kPi * amplitude / span, s = std::sqrt(1.0 + k * k);
-  return 2.0 * span / kPi * s * std::comp_ellint_2(k / s);
+  const double k = base::kPi * amplitude / span, s = std::sqrt(1.0 + k * k);
+  return 2.0 * span / base::kPi * s * std::comp_ellint_2(k / s);
 }
 
 TEST(TensionField, SimpsonMatchesTheEllipticClosedForm) {
@@ -200,7 +199,7 @@ TEST(TensionField, DefaultLoadConstantIsTheTable1Fit) {
   };
   EXPECT_LT(fit.rms_residual, rms_at(0.9 * fit.load_constant));
   EXPECT_LT(fit.rms_residual, rms_at(1.1 * fit.load_constant));
-  EXPECT_GT(rms_at(4.0 * kPi * kPi / 12.0), 0.2);  // textbook c: Q ≈ 1.06–1.10
+  EXPECT_GT(rms_at(4.0 * base::kPi * base::kPi / 12.0), 0.2);  // textbook c: Q ≈ 1.06–1.10
 }
 
 TEST(TensionField, BadInputNamesTheQuantity) {

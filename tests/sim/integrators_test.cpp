@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/energies/spring.h"
 #include "sim/integrators/explicit_steppers.h"
 #include "sim/integrators/implicit_euler.h"
@@ -26,8 +27,6 @@ namespace {
 using test_cloth::fabric;
 using test_cloth::square;
 
-constexpr double kPi = 3.14159265358979323846;
-
 const std::vector<Integrator> kExplicit{Integrator::symplectic_euler, Integrator::explicit_euler,
                                         Integrator::rk4, Integrator::velocity_verlet,
                                         Integrator::central_difference};
@@ -39,7 +38,7 @@ struct Oscillator {
   static constexpr double kMass = 0.1, kRest = 1.0, kAmplitude = 0.1;  // kg, m, m
   double omega;                                                        // rad/s
   double k() const { return kMass * omega * omega; }
-  double period() const { return 2.0 * kPi / omega; }
+  double period() const { return 2.0 * base::kPi / omega; }
 
   System system() const {
     System s;
@@ -146,7 +145,7 @@ TEST(ExplicitIntegrators, EveryIntegratorFallsFreelyInTheSimulatorAndKeepsItsPin
 // so that phase and amplitude errors both show in the position (sin ωt = cos ωt). Each method's
 // h keeps it in its asymptotic range and RK4's error above round-off.
 TEST(ExplicitIntegrators, OscillatorErrorConvergesAtTheExpectedOrder) {
-  const Oscillator osc{4.0 * kPi + 0.25 * kPi};  // 13.35 rad/s
+  const Oscillator osc{4.0 * base::kPi + 0.25 * base::kPi};  // 13.35 rad/s
   struct Case {
     Integrator method;
     long steps;  // for the coarsest h = 1 s / steps
@@ -175,7 +174,7 @@ TEST(ExplicitIntegrators, OscillatorErrorConvergesAtTheExpectedOrder) {
 
 // Relative energy error |E/E0 − 1| at each of 100 periods × 50 steps (h = T/50, hω = 0.126).
 std::vector<double> energy_errors(Integrator method) {
-  const Oscillator osc{2.0 * kPi};  // T = 1 s
+  const Oscillator osc{2.0 * base::kPi};  // T = 1 s
   const long steps = 5000;
   const double h = osc.period() / 50.0;
   const System system = osc.system();
@@ -216,7 +215,7 @@ TEST(ExplicitIntegrators, SymplecticMethodsKeepTheOscillatorsEnergyBounded) {
 // a slow, steady loss — about 2.7e-4 over 100 periods at h = T/50 (not below 1e-6: that would
 // take h ≈ T/120). Explicit Euler gains the factor 1 + (hω)² every step, at any h.
 TEST(ExplicitIntegrators, RungeKuttaDriftsSlowlyAndExplicitEulerGainsEnergy) {
-  const double y = 2.0 * kPi / 50.0;  // hω
+  const double y = 2.0 * base::kPi / 50.0;  // hω
   const double rk4_factor = 1.0 - std::pow(y, 6) / 72.0 + std::pow(y, 8) / 576.0;
   const std::vector<double> rk4 = energy_errors(Integrator::rk4);
   const double predicted = 1.0 - std::pow(rk4_factor, static_cast<double>(rk4.size()));
@@ -254,7 +253,7 @@ TEST(ExplicitIntegrators, ImplicitEulerDecaysTheOscillatorsEnergy) {
   ImplicitEuler implicit(system, ImplicitSolveSettings{});
   const Index free = mesh.index(1, 0);
   const double omega2 = model.springs().front().k_N_m / mass[free];
-  const double h = 2.0 * kPi / std::sqrt(omega2) / 50.0;
+  const double h = 2.0 * base::kPi / std::sqrt(omega2) / 50.0;
   Matrix3X x = mesh.rest_positions, v = Matrix3X::Zero(4, 3);
   x(free, 0) += 0.01;
   x(mesh.index(1, 1), 0) += 0.01;

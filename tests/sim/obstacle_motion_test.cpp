@@ -9,16 +9,15 @@
 #include <memory>
 #include <string>
 
+#include "base/constants.h"
 #include "sim/simulator.h"
 #include "test_cloth.h"
 
 namespace weft::sim {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
 ObstacleMotion two_keys() {
-  return ObstacleMotion({{1.0, Vec3(0.0, 0.0, 0.0), 0.0}, {3.0, Vec3(0.2, -0.4, 0.6), pi / 2}});
+  return ObstacleMotion({{1.0, Vec3(0.0, 0.0, 0.0), 0.0}, {3.0, Vec3(0.2, -0.4, 0.6), base::kPi / 2}});
 }
 
 TEST(ObstacleMotion, HoldsBeforeTheFirstAndAfterTheLastKeyAndIsLinearBetween) {
@@ -28,9 +27,9 @@ TEST(ObstacleMotion, HoldsBeforeTheFirstAndAfterTheLastKeyAndIsLinearBetween) {
   EXPECT_EQ(m.pose_at(1.0).yaw_rad, 0.0);
   const RigidPose mid = m.pose_at(2.5);  // three quarters of the way
   EXPECT_TRUE(mid.translation_m.isApprox(Vec3(0.15, -0.3, 0.45), 1e-15));
-  EXPECT_NEAR(mid.yaw_rad, 0.75 * pi / 2, 1e-15);
+  EXPECT_NEAR(mid.yaw_rad, 0.75 * base::kPi / 2, 1e-15);
   EXPECT_EQ(m.pose_at(3.0).translation_m, Vec3(0.2, -0.4, 0.6));
-  EXPECT_EQ(m.pose_at(100.0).yaw_rad, pi / 2);
+  EXPECT_EQ(m.pose_at(100.0).yaw_rad, base::kPi / 2);
   // Three keys: each segment on its own.
   const ObstacleMotion three({{0.0, Vec3::Zero(), 0.0},
                               {1.0, Vec3(1, 0, 0), 0.0},

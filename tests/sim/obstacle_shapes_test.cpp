@@ -17,18 +17,17 @@
 #include <utility>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/collision/obstacle.h"
 #include "sim/simulator.h"
 #include "tests/sim/test_cloth.h"
 
 namespace weft::sim {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 constexpr double tolerance = 1e-12;  // m
 
 // A turned box off the origin and its world point from local coordinates (its x, y, z axes).
-const BoxObstacle box{Vec3(0.1, -0.2, 0.3), Vec3(0.05, 0.1, 0.02), pi / 6.0};
+const BoxObstacle box{Vec3(0.1, -0.2, 0.3), Vec3(0.05, 0.1, 0.02), base::kPi / 6.0};
 Vec3 box_point(double x, double y, double z) {
   return box.center_m + x * box_axis_x(box) + y * box_axis_y(box) + z * Vec3::UnitZ();
 }
@@ -213,7 +212,7 @@ TEST(ObstacleShapes, PedestalOnTheGroundClearsTheWedge) {
   for (Eigen::Index i = 0; i < x.rows();) {
     const Obstacle& foot = obstacles[1 + i % 2];
     const Vec3 base(i % 2 == 0 ? 0.0 : 0.3, 0.0, 0.0);
-    const double azimuth = 2 * pi * unit(generator), r = 0.03 + 0.08 * unit(generator);
+    const double azimuth = 2 * base::kPi * unit(generator), r = 0.03 + 0.08 * unit(generator);
     const double z = -0.001 + 0.004 * unit(generator);
     const Vec3 p = base + Vec3(r * std::cos(azimuth), r * std::sin(azimuth), z);
     if (signed_distance(foot, Vec3(p.x(), p.y(), 0.05)) <= 0.0) continue;  // under the foot

@@ -12,6 +12,7 @@
 #include <functional>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/grid.h"
 #include "sim/material.h"
 #include "sim/rft/rft_bending.h"
@@ -25,8 +26,6 @@ using fd::expect_assembled_stiffness_matches_forces;
 using fd::expect_forces_match_energy;
 using fd::perturbed;
 using fd::smallest_eigenvalue;
-
-constexpr double kPi = 3.14159265358979323846;
 
 Material fabric() {
   return fd::anisotropic_fabric();
@@ -263,7 +262,7 @@ TEST(RftBending, ObliqueCylinderHasTheOrthotropicRigidity) {
   const double R = 0.5;
   const ClothMesh mesh = sheet(31, 31, 1.0, 1.0);
   for (double theta_deg : {30.0, 45.0, 75.0}) {
-    const double c = std::cos(theta_deg * kPi / 180.0), s = std::sin(theta_deg * kPi / 180.0);
+    const double c = std::cos(theta_deg * base::kPi / 180.0), s = std::sin(theta_deg * base::kPi / 180.0);
     const Matrix3X x = deformed(mesh, [&](const Vec2& uv) {
       const double along = c * uv.x() + s * uv.y(), across = -s * uv.x() + c * uv.y();
       const double a = R * std::sin(along / R);
@@ -363,7 +362,7 @@ TEST(RftMembrane, SharpFoldOfSeed002Fig3LoadsOnlyTheSixNodeMembrane) {
   const double area = b.area_m2;
   double bend_90 = 0.0;
   for (double phi_deg : {10.0, 30.0, 60.0, 90.0, 135.0, 180.0}) {
-    const double phi = phi_deg * kPi / 180.0;
+    const double phi = phi_deg * base::kPi / 180.0;
     RftPatchPositions X = rft_gather(mesh.rest_positions, *centre);
     X.col(p0) = Vec3(2 * h + h * std::cos(phi), 2 * h, h * std::sin(phi));
     const double e3 = rft_membrane_energy(m3, Dm, X), e6 = rft_membrane_energy(m6, Dm, X);

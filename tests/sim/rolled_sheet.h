@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "base/constants.h"
 #include "sim/grid.h"
 
 namespace weft::sim {
@@ -19,8 +20,7 @@ inline ClothMesh sheet(Index n, SpecimenShape shape = SpecimenShape::rectangle) 
 // Rolls the sheet about the weft (y) axis along the spiral r = r0 + gap·φ/2π, the warp
 // coordinate u becoming arc length along it, so that consecutive layers are `gap` apart.
 inline Matrix3X rolled(const ClothMesh& mesh, double r0_m, double gap_m) {
-  constexpr double pi = 3.14159265358979323846;
-  const double b = gap_m / (2.0 * pi);
+  const double b = gap_m / (2.0 * base::kPi);
   const auto arc = [&](double phi) {  // ∫₀^φ sqrt(r² + b²) dφ, by the midpoint rule
     const int n = 2000;
     double s = 0.0;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/constants.h"
 #include "sim/collision/obstacle.h"
 #include "sim/pin_motion.h"
 #include "sim/pins.h"
@@ -185,7 +186,7 @@ TEST(Simulator, StableJustBelowTheEstimatedCriticalStep) {
 // A 30 cm square dropped from 1 cm onto a plane tilted by θ = 20°, parallel to it, free: how far
 // its centre of mass has moved down the slope after `t_end` seconds with friction μ.
 double slide_down_a_slope(double friction, double t_end) {
-  const double theta = 20.0 * 3.14159265358979323846 / 180.0;
+  const double theta = 20.0 * base::kPi / 180.0;
   const Vec3 normal(std::sin(theta), 0.0, std::cos(theta));
   const Vec3 downhill(std::cos(theta), 0.0, -std::sin(theta));
   GridSpec grid;
@@ -212,7 +213,7 @@ double slide_down_a_slope(double friction, double t_end) {
 // Coulomb's law on a 20° slope (tan 20° = 0.364): without friction the cloth slides as a block
 // would, s = ½ g sin θ t²; with μ = 0.2 it slides at g (sin θ − μ cos θ); with μ = 0.6 it stays.
 TEST(Simulator, ClothOnASlopeSlidesWithoutFrictionAndStaysWithFrictionAboveTanTheta) {
-  const double t_end = 1.0, g = 9.81, theta = 20.0 * 3.14159265358979323846 / 180.0;
+  const double t_end = 1.0, g = 9.81, theta = 20.0 * base::kPi / 180.0;
   const double frictionless = slide_down_a_slope(0.0, t_end);
   const double kinetic = slide_down_a_slope(0.2, t_end);
   const double sticking = slide_down_a_slope(0.6, t_end);

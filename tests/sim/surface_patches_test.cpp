@@ -9,6 +9,7 @@
 #include <cmath>
 #include <set>
 
+#include "base/constants.h"
 #include "sim/collision/proximity.h"
 #include "sim/collision/self_collision.h"
 #include "sim/collision/self_intersection.h"
@@ -18,8 +19,6 @@
 
 namespace weft::sim {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 TEST(SurfacePatches, PartitionTrianglesAndOwnEachVertexAndEdgeOnce) {
   for (const SpecimenShape shape : {SpecimenShape::rectangle, SpecimenShape::disc}) {
