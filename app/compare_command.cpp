@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/html_escape.h"
+#include "base/html_escape.h"
 #include "app/run_command.h"
 #include "base/constants.h"
 #include "render/photo_compare/photo_compare.h"
@@ -128,8 +128,8 @@ void write_report(const fs::path& path, const nlohmann::json& j) {
   html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>weft compare</title>\n"
           "<style>body{font-family:sans-serif;margin:1.5em}td,th{padding:2px 10px;text-align:left}"
           "img{max-width:48%;margin:4px;border:1px solid #ccc}</style></head><body>\n"
-       << "<h1>weft compare</h1>\n<p>photo <code>" << html_escape(j["photo"].get<std::string>())
-       << "</code>, render <code>" << html_escape(j["render"].get<std::string>()) << "</code>, "
+       << "<h1>weft compare</h1>\n<p>photo <code>" << base::html_escape(j["photo"].get<std::string>())
+       << "</code>, render <code>" << base::html_escape(j["render"].get<std::string>()) << "</code>, "
        << j["width"].get<int>() << "x" << j["height"].get<int>() << " px</p>\n<table>\n"
        << "<tr><th>metric</th><th>value</th><th></th></tr>\n";
   row("silhouette IoU", num(j["iou"].get<double>(), 4), "1 = same silhouette after alignment");

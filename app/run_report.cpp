@@ -10,7 +10,7 @@
 
 #include "app/output_files.h"
 #include "app/contact_sheet.h"
-#include "app/html_escape.h"
+#include "base/html_escape.h"
 #include "app/progress.h"
 #include "app/scene.h"
 #include "chart/chart.h"
@@ -133,13 +133,13 @@ fs::path write_run_report(const fs::path& dir, const Scene& scene, const std::st
   const std::string last_name = frame_file_name(last);
   std::string html;
   html += "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>weft report: " +
-          html_escape(scene.name) + "</title>\n<style>body{font-family:sans-serif;max-width:"
+          base::html_escape(scene.name) + "</title>\n<style>body{font-family:sans-serif;max-width:"
           "1000px;margin:1em auto;padding:0 1em}img{max-width:100%}pre{background:#f4f4f4;"
           "padding:.5em;overflow-x:auto;white-space:pre-wrap}td{padding:0 1em 0 0}"
           ".charts svg{margin:0 8px 8px 0}</style></head><body>\n";
-  html += "<h1>weft report: " + html_escape(scene.name) + "</h1>\n";
-  html += "<p>" + html_escape(scene.description) + "</p>\n";
-  html += "<h2>Command</h2>\n<pre><code>" + html_escape(command_line) + "</code></pre>\n";
+  html += "<h1>weft report: " + base::html_escape(scene.name) + "</h1>\n";
+  html += "<p>" + base::html_escape(scene.description) + "</p>\n";
+  html += "<h2>Command</h2>\n<pre><code>" + base::html_escape(command_line) + "</code></pre>\n";
   html += "<p>Files: <a href=\"scene.json\">scene.json</a> · <a href=\"stats.csv\">stats.csv</a>"
           " · <a href=\"run.txt\">run.txt</a></p>\n";
   html += "<table>\n<tr><td>frames</td><td>" + std::to_string(last) + " at " +
@@ -150,8 +150,8 @@ fs::path write_run_report(const fs::path& dir, const Scene& scene, const std::st
   html += "<tr><td>largest strain</td><td>" + fixed(100.0 * max_strain, 3) + " %</td></tr>\n";
   html += "<tr><td>steps that missed the projection tolerance</td><td>" +
           std::to_string(unconverged) + "</td></tr>\n";
-  html += "<tr><td>wall time</td><td>simulation " + html_escape(format_duration(sim_ms / 1e3)) +
-          ", rendering " + html_escape(format_duration(render_ms / 1e3)) + "</td></tr>\n</table>\n";
+  html += "<tr><td>wall time</td><td>simulation " + base::html_escape(format_duration(sim_ms / 1e3)) +
+          ", rendering " + base::html_escape(format_duration(render_ms / 1e3)) + "</td></tr>\n</table>\n";
   html += "<h2>Frames</h2>\n<p>" + std::to_string(shown.size()) +
           " frames, evenly spaced in time (<code>" + kSheetName + "</code>):</p>\n<img src=\"" +
           kSheetName + "\" alt=\"contact sheet\">\n";

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/html_escape.h"
 #include "chart/draw_list.h"
 
 namespace weft::chart {
@@ -16,25 +17,11 @@ std::string num(double v) {
   return text;
 }
 
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string role(const std::string& r) { return r.empty() ? "" : " class=\"" + r + "\""; }
 
 void write(std::ostream& svg, const LineItem& l) {
   if (!l.series.empty()) {
-    svg << "<polyline data-series=\"" << escaped(l.series) << "\"" << role(l.role);
+    svg << "<polyline data-series=\"" << base::html_escape(l.series) << "\"" << role(l.role);
   } else {
     svg << "<polyline" << role(l.role);
   }
@@ -77,7 +64,7 @@ void write(std::ostream& svg, const TextItem& t) {
   if (t.anchor != Anchor::start) svg << " text-anchor=\"" << anchor << "\"";
   if (t.size_px != kBodyPx) svg << " font-size=\"" << num(t.size_px) << "\"";
   if (!(t.colour == kInk)) svg << " fill=\"" << hex(t.colour) << "\"";
-  svg << '>' << escaped(t.text) << "</text>\n";
+  svg << '>' << base::html_escape(t.text) << "</text>\n";
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #pragma once
-// Text placed in HTML or SVG: &, <, >, " and ' as entities (weft run --report, weft gallery).
+// Text placed in HTML or SVG: &, <, >, " and ' as entities (reports, galleries, SVG charts).
 
 #include <string>
 
-namespace weft::app {
+namespace weft::base {
 
 inline std::string html_escape(const std::string& text) {
   std::string out;
@@ -21,4 +21,4 @@ inline std::string html_escape(const std::string& text) {
   return out;
 }
 
-}  // namespace weft::app
+}  // namespace weft::base
