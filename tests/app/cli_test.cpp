@@ -19,24 +19,10 @@ namespace {
 using Result = weft::app::test::CommandResult;
 using weft::app::test::run_weft;
 
-class Cli : public ::testing::Test {
+class Cli : public weft::app::test::CliDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "cli" / info->name();
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  fs::path write_scene(const std::string& name, const std::string& text) const {
-    const fs::path path = m_dir / name;
-    std::ofstream(path) << text;
-    return path;
-  }
-  fs::path m_dir;
+  Cli() : CliDirectoryTest("cli") {}
 };
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
 
 // A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels.
 std::string tiny_scene(const std::string& cloth_extra = "", const std::string& top_extra = "") {

@@ -3,9 +3,14 @@
 
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
 
 namespace weft::app::test {
 
@@ -30,4 +35,36 @@ inline CommandResult run_weft(const std::string& args, const std::string& env = 
   return r;
 }
 
+// A fresh, empty folder for the running test: WEFT_BINARY_DIR/test_output/<suite>/<test name>.
+// One per test, so tests that ctest runs at once never share (and clear) each other's output.
+inline std::filesystem::path fresh_test_directory(const std::string& suite) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir =
+      std::filesystem::path(WEFT_BINARY_DIR) / "test_output" / suite / info->name();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A fixture with that folder in m_dir and scene files written into it.
+class CliDirectoryTest : public ::testing::Test {
+ protected:
+  explicit CliDirectoryTest(std::string suite) : m_suite(std::move(suite)) {}
+  void SetUp() override { m_dir = fresh_test_directory(m_suite); }
+  std::filesystem::path write_scene(const std::string& name, const std::string& text) const {
+    const std::filesystem::path path = m_dir / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::filesystem::path m_dir;
+
+ private:
+  std::string m_suite;
+};
+
 }  // namespace weft::app::test
+
+#ifndef EXPECT_CONTAINS
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
+#endif

@@ -22,23 +22,9 @@ namespace {
 using weft::app::test::CommandResult;
 using weft::app::test::run_weft;
 
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
-
-class FrameStreamCli : public ::testing::Test {
+class FrameStreamCli : public weft::app::test::CliDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "frame_stream_cli" / info->name();
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  fs::path write_scene(const std::string& name, const std::string& text) const {
-    const fs::path path = m_dir / name;
-    std::ofstream(path) << text;
-    return path;
-  }
-  fs::path m_dir;
+  FrameStreamCli() : CliDirectoryTest("frame_stream_cli") {}
 };
 
 // A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels; `simulation` is that block.

@@ -20,17 +20,9 @@ namespace {
 using weft::app::test::CommandResult;
 using weft::app::test::run_weft;
 
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE((text).find(part), std::string::npos) << "missing: " << (part) << "\nin: " << (text)
-
 class MeasureCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "measure_cli" / info->name();
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
+  void SetUp() override { m_dir = weft::app::test::fresh_test_directory("measure_cli"); }
   fs::path write_scene(const std::string& text) const {
     const fs::path path = m_dir / "scene.json";
     std::ofstream(path) << text;
