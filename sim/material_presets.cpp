@@ -69,7 +69,8 @@ std::string luible_source(const std::string& fabric) {
          fabric +
          ": weight, tensile warp/weft and shear rigidity (as transcribed in GPUCloth's "
          "properties.py; thesis table not checked here). Bending: no published value found, "
-         "representative (B = W c^3 with a typical bending length c)";
+         "representative (B = W c^3 with a typical bending length c); no drape coefficient "
+         "given";
 }
 
 std::vector<MaterialPreset> make_presets() {
@@ -79,27 +80,42 @@ std::vector<MaterialPreset> make_presets() {
       // seed 002 (Zhou & Sze), §4: tensile 1118.2 / 759.5 gf/cm, shear 41.8 gf/cm, bending
       // 0.083 / 0.063 gf·cm, weight 0.019 gf/cm² (the table number in Kang & Yu was not checked).
       // Bending length c = 1.635 cm warp, 1.491 cm weft (tests/sim/cantilever_test.cpp).
+      // Drape coefficient: the quoting source gives none (Kang & Yu's own measured drape, if
+      // any, was not available here).
       {"wool_kang_yu", textile_material(0.019, 1118.2, 759.5, 41.8, 0.083, 0.063),
        "Kang & Yu 1995, J. Textile Inst., 'Drape simulation of woven fabric by using the "
-       "finite-element method', as quoted in seed 002 (Zhou & Sze) section 4",
-       ""},
+       "finite-element method', as quoted in seed 002 (Zhou & Sze) section 4 (table number "
+       "not checked); no drape coefficient given",
+       "", std::nullopt},
       // Luible fabric 02, cotton shirting, 120 g/m²: tensile 2000 (warp) / 3000 (weft) N/m, shear
       // 20 N/m. Representative bending lengths 1.8 / 1.6 cm → B = 0.0700 / 0.0492 gf·cm.
       {"cotton_shirting", luible_material(120.0, 2000.0, 3000.0, 20.0, 1.8, 1.6),
-       luible_source("fabric 02, cotton shirting 120 g/m^2"), representative_bending},
+       luible_source("fabric 02, cotton shirting 120 g/m^2"), representative_bending,
+       std::nullopt},
       // Luible fabric 07, mulberry silk, 15 g/m² (a very light silk): tensile 6000 (warp) / 4500
       // (weft) N/m, shear 10 N/m. Representative bending lengths 1.25 / 1.2 cm →
       // B = 0.0029 / 0.0026 gf·cm.
       {"silk_mulberry", luible_material(15.0, 6000.0, 4500.0, 10.0, 1.25, 1.2),
-       luible_source("fabric 07, mulberry silk 15 g/m^2"), representative_bending},
+       luible_source("fabric 07, mulberry silk 15 g/m^2"), representative_bending,
+       std::nullopt},
       // Luible fabric 01, denim, 380 g/m²: tensile 1800 (warp) / 3000 (weft) N/m, shear 102 N/m.
       // Representative bending lengths 3.35 / 2.8 cm → B = 1.43 / 0.83 gf·cm.
       {"denim", luible_material(380.0, 1800.0, 3000.0, 102.0, 3.35, 2.8),
-       luible_source("fabric 01, denim 380 g/m^2"), representative_bending},
+       luible_source("fabric 01, denim 380 g/m^2"), representative_bending, std::nullopt},
   };
 }
 
 }  // namespace
+
+double peirce_bending_length_m(double bend_Nm, double density_kg_m2, double gravity_m_s2) {
+  if (!(std::isfinite(bend_Nm) && bend_Nm >= 0.0))
+    throw std::invalid_argument("peirce_bending_length_m: bending rigidity must be finite and >= 0");
+  if (!(std::isfinite(density_kg_m2) && density_kg_m2 > 0.0))
+    throw std::invalid_argument("peirce_bending_length_m: areal density must be finite and > 0");
+  if (!(std::isfinite(gravity_m_s2) && gravity_m_s2 > 0.0))
+    throw std::invalid_argument("peirce_bending_length_m: gravity must be finite and > 0");
+  return std::cbrt(bend_Nm / (density_kg_m2 * gravity_m_s2));
+}
 
 const std::vector<MaterialPreset>& material_presets() {
   static const std::vector<MaterialPreset> presets = make_presets();

@@ -3,6 +3,7 @@
 // Each preset says where its numbers come from, and which of them are not from that source;
 // docs/scene.md lists them with their sources.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,20 @@ struct MaterialPreset {
   // The Material fields that are NOT from `source` but representative values chosen by weft
   // (e.g. "bend_warp, bend_weft"); empty when every field is published. `source` says why.
   std::string representative_fields;
+  // The Cusick drape coefficient (Cusick 1968: 30 cm specimen on an 18 cm disc) that `source`
+  // publishes for this fabric, dimensionless in [0, 1]; empty when the source gives none.
+  std::optional<double> drape_coefficient;
+
+  // True when every Material field is from `source` (no representative value).
+  bool fully_published() const { return representative_fields.empty(); }
 };
+
+// Peirce's cantilever bending length c = (B/w)^(1/3), m, of a fabric of bending rigidity B
+// (N·m, moment per width per curvature) and areal density ρ (kg/m²) under gravity g (m/s²):
+// w = ρ·g is its weight per area (N/m²). Peirce, F. T. (1930), "The 'handle' of cloth as a
+// measurable quantity", J. Textile Inst. 21, T377; the ASTM D1388 cantilever measures c, and a
+// published c gives B = w·c³. Throws std::invalid_argument unless B ≥ 0 and ρ, g > 0 (finite).
+double peirce_bending_length_m(double bend_Nm, double density_kg_m2, double gravity_m_s2);
 
 // All presets, in a fixed order (the first is sim::Material's default).
 const std::vector<MaterialPreset>& material_presets();

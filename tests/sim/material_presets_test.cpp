@@ -62,10 +62,57 @@ TEST(MaterialPresets, LuibleFabricsGiveBackAnnexGInItsUnits) {
   }
 }
 
+// The textile units against values worked by hand: 1 gf = 1e-3 kg × 9.80665 m/s² = 9.80665e-3 N,
+// so 1 gf/cm = 0.980665 N/m, 1 gf·cm (gf·cm²/cm) = 9.80665e-5 N·m, and 1 gf/cm² is the weight of
+// 1 g/cm² = 10 kg/m². KES's shear rigidity G is per degree of shear angle: 1 gf/(cm·deg) per
+// radian is 180/π = 57.296 gf/cm = 56.188 N/m (Luible's Annex F writes G(tan θ) = 57.3 G(θ°)).
+TEST(MaterialPresets, TextileUnitsConvertAsWorkedByHand) {
+  EXPECT_NEAR(textile::gf_per_cm(1.0), 0.980665, 1e-12);
+  EXPECT_NEAR(textile::gf_cm(1.0), 9.80665e-5, 1e-17);
+  EXPECT_NEAR(textile::gf_per_cm2(1.0), 10.0, 1e-12);
+  EXPECT_NEAR(textile::gf_per_cm(180.0 / M_PI), 56.188, 1e-3);
+  // Kang & Yu's wool by hand: 0.019 gf/cm² = 0.19 kg/m² (190 g/m²); 41.8 gf/cm = 40.992 N/m.
+  EXPECT_NEAR(textile::gf_per_cm2(0.019) * 1e3, 190.0, 1e-9);
+  EXPECT_NEAR(textile::gf_per_cm(41.8), 40.9918, 1e-4);
+}
+
 // Peirce's cantilever bending length c = (B/W)^{1/3}, in cm for B in gf·cm and W in gf/cm², with
 // standard gravity g0 = 9.80665 m/s² (1 gf·cm = 9.80665e-5 N·m; 1 gf/cm² weighs 1 g/cm² = 10 kg/m²).
 double bending_length_cm(double bend_Nm, double density_kg_m2) {
-  return std::cbrt((bend_Nm / 9.80665e-5) / (density_kg_m2 / 10.0));
+  return 100.0 * peirce_bending_length_m(bend_Nm, density_kg_m2, 9.80665);
+}
+
+// In textile units by hand: Kang & Yu's wool, B = 0.083 / 0.063 gf·cm over W = 0.019 gf/cm²,
+// c = (0.083/0.019)^(1/3) = 1.6347 cm and (0.063/0.019)^(1/3) = 1.4912 cm. The SI function must
+// give the same from the SI values; under a weaker gravity a strip bends less (c ∝ g^(-1/3)).
+TEST(MaterialPresets, PeirceBendingLengthMatchesTheHandValue) {
+  const Material& wool = material_preset("wool_kang_yu").material;
+  EXPECT_NEAR(bending_length_cm(wool.bend_warp_Nm, wool.density_kg_m2), 1.6347, 1e-4);
+  EXPECT_NEAR(bending_length_cm(wool.bend_weft_Nm, wool.density_kg_m2), 1.4912, 1e-4);
+  EXPECT_NEAR(peirce_bending_length_m(wool.bend_warp_Nm, wool.density_kg_m2, 9.80665 / 8.0),
+              2.0 * 1.6347e-2, 2e-6);
+  EXPECT_EQ(peirce_bending_length_m(0.0, 0.19, 9.81), 0.0);
+  EXPECT_THROW((void)peirce_bending_length_m(-1e-6, 0.19, 9.81), std::invalid_argument);
+  EXPECT_THROW((void)peirce_bending_length_m(1e-6, 0.0, 9.81), std::invalid_argument);
+  EXPECT_THROW((void)peirce_bending_length_m(1e-6, 0.19, 0.0), std::invalid_argument);
+  EXPECT_THROW((void)peirce_bending_length_m(NAN, 0.19, 9.81), std::invalid_argument);
+}
+
+// Provenance: a preset is fully published exactly when no field is representative, a published
+// drape coefficient lies in [0, 1], and a source that gives none says so.
+TEST(MaterialPresets, ProvenanceIsStatedPerPreset) {
+  for (const MaterialPreset& p : material_presets()) {
+    SCOPED_TRACE(p.name);
+    EXPECT_EQ(p.fully_published(), p.representative_fields.empty());
+    if (p.drape_coefficient) {
+      EXPECT_GE(*p.drape_coefficient, 0.0);
+      EXPECT_LE(*p.drape_coefficient, 1.0);
+    } else {
+      EXPECT_NE(p.source.find("no drape coefficient"), std::string::npos) << p.source;
+    }
+  }
+  EXPECT_TRUE(material_preset("wool_kang_yu").fully_published());
+  EXPECT_FALSE(material_preset("denim").fully_published());
 }
 
 // The Luible presets' bending rigidities are no measurement (none was found): each preset says so,
