@@ -8,17 +8,20 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 
 #include "app/measure_command.h"
 #include "app/scene.h"
 #include "coarse_scene.h"
+#include "sim/material_presets.h"
 
 namespace weft::app {
 namespace {
 
-double cusick_drape_coefficient(double bending_scale) {
+double cusick_drape_coefficient(double bending_scale, const std::string& preset = "wool_kang_yu") {
   Scene scene = test::coarse_scene("cusick_drape.json", 31);
   scene.frames = 48;  // 2 s
+  scene.material = sim::material_preset(preset).material;
   scene.material.bend_warp_Nm *= bending_scale;
   scene.material.bend_weft_Nm *= bending_scale;
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
@@ -36,6 +39,26 @@ TEST(Cusick, WoolDrapeCoefficientIsInRangeAndGrowsWithBendingRigidity) {
   EXPECT_LE(wool, 0.9);
   EXPECT_LT(soft, wool);
   EXPECT_LT(wool, stiff);
+}
+
+}  // namespace
+}  // namespace weft::app
+
+namespace weft::app {
+namespace {
+
+// The presets in the Cusick test. None of their sources publishes a drape coefficient
+// (sim/material_presets.cpp), so this cannot hold the simulation against published DCs; it holds
+// it to Cusick's (1968) finding that DC rises with the cantilever bending length
+// c = (B/w)^(1/3): wool_kang_yu (c = 1.63 / 1.49 cm, measured) drapes lower than denim (3.35 /
+// 2.8 cm, representative bending) — the softest and the stiffest preset that run within seconds
+// (the 15 g/m² silk needs an 8.5× shorter time step, 0.0048 ms against 0.041 ms at 61²: see
+// docs/photos.md for its full-scene run).
+TEST(Cusick, PresetDrapeCoefficientsOrderAsTheirBendingLengths) {
+  const double wool = cusick_drape_coefficient(1.0, "wool_kang_yu");
+  const double denim = cusick_drape_coefficient(1.0, "denim");
+  std::printf("Cusick DC (31 x 31, 2 s): wool_kang_yu %.3f, denim %.3f\n", wool, denim);
+  EXPECT_LT(wool + 0.1, denim);
 }
 
 }  // namespace
