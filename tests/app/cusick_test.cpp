@@ -41,19 +41,14 @@ TEST(Cusick, WoolDrapeCoefficientIsInRangeAndGrowsWithBendingRigidity) {
   EXPECT_LT(wool, stiff);
 }
 
-}  // namespace
-}  // namespace weft::app
-
-namespace weft::app {
-namespace {
-
 // The presets in the Cusick test. None of their sources publishes a drape coefficient
 // (sim/material_presets.cpp), so this cannot hold the simulation against published DCs; it holds
-// it to Cusick's (1968) finding that DC rises with the cantilever bending length
+// it to the finding that DC rises with the cantilever bending length (Cusick, G. E. (1965), "The
+// dependence of fabric drape on bending and shear stiffness", J. Textile Inst. 56)
 // c = (B/w)^(1/3): wool_kang_yu (c = 1.63 / 1.49 cm, measured) drapes lower than denim (3.35 /
-// 2.8 cm, representative bending) — the softest and the stiffest preset that run within seconds
-// (the 15 g/m² silk needs an 8.5× shorter time step, 0.0048 ms against 0.041 ms at 61²: see
-// docs/photos.md for its full-scene run).
+// 2.8 cm, representative bending, the stiffest preset). The softest, the 15 g/m² silk, is left
+// to docs/photos.md's full-scene run: it needs an 8.5× shorter time step (0.0048 ms against
+// 0.041 ms at 61²).
 TEST(Cusick, PresetDrapeCoefficientsOrderAsTheirBendingLengths) {
   const double wool = cusick_drape_coefficient(1.0, "wool_kang_yu");
   const double denim = cusick_drape_coefficient(1.0, "denim");
