@@ -37,6 +37,28 @@ render::Image read_input(const fs::path& path, const char* what) {
   }
 }
 
+// mask_NNNN.png beside a weft frame frame_NNNN.png (weft run --mask), when there is one.
+std::optional<fs::path> weft_mask_beside(const fs::path& image) {
+  const std::string name = image.filename().string();
+  if (name.size() != 14 || name.rfind("frame_", 0) != 0 || image.extension() != ".png")
+    return std::nullopt;
+  const fs::path mask = image.parent_path() / ("mask_" + name.substr(6));
+  return fs::exists(mask) ? std::optional<fs::path>(mask) : std::nullopt;
+}
+
+// The mask images used: given (--mask-photo, --mask-render) or found beside a weft frame.
+struct Masks {
+  std::optional<fs::path> photo, render;
+};
+
+Masks masks_of(const CompareOptions& o) {
+  Masks m{o.mask_photo, o.mask_render};
+  if (o.segment) return m;
+  if (!m.photo) m.photo = weft_mask_beside(o.photo);
+  if (!m.render) m.render = weft_mask_beside(o.render);
+  return m;
+}
+
 render::Silhouette silhouette(const render::Image& image, const fs::path& image_path,
                               const std::optional<fs::path>& mask_path, const char* what,
                               const char* flag) {
@@ -50,9 +72,10 @@ render::Silhouette silhouette(const render::Image& image, const fs::path& image_
   }
 }
 
-nlohmann::json silhouette_json(const render::Silhouette& s) {
+nlohmann::json silhouette_json(const render::Silhouette& s, const std::optional<fs::path>& mask) {
   nlohmann::json j;
   j["source"] = s.from_mask_image ? "mask" : "segmentation";
+  if (mask) j["mask"] = mask->string();
   j["area_px"] = render::moments(s.mask).area_px;
   if (!s.from_mask_image) {
     j["background"] = {s.background.r, s.background.g, s.background.b};
@@ -61,7 +84,22 @@ nlohmann::json silhouette_json(const render::Silhouette& s) {
   return j;
 }
 
-nlohmann::json result_json(const CompareOptions& o, const render::Silhouette& ps,
+// The doubts about segmented silhouettes (render/photo_compare/photo_compare.h); with a given
+// transform, each silhouette's expected area is the other's scaled by it.
+std::vector<std::string> doubts(const render::Silhouette& ps, const render::Silhouette& rs,
+                                const render::PhotoComparison& c) {
+  const double photo_area = render::moments(ps.mask).area_px;
+  const double render_area = render::moments(rs.mask).area_px;
+  const double scale2 = c.transform.scale * c.transform.scale;
+  std::vector<std::string> all = render::segmentation_doubts(
+      ps, "photo", c.transform_given ? std::optional<double>(render_area * scale2) : std::nullopt);
+  const std::vector<std::string> more = render::segmentation_doubts(
+      rs, "render", c.transform_given ? std::optional<double>(photo_area / scale2) : std::nullopt);
+  all.insert(all.end(), more.begin(), more.end());
+  return all;
+}
+
+nlohmann::json result_json(const CompareOptions& o, const Masks& masks, const render::Silhouette& ps,
                            const render::Silhouette& rs, const render::PhotoComparison& c) {
   nlohmann::json j;
   j["photo"] = o.photo.string();
@@ -73,7 +111,9 @@ nlohmann::json result_json(const CompareOptions& o, const render::Silhouette& ps
                     {"ty_px", c.transform.ty_px},
                     {"angle_deg", c.transform.angle_rad * 180.0 / base::kPi},
                     {"given", c.transform_given}};
-  j["silhouettes"] = {{"photo", silhouette_json(ps)}, {"render", silhouette_json(rs)}};
+  j["silhouettes"] = {{"photo", silhouette_json(ps, masks.photo)},
+                      {"render", silhouette_json(rs, masks.render)}};
+  j["warnings"] = doubts(ps, rs, c);
   j["iou"] = c.iou;
   j["chamfer"] = {{"photo_to_render_px", c.chamfer.a_to_b_px},
                   {"render_to_photo_px", c.chamfer.b_to_a_px},
@@ -111,6 +151,14 @@ void print_text(const nlohmann::json& j) {
   std::printf("  SSIM (overlap) %.4f\n", j["ssim"].get<double>());
 }
 
+std::string warnings_html(const nlohmann::json& warnings) {
+  if (warnings.empty()) return "";
+  std::string html = "<div style=\"border:2px solid #d55e00;padding:4px 10px\"><b>Warning: the "
+                     "segmentation is doubtful</b><ul>\n";
+  for (const auto& w : warnings) html += "<li>" + base::html_escape(w.get<std::string>()) + "</li>\n";
+  return html + "</ul></div>\n";
+}
+
 void write_report(const fs::path& path, const nlohmann::json& j) {
   std::ofstream html(path);
   if (!html) throw std::runtime_error("cannot write " + path.string());
@@ -130,7 +178,8 @@ void write_report(const fs::path& path, const nlohmann::json& j) {
           "img{max-width:48%;margin:4px;border:1px solid #ccc}</style></head><body>\n"
        << "<h1>weft compare</h1>\n<p>photo <code>" << base::html_escape(j["photo"].get<std::string>())
        << "</code>, render <code>" << base::html_escape(j["render"].get<std::string>()) << "</code>, "
-       << j["width"].get<int>() << "x" << j["height"].get<int>() << " px</p>\n<table>\n"
+       << j["width"].get<int>() << "x" << j["height"].get<int>() << " px</p>\n"
+       << warnings_html(j["warnings"]) << "<table>\n"
        << "<tr><th>metric</th><th>value</th><th></th></tr>\n";
   row("silhouette IoU", num(j["iou"].get<double>(), 4), "1 = same silhouette after alignment");
   row("Chamfer distance", num(j["chamfer"]["px"].get<double>(), 3) + " px (" +
@@ -150,8 +199,9 @@ void write_report(const fs::path& path, const nlohmann::json& j) {
   for (const char* which : {"photo", "render"}) {
     const auto& s = j["silhouettes"][which];
     row(std::string(which) + " silhouette", num(s["area_px"].get<double>(), 0) + " px",
-        s["source"].get<std::string>() == "mask" ? "from the mask image"
-                                                 : "segmented (border median, Otsu)");
+        s["source"].get<std::string>() == "mask"
+            ? "from the mask image " + base::html_escape(s["mask"].get<std::string>())
+            : "segmented (border median, Otsu)");
   }
   html << "</table>\n<h2>Outlines</h2>\n<p>cyan: the photo's silhouette; magenta: the aligned "
           "render's.</p>\n<a href=\"overlay.png\"><img src=\"overlay.png\" alt=\"overlay\"></a>\n"
@@ -200,12 +250,13 @@ int run_compare(const CompareOptions& o) {
   render::Image photo, render;
   render::Silhouette ps, rs;
   render::PhotoComparison c;
+  const Masks masks = masks_of(o);
   try {
     if (o.transform) transform = parse_transform(*o.transform);
     photo = read_input(o.photo, "photo");
     render = read_input(o.render, "render");
-    ps = silhouette(photo, o.photo, o.mask_photo, "photo", "--mask-photo");
-    rs = silhouette(render, o.render, o.mask_render, "render", "--mask-render");
+    ps = silhouette(photo, o.photo, masks.photo, "photo", "--mask-photo");
+    rs = silhouette(render, o.render, masks.render, "render", "--mask-render");
     try {
       c = render::compare_with_photo(photo, ps, render, rs, transform, o.fold_sigma_px);
     } catch (const std::invalid_argument& e) {
@@ -215,7 +266,9 @@ int run_compare(const CompareOptions& o) {
     std::fprintf(stderr, "weft compare: error: %s\n", e.what());
     return exit_bad_input;
   }
-  const nlohmann::json j = result_json(o, ps, rs, c);
+  const nlohmann::json j = result_json(o, masks, ps, rs, c);
+  for (const auto& w : j["warnings"])
+    std::fprintf(stderr, "weft compare: warning: %s\n", w.get<std::string>().c_str());
   fs::create_directories(o.out);
   render::write_png(photo, o.out / "photo.png");
   render::write_png(c.render_aligned, o.out / "render_aligned.png");
@@ -238,7 +291,11 @@ Command register_compare(CLI::App& app, const std::string& /*command_line*/) {
   cmd->add_option("--mask-photo", o->mask_photo,
                   "Mask image of the photo (white = cloth), instead of segmentation");
   cmd->add_option("--mask-render", o->mask_render,
-                  "Mask image of the render (white = cloth), instead of segmentation");
+                  "Mask image of the render (white = cloth), instead of segmentation (default: "
+                  "mask_NNNN.png beside a weft frame_NNNN.png, when there is one)");
+  cmd->add_flag("--segment", o->segment,
+                "Segment by colour even where a weft frame_NNNN.png has its mask_NNNN.png beside "
+                "it (by default that mask is the silhouette)");
   cmd->add_option("--transform", o->transform,
                   "s,tx,ty[,deg]: render pixels to photo pixels, p = s R(deg) r + t, "
                   "instead of aligning the silhouettes");

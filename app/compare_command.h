@@ -17,7 +17,12 @@ namespace weft::app {
 
 struct CompareOptions {
   std::filesystem::path photo, render;
-  std::optional<std::filesystem::path> mask_photo, mask_render;  // white = cloth
+  // white = cloth; when absent, a weft frame_NNNN.png's mask_NNNN.png beside it (weft run
+  // --mask) is used unless `segment`. Segmented silhouettes that look doubtful (touching the
+  // border, over 40 % of the image, or, with a transform, not within a factor 2 of the other's
+  // area) are warned about on stderr and in the JSON ("warnings") and the report.
+  std::optional<std::filesystem::path> mask_photo, mask_render;
+  bool segment = false;
   std::optional<std::string> transform;   // "s,tx,ty[,deg]": render px → photo px
   std::filesystem::path out = "out/compare";
   bool json = false;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +33,39 @@ Silhouette silhouette_of(const Image& image, const std::optional<Image>& mask_im
   if (moments(s.mask).area_px <= 0)
     throw std::invalid_argument("empty silhouette: no pixel stands out of the background");
   return s;
+}
+
+std::vector<std::string> segmentation_doubts(const Silhouette& silhouette, const std::string& which,
+                                             std::optional<double> expected_area_px) {
+  std::vector<std::string> doubts;
+  if (silhouette.from_mask_image) return doubts;
+  const Mask& m = silhouette.mask;
+  long border = 0;
+  for (int x = 0; x < m.width; ++x) border += m.at(x, 0) + m.at(x, m.height - 1);
+  for (int y = 1; y + 1 < m.height; ++y) border += m.at(0, y) + m.at(m.width - 1, y);
+  const auto percent = [](double part, double whole) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f %%", 100.0 * part / whole);
+    return std::string(text);
+  };
+  const double area = moments(m).area_px;
+  const double image_area = static_cast<double>(m.width) * m.height;
+  if (border > 0)
+    doubts.push_back("the " + which + "'s segmented silhouette touches the image border (" +
+                     std::to_string(border) + " border pixels): it may hold background, e.g. a "
+                     "ground plane; give a mask (a weft render's mask_NNNN.png, --mask-" + which +
+                     ")");
+  if (area > 0.4 * image_area)
+    doubts.push_back("the " + which + "'s segmented silhouette covers " +
+                     percent(area, image_area) + " of the image: more than 40 %");
+  if (expected_area_px && !(area <= 2.0 * *expected_area_px && area >= 0.5 * *expected_area_px)) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%.0f px, %.2f times the %.0f px expected",
+                  area, area / *expected_area_px, *expected_area_px);
+    doubts.push_back("the " + which + "'s segmented silhouette has " + text +
+                     " from the other silhouette and --transform (not within a factor 2)");
+  }
+  return doubts;
 }
 
 PhotoComparison compare_with_photo(const Image& photo, const Silhouette& photo_silhouette,

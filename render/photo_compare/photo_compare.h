@@ -5,6 +5,8 @@
 // ridge/valley maps.
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "render/image.h"
 #include "render/photo_compare/alignment.h"
@@ -23,6 +25,16 @@ struct Silhouette {
 // The given mask (its size must match the image's), else segment_cloth(). Throws
 // std::invalid_argument on a size mismatch or an empty silhouette, the message saying which.
 Silhouette silhouette_of(const Image& image, const std::optional<Image>& mask_image);
+
+// Why a segmented silhouette (not one from a mask) is doubtful, one sentence each; empty when
+// none applies or it came from a mask:
+// - it touches the image border (segmentation takes a background that differs from the border
+//   median — a ground plane, a vignette — for cloth, and such a region runs into the border);
+// - it covers more than 40 % of the image;
+// - expected_area_px is given and the area is not within a factor 2 of it.
+// `which` names the image in the sentences ("render").
+std::vector<std::string> segmentation_doubts(const Silhouette& silhouette, const std::string& which,
+                                             std::optional<double> expected_area_px = std::nullopt);
 
 struct PhotoComparison {
   Similarity transform;     // render pixels → photo pixels
