@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "app/cloth_surface_scene.h"
+#include "app/environment_scene.h"
 #include "app/json_reader.h"
 #include "app/mesh_file.h"
 #include "app/units.h"
@@ -556,6 +557,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   s.gl = r.enumeration("gl", render::gl_backend_names, {s.gl});
   read_raytrace(r.object("raytrace"), s.raytrace);
   read_cloth_surface(r, s.cloth_surface);  // subdivision, thickness, texture
+  read_environment(r, s.environment);       // image-based lighting
   r.finish();
 }
 

@@ -25,6 +25,7 @@ namespace weft::render::detail {
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
+  X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
   X(PFNGLFINISHPROC, Finish)                                                 \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \

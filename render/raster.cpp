@@ -4,8 +4,8 @@
 //   2. upload positions, normals and triangles of the cloth and of the objects (the cloth
 //      changes every frame),
 //   3. shadow pass (ground on, lit): cloth and object depth from the key light, orthographic,
-//   4. main pass into a multisampled FBO: clear to the background, ground pass, surface pass
-//      (cloth, objects) — the passes are in raster_passes.h,
+//   4. main pass into a multisampled FBO: clear to the background (or draw the environment map
+//      there), ground pass, surface pass (cloth, objects) — the passes are in raster_passes.h,
 //   5. resolve (glBlitFramebuffer) into a single-sample FBO, glFinish, glReadPixels,
 //      and flip rows so that Image row 0 is the top (raster_gl.h's RenderTargets).
 // GL entry points come from the GlContext (gl_functions.h); nothing links GL directly.
@@ -30,6 +30,8 @@ namespace weft::render {
 namespace {
 
 using detail::check_gl_error;
+using detail::EnvironmentPass;
+using detail::EnvironmentShading;
 using detail::GlFunctions;
 using detail::GroundPass;
 using detail::MeshBuffers;
@@ -160,7 +162,7 @@ struct RasterRenderer::Impl {
 
  private:
   // Steps 3 and 4: the shadow map when there is a shadow (returns whether there is), the
-  // ground and the surfaces into the render targets.
+  // environment map behind, the ground and the surfaces into the render targets.
   bool draw_shadow(const RenderSettings& s, const FrameMeshes& m, Eigen::Matrix4f& light_matrix,
                    Eigen::AlignedBox2d& footprint);
   void draw_main_pass(const RenderSettings& s, const FrameMeshes& m,
@@ -172,6 +174,7 @@ struct RasterRenderer::Impl {
   // The GL objects, created in this order and released in the reverse one.
   SurfacePass m_surface;
   GroundPass m_ground;
+  EnvironmentPass m_environment;
   ShadowPass m_shadow;
   MeshBuffers m_cloth, m_objects;
   RenderTargets m_targets;
@@ -184,6 +187,7 @@ RasterRenderer::Impl::Impl(std::unique_ptr<GlContext> context)
       m_max_size(gl_integer(m_gl, GL_MAX_RENDERBUFFER_SIZE)),
       m_surface(m_gl),
       m_ground(m_gl),
+      m_environment(m_gl),
       m_shadow(m_gl),
       m_cloth(m_gl),
       m_objects(m_gl),
@@ -229,12 +233,16 @@ void RasterRenderer::Impl::draw_main_pass(const RenderSettings& s, const FrameMe
   m_gl.DepthFunc(GL_LESS);
   m_gl.Disable(GL_CULL_FACE);  // two-sided cloth
   check_gl_error(m_gl, "starting the main pass");
-  if (s.ground)
-    m_ground.draw(s, view_projection, light_matrix, footprint, m_shadow.depth_texture());
+  const EnvironmentShading environment = detail::environment_shading(s);
+  if (environment.on && environment.background) m_environment.draw(s, view_projection);
+  if (s.ground) {
+    m_ground.draw(s, view_projection, light_matrix, footprint, m_shadow.depth_texture(),
+                  environment);
+  }
   if (m.cloth_count + m.object_count == 0) return;
   const bool textured =
       s.cloth_surface.texture.image && m.cloth->uvs.size() == m.cloth->positions.size();
-  m_surface.begin(s, view_projection, textured);
+  m_surface.begin(s, view_projection, textured, environment);
   if (m.cloth_count > 0)
     m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, s.back_color, textured);
   for (const ObjectRange& r : m.ranges) {

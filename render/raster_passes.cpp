@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 
 #include "render/camera.h"
 #include "render/raster_shaders.h"
@@ -166,7 +167,8 @@ GroundPass::~GroundPass() {
 
 void GroundPass::set_uniforms(const GlProgram& p, const RenderSettings& s,
                               const Eigen::Matrix4f& view_projection,
-                              const Eigen::Matrix4f* shadow_matrix) const {
+                              const Eigen::Matrix4f* shadow_matrix,
+                              const EnvironmentShading& environment) const {
   p.use();
   p.set("u_view_projection", view_projection);
   // Centred under the camera target, so it stays put while a turntable orbits the eye.
@@ -178,6 +180,10 @@ void GroundPass::set_uniforms(const GlProgram& p, const RenderSettings& s,
   p.set("u_light_intensity", static_cast<float>(s.light_intensity));
   p.set("u_ambient", static_cast<float>(s.ambient));
   p.set("u_shading", s.shading == Shading::normals ? 1 : 0);
+  p.set("u_use_environment", environment.on ? 1 : 0);
+  p.set("u_environment_up", environment.up);
+  p.set("u_environment_down", environment.down);
+  p.set("u_blend_rim", environment.on && environment.background ? 1 : 0);
   // The shadow uniforms (absent from the unshadowed program: location −1, ignored).
   p.set("u_use_shadow", shadow_matrix ? 1 : 0);
   p.set("u_shadow_texel", 1.0f / static_cast<float>(shadow_map_size));
@@ -193,7 +199,7 @@ void GroundPass::set_uniforms(const GlProgram& p, const RenderSettings& s,
 
 void GroundPass::draw(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
                       const Eigen::Matrix4f* shadow_matrix, const Eigen::AlignedBox2d& footprint,
-                      GLuint shadow_map) {
+                      GLuint shadow_map, const EnvironmentShading& environment) {
   // Pushed back in depth so cloth lying on the ground wins.
   m_gl.Enable(GL_POLYGON_OFFSET_FILL);
   m_gl.PolygonOffset(1.0f, 4.0f);
@@ -209,25 +215,30 @@ void GroundPass::draw(const RenderSettings& s, const Eigen::Matrix4f& view_proje
                              {0, in.y0, in.x0, in.y1},
                              {in.x1, in.y0, s.width, in.y1}};
   m_gl.Enable(GL_SCISSOR_TEST);
+  if (environment.on && environment.background) {  // the rim fades into the map by alpha
+    m_gl.Enable(GL_BLEND);
+    m_gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  }
   const auto draw_in = [&](const PixelRect& r) {
     if (r.empty()) return;
     m_gl.Scissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
     m_gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   };
   if (!in.empty()) {
-    set_uniforms(m_shadowed, s, view_projection, shadow_matrix);
+    set_uniforms(m_shadowed, s, view_projection, shadow_matrix, environment);
     m_gl.ActiveTexture(GL_TEXTURE0);
     m_gl.BindTexture(GL_TEXTURE_2D, shadow_map);
     draw_in(in);
     m_gl.BindTexture(GL_TEXTURE_2D, 0);
   }
-  set_uniforms(m_unshadowed, s, view_projection, nullptr);
+  set_uniforms(m_unshadowed, s, view_projection, nullptr, environment);
   if (in.empty()) {
     draw_in({0, 0, s.width, s.height});
   } else {
     for (const PixelRect& band : bands) draw_in(band);
   }
   m_gl.Disable(GL_SCISSOR_TEST);
+  m_gl.Disable(GL_BLEND);
   m_gl.BindVertexArray(0);
   m_gl.Disable(GL_POLYGON_OFFSET_FILL);
   check_gl_error(m_gl, "ground pass");
@@ -241,7 +252,7 @@ SurfacePass::~SurfacePass() {
 }
 
 void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
-                        bool textured) {
+                        bool textured, const EnvironmentShading& environment) {
   m_program.use();
   m_program.set("u_view_projection", view_projection);
   m_program.set("u_eye", s.camera.eye);
@@ -249,6 +260,13 @@ void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_pro
   m_program.set("u_light_intensity", static_cast<float>(s.light_intensity));
   m_program.set("u_ambient", static_cast<float>(s.ambient));
   m_program.set("u_shading", s.shading == Shading::normals ? 1 : 0);
+  m_program.set("u_use_environment", environment.on ? 1 : 0);
+  if (environment.on) {
+    for (int k = 0; k < 9; ++k) {
+      const std::string name = "u_sh[" + std::to_string(k) + "]";
+      m_program.set(name.c_str(), environment.polynomial[k]);
+    }
+  }
   if (textured) {
     const ClothTexture& texture = s.cloth_surface.texture;
     bind_texture(texture);

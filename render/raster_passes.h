@@ -5,6 +5,8 @@
 //             llvmpipe) only inside the screen rectangle where the casters' shadow can fall,
 //             a program without it elsewhere (the same pixels: there the lookup returns 1),
 //   surface — cloth and objects, lit (or normals-shaded), two-sided, the cloth textured.
+// Under an environment map (render/environment.h) the map is drawn first, behind everything,
+// when it is the background, and its spherical-harmonic irradiance replaces the ambient light.
 // And the light's geometry the first two share.
 
 #include <Eigen/Core>
@@ -15,6 +17,7 @@
 
 #include "render/gl_functions.h"
 #include "render/image.h"
+#include "render/environment.h"
 #include "render/raster_gl.h"
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
@@ -32,6 +35,39 @@ Eigen::Matrix4f light_view_projection(const std::vector<const RenderMesh*>& mesh
 // `margin` (clip units), within [−1, 1]² (the shadow map).
 Eigen::AlignedBox2d caster_footprint(const std::vector<const RenderMesh*>& casters,
                                      const Eigen::Matrix4f& light_matrix, double margin);
+
+// What the ground and surface passes need of an environment map (render/environment.h): its
+// reflected radiance as a polynomial in the normal (9 spherical-harmonic terms), and its value
+// for the ground's two sides.
+struct EnvironmentShading {
+  bool on = false;
+  bool background = false;  // the map is drawn behind everything; the ground fades into it
+  ShCoefficients polynomial{};
+  Eigen::Vector3f up = Eigen::Vector3f::Zero(), down = Eigen::Vector3f::Zero();
+};
+// Off without a map (or with normals shading, which ignores light).
+EnvironmentShading environment_shading(const RenderSettings& s);
+
+// The environment map behind everything: a float texture (uploaded when the map changes) read
+// along each pixel's ray.
+class EnvironmentPass {
+ public:
+  explicit EnvironmentPass(const GlFunctions& gl);
+  ~EnvironmentPass();
+  EnvironmentPass(const EnvironmentPass&) = delete;
+  EnvironmentPass& operator=(const EnvironmentPass&) = delete;
+
+  // Into the bound framebuffer, without depth; s.environment.map must be set.
+  void draw(const RenderSettings& s, const Eigen::Matrix4f& view_projection);
+
+ private:
+  void bind_map(const std::shared_ptr<const EnvironmentMap>& map);
+
+  const GlFunctions& m_gl;
+  GlProgram m_program;
+  GLuint m_texture = 0, m_empty_vao = 0;
+  std::shared_ptr<const EnvironmentMap> m_map;  // what m_texture holds
+};
 
 // The shadow map and the depth-only program that draws it.
 class ShadowPass {
@@ -66,14 +102,15 @@ class GroundPass {
   // Into the bound framebuffer. shadow_matrix: the light's view-projection when there is a
   // shadow (shadow_map then holds the casters' depth), and footprint the casters' shadow in
   // its clip x, y (caster_footprint).
+  // `environment` replaces the ambient light when on.
   void draw(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
             const Eigen::Matrix4f* shadow_matrix, const Eigen::AlignedBox2d& footprint,
-            GLuint shadow_map);
+            GLuint shadow_map, const EnvironmentShading& environment);
 
  private:
   void set_uniforms(const GlProgram& p, const RenderSettings& s,
-                    const Eigen::Matrix4f& view_projection,
-                    const Eigen::Matrix4f* shadow_matrix) const;
+                    const Eigen::Matrix4f& view_projection, const Eigen::Matrix4f* shadow_matrix,
+                    const EnvironmentShading& environment) const;
 
   const GlFunctions& m_gl;
   GlProgram m_shadowed, m_unshadowed;
@@ -89,9 +126,11 @@ class SurfacePass {
   SurfacePass(const SurfacePass&) = delete;
   SurfacePass& operator=(const SurfacePass&) = delete;
 
-  // Uses the program with the frame's camera and light; binds the cloth texture (uploading it
-  // when the image changed) when `textured`.
-  void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured);
+  // Uses the program with the frame's camera and light (`environment` replacing the ambient
+  // light when on); binds the cloth texture (uploading it when the image changed) when
+  // `textured`.
+  void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured,
+             const EnvironmentShading& environment);
   void draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
             const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured = false);
 

@@ -38,7 +38,16 @@ uniform int u_shading;            // 0 lit, 1 normals
 uniform int u_use_texture;        // 1: the front colour comes from u_texture (render/texture.h)
 uniform sampler2D u_texture;      // rows uploaded bottom first: t = 0 is the image's bottom
 uniform vec2 u_texture_repeat;    // metres of material per repeat along warp and weft
+uniform int u_use_environment;    // 1: image-based light (render/environment.h) replaces ambient
+uniform vec3 u_sh[9];             // its reflected radiance as a polynomial in n (environment.h)
 out vec4 o_color;
+
+// Radiance a white Lambertian surface of normal n reflects under the environment (9 SH terms).
+vec3 environment_radiance(vec3 n) {
+  return u_sh[0] + u_sh[1] * n.y + u_sh[2] * n.z + u_sh[3] * n.x + u_sh[4] * (n.x * n.y) +
+         u_sh[5] * (n.y * n.z) + u_sh[6] * (3.0 * n.z * n.z - 1.0) + u_sh[7] * (n.x * n.z) +
+         u_sh[8] * (n.x * n.x - n.y * n.y);
+}
 
 void main() {
   // Geometric normal turned towards the eye: the fallback when the interpolated vertex normal
@@ -55,6 +64,11 @@ void main() {
 
   if (u_shading == 1) {
     o_color = vec4(0.5 * n + 0.5, 1.0);
+    return;
+  }
+  if (u_use_environment == 1) {
+    vec3 lit = u_light_intensity * max(dot(n, u_light_dir), 0.0) + environment_radiance(n);
+    o_color = vec4(base * pow(max(lit, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
     return;
   }
   float light = u_ambient + u_light_intensity * max(dot(n, u_light_dir), 0.0);
@@ -91,6 +105,10 @@ uniform int u_use_shadow;         // 0: no shadow map bound
 uniform mat4 u_shadow_matrix;     // world -> shadow map texture coordinates and depth, [0,1]^3
 uniform sampler2DShadow u_shadow_map;
 uniform float u_shadow_texel;     // 1 / shadow map size
+uniform int u_use_environment;    // 1: image-based light replaces ambient
+uniform vec3 u_environment_up;    // the radiance it makes a white ground reflect, seen from +z
+uniform vec3 u_environment_down;  // and from −z
+uniform int u_blend_rim;          // 1: fade into what is drawn below (the map) by alpha
 out vec4 o_color;
 
 // Coverage (0..1) of grid lines every `spacing` metres, about two pixels wide and antialiased;
@@ -139,8 +157,17 @@ void main() {
   if (diffuse > 0.0) diffuse *= light_visibility();
   float light = u_ambient + u_light_intensity * diffuse;
   vec3 lit = u_ground_color * (1.0 - lines) * pow(max(light, 0.0), 1.0 / 2.2);
+  if (u_use_environment == 1) {
+    vec3 sky = gl_FrontFacing ? u_environment_up : u_environment_down;
+    vec3 light3 = u_light_intensity * diffuse + sky;
+    lit = u_ground_color * (1.0 - lines) * pow(max(light3, vec3(0.0)), vec3(1.0 / 2.2));
+  }
   // Fade into the background over the outer 40% of the square's inscribed circle.
   float r = length(v_world.xy - u_ground_center.xy) / u_half_size;
+  if (u_blend_rim == 1) {
+    o_color = vec4(lit, 1.0 - smoothstep(0.6, 1.0, r));
+    return;
+  }
   o_color = vec4(mix(lit, u_background, smoothstep(0.6, 1.0, r)), 1.0);
 }
 )glsl";
@@ -155,6 +182,38 @@ void main() { gl_Position = u_light_view_projection * vec4(a_position, 1.0); }
 const char* const shadow_fragment_shader = R"glsl(
 #version 330 core
 void main() {}
+)glsl";
+
+const char* const environment_vertex_shader = R"glsl(
+#version 330 core
+void main() {
+  // One triangle over the whole viewport, at the far plane.
+  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)) * 2.0 - 1.0;
+  gl_Position = vec4(corner, 1.0, 1.0);
+}
+)glsl";
+
+const char* const environment_fragment_shader = R"glsl(
+#version 330 core
+uniform mat4 u_inverse_view_projection;  // clip -> world
+uniform vec2 u_viewport;                 // width, height in pixels
+uniform vec2 u_rotation;                 // cos, sin of the map's rotation about +z
+uniform float u_intensity;
+uniform sampler2D u_map;                 // rows uploaded top first: t = v (render/environment.h)
+out vec4 o_color;
+void main() {
+  vec2 ndc = 2.0 * gl_FragCoord.xy / u_viewport - 1.0;
+  vec4 near = u_inverse_view_projection * vec4(ndc, -1.0, 1.0);
+  vec4 far = u_inverse_view_projection * vec4(ndc, 1.0, 1.0);
+  vec3 d = normalize(far.xyz / far.w - near.xyz / near.w);
+  // World -> map direction (turned back by the rotation), then the map point (u, v).
+  vec3 m = vec3(u_rotation.x * d.x + u_rotation.y * d.y, -u_rotation.y * d.x + u_rotation.x * d.y,
+                d.z);
+  const float pi = 3.14159265358979;
+  vec2 uv = vec2(0.5 - atan(m.y, m.x) / (2.0 * pi), acos(clamp(m.z, -1.0, 1.0)) / pi);
+  vec3 radiance = u_intensity * texture(u_map, uv).rgb;
+  o_color = vec4(pow(clamp(radiance, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}
 )glsl";
 
 std::string ground_fragment_source(bool shadowed) {

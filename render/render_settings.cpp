@@ -29,6 +29,7 @@ void validate(const RenderSettings& s, int max_size) {
                    !std::isfinite(s.ground_z_m))) {
     fail("ground needs a finite ground_z_m and ground_half_size_m > 0");
   }
+  validate(s.environment);
 }
 
 std::vector<std::string> renderer_choices() {

@@ -15,6 +15,7 @@
 #include "base/enum_names.h"
 #include "render/camera.h"
 #include "render/cloth_surface.h"
+#include "render/environment.h"
 #include "render/raytrace/raytrace_settings.h"
 #include "render/render_mesh.h"
 
@@ -54,6 +55,10 @@ struct RenderSettings {
   // Subdivision, thickness shell and texture of the cloth (render/cloth_surface.h): the mesh
   // aids are applied by the Renderer interface (renderer.h), the texture by each renderer.
   ClothSurface cloth_surface;
+  // Image-based lighting (render/environment.h): a map replaces the ambient sky in both
+  // renderers (the ray tracer samples it, the rasterizer takes its spherical-harmonic
+  // irradiance) and, with environment.background, the background colour. The key light stays.
+  Environment environment;
 };
 
 // Bad input: throws std::invalid_argument naming the field ("RenderSettings: ...") unless the

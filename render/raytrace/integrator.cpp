@@ -10,6 +10,12 @@
 //      escapes); none left: the sky times the unoccluded fraction of ao_samples cosine-weighted
 //      rays of length ao_distance_m (ambient occlusion),
 //   4. a camera ray's ground hit gets the grid lines and fades into the background at its rim.
+// Under an environment map (render/environment.h) the sky and ambient occlusion give way to the
+// map: at each hit, after the sun, one direction drawn from the map (luminance × sin θ) and one
+// cosine-weighted direction, combined by multiple importance sampling (Veach's power heuristic,
+// β = 2); the cosine direction also continues the path while bounces are left, else it is an
+// occlusion ray to infinity. Camera rays that miss show the map when it is the background.
+
 
 #include "render/raytrace/integrator.h"
 
@@ -18,6 +24,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/constants.h"
 #include "render/raytrace/sampling.h"
 #include "render/raytrace/shading.h"
 
@@ -148,6 +155,117 @@ float sky_visibility(const FrameView& view, const Hit& hit, Pcg32& rng, RayCount
   return static_cast<float>(open) / static_cast<float>(view.ao_samples);
 }
 
+// Radiance of a camera ray along `direction` that meets nothing.
+Eigen::Vector3f background(const FrameView& view, const Eigen::Vector3f& direction) {
+  if (view.environment && view.environment_background)
+    return view.environment->radiance(direction.normalized());
+  return view.background;
+}
+
+// Veach's power heuristic (β = 2): the weight of a strategy of pdf a against one of pdf b.
+float power_heuristic(float a, float b) {
+  return a * a / (a * a + b * b);
+}
+
+// The BRDF of `hit` for light arriving from l, seen from v (unit, on the side of the shading
+// normal): diffuse ρ/π plus, on the cloth, the sheen lobe tinted as in sun_light (f_sheen =
+// D·V = sheen_response / (π n·l), shading.h).
+Eigen::Vector3f brdf(const FrameView& view, const Hit& hit, const Eigen::Vector3f& l,
+                     const Eigen::Vector3f& v) {
+  Eigen::Vector3f f = hit.reflectance / base::kPiF;
+  const float n_dot_l = hit.normal.dot(l);
+  if (hit.surface->sheen && view.sheen > 0.0f && n_dot_l > 0.0f) {
+    const Eigen::Vector3f tint = 0.5f * (Eigen::Vector3f::Ones() + hit.reflectance);
+    f += tint * (view.sheen * sheen_response(hit.normal, l, v, view.sheen_roughness) /
+                 (base::kPiF * n_dot_l));
+  }
+  return f;
+}
+
+// The environment's light sample at `hit`: a direction drawn from the map, its shadow ray,
+// weighted against cosine sampling.
+Eigen::Vector3f environment_light(const FrameView& view, const Hit& hit,
+                                  const Eigen::Vector3f& to_viewer, Pcg32& rng,
+                                  RayCounts& counts) {
+  const float u1 = rng.next_float(), u2 = rng.next_float();  // drawn always: fixed stream use
+  const EnvironmentLight& environment = *view.environment;
+  if (!environment.map().samplable() || !(environment.intensity() > 0.0f))
+    return Eigen::Vector3f::Zero();
+  const EnvironmentMap::Sample s = environment.sample(u1, u2);
+  const float cosine = hit.normal.dot(s.direction);
+  if (!(s.pdf > 0.0f) || !(cosine > 0.0f) || !(s.direction.dot(hit.geometric) > 0.0f))
+    return Eigen::Vector3f::Zero();
+  ++counts.shadow;
+  if (occluded(view, offset_origin(view, hit), s.direction, infinity))
+    return Eigen::Vector3f::Zero();
+  const float weight = power_heuristic(s.pdf, cosine / base::kPiF) * cosine / s.pdf;
+  return environment.radiance(s.direction).cwiseProduct(brdf(view, hit, s.direction, to_viewer)) *
+         weight;
+}
+
+// Steps 2–3 under an environment map (see the top): radiance towards the camera from its first
+// hit.
+Eigen::Vector3f environment_path(const FrameView& view, Hit hit, Eigen::Vector3f to_viewer,
+                                 Pcg32& rng, RayCounts& counts) {
+  const EnvironmentLight& environment = *view.environment;
+  Eigen::Vector3f radiance = Eigen::Vector3f::Zero();
+  Eigen::Vector3f throughput = Eigen::Vector3f::Ones();
+  for (int depth = 0;; ++depth) {
+    radiance += throughput.cwiseProduct(sun_light(view, hit, to_viewer, rng, counts));
+    radiance += throughput.cwiseProduct(environment_light(view, hit, to_viewer, rng, counts));
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    const Eigen::Vector3f next = cosine_hemisphere(hit.normal, u1, u2);
+    const float cosine = hit.normal.dot(next);
+    if (!(next.dot(hit.geometric) > 0.0f) || !(cosine > 0.0f)) break;
+    // BRDF · cos / pdf, with pdf = cos / π, and the MIS weight against the map's sampling.
+    const Eigen::Vector3f escaped =
+        throughput.cwiseProduct(brdf(view, hit, next, to_viewer)) *
+        (base::kPiF * power_heuristic(cosine / base::kPiF, environment.pdf(next)));
+    const Eigen::Vector3f origin = offset_origin(view, hit);
+    if (depth == view.bounces) {
+      ++counts.occlusion;
+      if (!occluded(view, origin, next, infinity))
+        radiance += escaped.cwiseProduct(environment.radiance(next));
+      break;
+    }
+    ++counts.bounce;
+    throughput = throughput.cwiseProduct(hit.reflectance);
+    if (!intersect(view, origin, next, 0.0f, infinity, hit)) {
+      radiance += escaped.cwiseProduct(environment.radiance(next));
+      break;
+    }
+    to_viewer = -next;
+  }
+  return radiance;
+}
+
+// Steps 2–3 under the uniform sky: radiance towards the camera from its first hit.
+Eigen::Vector3f sky_path(const FrameView& view, Hit hit, Eigen::Vector3f to_viewer, Pcg32& rng,
+                         RayCounts& counts) {
+  Eigen::Vector3f radiance = Eigen::Vector3f::Zero();
+  Eigen::Vector3f throughput = Eigen::Vector3f::Ones();
+  for (int depth = 0;; ++depth) {
+    radiance += throughput.cwiseProduct(sun_light(view, hit, to_viewer, rng, counts));
+    if (depth == view.bounces) {
+      radiance += throughput.cwiseProduct(hit.reflectance) *
+                  (view.sky * sky_visibility(view, hit, rng, counts));
+      break;
+    }
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    const Eigen::Vector3f next = cosine_hemisphere(hit.normal, u1, u2);
+    if (!(next.dot(hit.geometric) > 0.0f)) break;  // into the surface: absorbed
+    throughput = throughput.cwiseProduct(hit.reflectance);
+    ++counts.bounce;
+    const Eigen::Vector3f origin = offset_origin(view, hit);
+    if (!intersect(view, origin, next, 0.0f, infinity, hit)) {
+      radiance += throughput * view.sky;
+      break;
+    }
+    to_viewer = -next;
+  }
+  return radiance;
+}
+
 // Grid lines and rim fade of the ground seen by a camera ray: the reflectance factor (lines),
 // and the weight of the background (0 inside, 1 at the rim).
 void ground_pattern(const FrameView& view, const Hit& hit, const Eigen::Vector3f& direction_unit,
@@ -173,7 +291,8 @@ Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& 
   const Eigen::Vector3f direction = camera_direction(view, px, py);
   ++counts.camera;
   Hit hit;
-  if (!intersect(view, view.eye, direction, view.near_m, view.far_m, hit)) return view.background;
+  if (!intersect(view, view.eye, direction, view.near_m, view.far_m, hit))
+    return background(view, direction);
   Eigen::Vector3f to_viewer = -direction.normalized();
 
   if (view.shading == Shading::normals) {  // the colour 0.5 n + 0.5, as the rasterizer
@@ -186,28 +305,11 @@ Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& 
     hit.reflectance *= line_factor;
   }
 
-  Eigen::Vector3f radiance = Eigen::Vector3f::Zero();
-  Eigen::Vector3f throughput = Eigen::Vector3f::Ones();
-  for (int depth = 0;; ++depth) {
-    radiance += throughput.cwiseProduct(sun_light(view, hit, to_viewer, rng, counts));
-    if (depth == view.bounces) {
-      radiance += throughput.cwiseProduct(hit.reflectance) *
-                  (view.sky * sky_visibility(view, hit, rng, counts));
-      break;
-    }
-    const float u1 = rng.next_float(), u2 = rng.next_float();
-    const Eigen::Vector3f next = cosine_hemisphere(hit.normal, u1, u2);
-    if (!(next.dot(hit.geometric) > 0.0f)) break;  // into the surface: absorbed
-    throughput = throughput.cwiseProduct(hit.reflectance);
-    ++counts.bounce;
-    const Eigen::Vector3f origin = offset_origin(view, hit);
-    if (!intersect(view, origin, next, 0.0f, infinity, hit)) {
-      radiance += throughput * view.sky;
-      break;
-    }
-    to_viewer = -next;
-  }
-  return (1.0f - background_weight) * radiance + background_weight * view.background;
+  const Eigen::Vector3f radiance = view.environment
+                                      ? environment_path(view, hit, to_viewer, rng, counts)
+                                      : sky_path(view, hit, to_viewer, rng, counts);
+  if (!(background_weight > 0.0f)) return radiance;
+  return (1.0f - background_weight) * radiance + background_weight * background(view, direction);
 }
 
 }  // namespace

@@ -7,8 +7,10 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "render/environment.h"
 #include "render/raytrace/ray_tracer.h"
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
@@ -49,6 +51,10 @@ struct FrameView {
   float sun_intensity = 0.0f;                    // see shading.h
   float sky = 0.0f;                              // sky radiance (RenderSettings::ambient)
   Eigen::Vector3f background{0.0f, 0.0f, 0.0f};  // linear radiance of camera rays that miss
+  // Image-based lighting (render/environment.h): when set it replaces the sky (and, with
+  // environment_background, the background colour).
+  std::optional<EnvironmentLight> environment;
+  bool environment_background = false;
 
   bool ground = false;
   Eigen::Vector3f ground_center{0.0f, 0.0f, 0.0f};

@@ -123,6 +123,8 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.sun_intensity = static_cast<float>(s.light_intensity);
   view.sky = static_cast<float>(s.ambient);
   view.background = rt::reflectance_from_color(s.background);
+  if (s.environment.map) view.environment.emplace(s.environment);
+  view.environment_background = s.environment.background;
   view.ground = s.ground;
   view.ground_center =
       Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m).cast<float>();

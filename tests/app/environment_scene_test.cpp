@@ -1,0 +1,95 @@
+// The render block's image-based lighting (app/environment_scene.h): render.environment is read
+// into RenderSettings::environment with its map found relative to the scene file; bad values
+// and a missing or unreadable map get an error naming the key and the file.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+#include "render/environment.h"
+#include "tests/app/scene_test_support.h"
+
+namespace weft::app {
+namespace {
+
+Json scene_with_render(const Json& render) {
+  Json s = Json::parse(R"({
+    "description": "test scene",
+    "cloth": {"size": ["1 m", "1 m"], "resolution": [9, 9],
+              "material": {"density": "0.019 gf/cm^2"}},
+    "output": {"fps": 24, "frames": 2}
+  })");
+  s["render"] = render;
+  return s;
+}
+
+// A folder of its own under the build tree, emptied first, holding maps/sky.hdr (8×4).
+std::filesystem::path folder_with_map(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::path(WEFT_BINARY_DIR) / "test_output" / "environment_scene" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "maps");
+  render::write_environment_map(
+      dir / "maps" / "sky.hdr",
+      render::EnvironmentMap(8, 4, std::vector<Eigen::Vector3f>(32, Eigen::Vector3f(1, 2, 3))));
+  return dir;
+}
+
+std::string error_parsing(const Json& scene, const std::filesystem::path& source) {
+  try {
+    parse_scene(scene.dump(), source.string());
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(EnvironmentScene, NoEnvironmentByDefault) {
+  const Scene scene = test::parse_json_scene(scene_with_render(Json::object()));
+  EXPECT_FALSE(scene.render.environment.map);
+}
+
+TEST(EnvironmentScene, MapIsRelativeToTheSceneWithItsSettings) {
+  const std::filesystem::path dir = folder_with_map("relative");
+  const Scene scene = parse_scene(
+      scene_with_render(Json::parse(R"({"environment": {"file": "maps/sky.hdr",
+          "rotation": "0.5 rad", "intensity": 2.5, "background": false}})"))
+          .dump(),
+      (dir / "scene.json").string());
+  const render::Environment& e = scene.render.environment;
+  ASSERT_TRUE(e.map);
+  EXPECT_EQ(e.map->width(), 8);
+  EXPECT_EQ(e.map->height(), 4);
+  EXPECT_NEAR(e.map->texel(3, 2).y(), 2.0f, 0.02f);
+  EXPECT_NEAR(e.rotation_deg, 0.5 * 180.0 / 3.14159265358979, 1e-9);
+  EXPECT_DOUBLE_EQ(e.intensity, 2.5);
+  EXPECT_FALSE(e.background);
+}
+
+TEST(EnvironmentScene, BadMapOrValuesNameTheKeyAndFile) {
+  const std::filesystem::path dir = folder_with_map("bad");
+  const std::filesystem::path source = dir / "scene.json";
+  const auto error_of = [&](const char* render) {
+    return error_parsing(scene_with_render(Json::parse(render)), source);
+  };
+  const std::string missing = error_of(R"({"environment": {"file": "nowhere.hdr"}})");
+  EXPECT_CONTAINS(missing, "render.environment.file");
+  EXPECT_CONTAINS(missing, "nowhere.hdr");
+  std::ofstream(dir / "text.hdr") << "this is text";
+  const std::string garbage = error_of(R"({"environment": {"file": "text.hdr"}})");
+  EXPECT_CONTAINS(garbage, "render.environment.file");
+  EXPECT_CONTAINS(garbage, "text.hdr");
+  EXPECT_CONTAINS(error_of(R"({"environment": {"rotation": 10}})"), "render.environment.file");
+  EXPECT_CONTAINS(error_of(R"({"environment": {"file": "maps/sky.hdr", "intensity": -1}})"),
+                  "render.environment.intensity");
+  EXPECT_CONTAINS(error_of(R"({"environment": {"file": "maps/sky.hdr", "exposure": 1}})"),
+                  "render.environment.exposure");
+}
+
+}  // namespace
+}  // namespace weft::app
