@@ -14,6 +14,8 @@
 namespace weft::app {
 namespace {
 
+using render::Camera;
+
 // A scene with a calibrated camera `camera` (a JSON object) and a 320×240 render.
 Json scene_with_camera(const Json& camera) {
   Json scene = Json::parse(R"({
@@ -81,6 +83,24 @@ TEST(CameraScene, ThreePoseFormsGiveOneCamera) {
   const Eigen::Vector3d got = a.render.camera.project(Eigen::Vector3d::Zero(), 320, 240);
   EXPECT_NEAR(got.x(), u, 1e-9);
   EXPECT_NEAR(got.y(), v, 1e-9);
+}
+
+// docs/photos.md's worked example: the φ-SfT R1 intrinsics at quarter size.
+TEST(CameraScene, WorkedExampleOfTheDocs) {
+  Json scene = scene_with_camera(Json::parse(R"({
+    "intrinsics": {"fx": 971.522, "fy": 944.575, "cx": 962.134, "cy": 554.778,
+                   "size": [1920, 1080]},
+    "position": [0, -1.2, 0.4],
+    "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]]})"));
+  scene["render"]["size"] = {480, 270};
+  const Camera& camera = test::parse_json_scene(scene).render.camera;
+  const Eigen::Vector3d full = camera.project({0.1, 0.0, 0.3}, 1920, 1080);
+  EXPECT_NEAR(full.x(), 1043.094, 1e-3);
+  EXPECT_NEAR(full.y(), 633.493, 1e-3);
+  EXPECT_NEAR(full.z(), 1.2, 1e-12);
+  const Eigen::Vector3d quarter = camera.project({0.1, 0.0, 0.3}, 480, 270);
+  EXPECT_NEAR(quarter.x(), 260.399, 1e-3);
+  EXPECT_NEAR(quarter.y(), 157.998, 1e-3);
 }
 
 TEST(CameraScene, MistakesAreNamed) {
