@@ -136,6 +136,7 @@ RenderSettings mask_settings(const RenderSettings& s, bool cloth_only) {
   m.ground_color = cloth_only ? black : white;
   m.msaa_samples = 1;
   m.cloth_surface.texture.image = nullptr;
+  m.environment = Environment{};  // no image-based light or background: geometry only
   return m;
 }
 
