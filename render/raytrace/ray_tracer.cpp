@@ -123,7 +123,8 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.sun_intensity = static_cast<float>(s.light_intensity);
   view.sky = static_cast<float>(s.ambient);
   view.background = rt::reflectance_from_color(s.background);
-  if (s.environment.map) view.environment.emplace(s.environment);
+  // Normals shading ignores light and shows the background colour, as the rasterizer's.
+  if (s.environment.map && s.shading == Shading::lit) view.environment.emplace(s.environment);
   view.environment_background = s.environment.background;
   view.ground = s.ground;
   view.ground_center =
