@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "app/contact_sheet.h"
 #include "app/output_files.h"
 #include "app/version.h"
 #include "base/html_escape.h"
@@ -94,7 +95,7 @@ chart::Figure profile_figure(const FitSpec& spec, const FitResult& r) {
   }
   figure.legend = {{"objective", chart::Swatch::disc, chart::series_colour(1)},
                    {"optimum", chart::Swatch::ring, chart::series_colour(0)},
-                   {"sensitivity band", chart::Swatch::line, chart::series_colour(0)},
+                   {"band", chart::Swatch::line, chart::series_colour(0)},
                    {"optimum + band", chart::Swatch::dashed_line, chart::series_colour(2)}};
   return figure;
 }
@@ -129,15 +130,28 @@ std::string write_photo_images(const fs::path& dir, FitProblem& problem, const F
   render::PhotoComparison c;
   c.photo_mask = photo.mask;
   c.render_mask = problem.silhouette(scene, *settled.simulator);
+  const render::Image fitted = problem.render_look(scene, *settled.simulator);
+  const render::Image overlay = render::outline_overlay(photo.photo, c);
   render::write_png(photo.photo, dir / "photo.png");
-  render::write_png(problem.render_look(scene, *settled.simulator), dir / "fitted_render.png");
-  render::write_png(render::outline_overlay(photo.photo, c), dir / "overlay.png");
+  render::write_png(fitted, dir / "fitted_render.png");
+  render::write_png(overlay, dir / "overlay.png");
+  // photo | fitted render | overlay, labelled with the fitted values and the measures.
+  std::string measures;
+  for (const auto& [name, value] : r.best.measures) measures += (measures.empty() ? "" : ", ") + name + " " + g(value, 3);
+  const int width = std::min(photo.photo.width(), 560);
+  render::write_png(contact_sheet({thumbnail(photo.photo, width), thumbnail(fitted, width),
+                                   thumbnail(overlay, width)},
+                                  {"photo", "fitted: " + describe_values(problem.spec(), r.best.values),
+                                   measures},
+                                  3),
+                    dir / "comparison.png");
   return "<h2>Photo, fitted render, overlay</h2>\n<p>The photo (" +
          base::html_escape(photo.image_path.string()) +
          "), the fitted cloth through the scene's camera, and the outlines of the photo's "
          "silhouette (cyan) and the fitted cloth's (magenta) on the photo.</p>\n"
-         "<img src=\"photo.png\" alt=\"photo\">\n<img src=\"fitted_render.png\" alt=\"fitted "
-         "render\">\n<img src=\"overlay.png\" alt=\"overlay\">\n";
+         "<img src=\"comparison.png\" alt=\"photo, fitted render and overlay\">\n"
+         "<p>Full size: <a href=\"photo.png\">photo.png</a> · <a href=\"fitted_render.png\">"
+         "fitted_render.png</a> · <a href=\"overlay.png\">overlay.png</a></p>\n";
 }
 
 std::string report_html(const FitSpec& spec, const FitResult& r, const std::string& command_line,

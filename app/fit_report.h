@@ -6,8 +6,9 @@
 //   fitted_scene.json  the scene with the fitted values (run it with `weft run`)
 //   convergence.png    the objective per evaluation and the best so far
 //   profile.png        the objective along each parameter around the optimum, with the band
-//   photo.png, fitted_render.png, overlay.png   photo targets: the photo, the fitted cloth
-//                      through the scene's camera, and both silhouettes' outlines on the photo
+//   photo.png, fitted_render.png, overlay.png, comparison.png   photo targets: the photo, the fitted cloth
+//                      through the scene's camera, both silhouettes' outlines on the photo, and
+//                      the three side by side with the numbers
 //   report.html        all of it on one page
 
 #include <filesystem>
