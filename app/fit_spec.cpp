@@ -188,7 +188,11 @@ FitSpec parse_fit_spec(const std::string& text, const std::string& source) {
   const fs::path scene_path = relative_to(source, root.string("scene", required));
   root.object("set");  // marks it read; its keys are scene keys, checked by the scene reader
   spec.set = read_set(document, source);
-  spec.base = load_scene(scene_path);
+  try {
+    spec.base = load_scene(scene_path);
+  } catch (const SceneError& e) {
+    throw_scene_error(source, "scene", e.what());
+  }
   if (!spec.set.empty()) spec.base = patched_scene(spec.base, spec.set);
   for (ObjectReader& p : root.objects("parameters")) spec.parameters.push_back(read_parameter(p));
   if (spec.parameters.empty()) root.fail("parameters", "expected at least one parameter to fit");
