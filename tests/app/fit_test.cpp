@@ -48,6 +48,35 @@ Settled strip_at(double bend_Nm, const std::string& set = R"("render.msaa": 4)")
   return settle_to_rest(problem.scene_at({bend_Nm}), spec.settle);
 }
 
+TEST(Fit, SensitivityBandIsWhereTheProfileCrossesTheLevel) {
+  // f = (log10(v) − 0)², sampled at v = 10^-2 … 10^2: at band 1 the linear interpolation meets
+  // the level exactly at v = 10^±1; at band 5 the right side never rises that far.
+  const Profile p{{0.01, 0.1, 1.0, 10.0, 100.0}, {4.0, 1.0, 0.0, 1.0, 4.0}};
+  const FittedParameter f = sensitivity_band(p, 2, 1.0);
+  EXPECT_EQ(f.value, 1.0);
+  EXPECT_NEAR(f.band_low, 0.1, 1e-12);
+  EXPECT_NEAR(f.band_high, 10.0, 1e-12);
+  EXPECT_FALSE(f.low_open || f.high_open);
+  const FittedParameter wide = sensitivity_band(p, 2, 2.5);
+  EXPECT_NEAR(std::log10(wide.band_low), -1.5, 1e-12);  // halfway from 1 to 4
+  const FittedParameter open = sensitivity_band(p, 2, 5.0);
+  EXPECT_TRUE(open.low_open && open.high_open);
+  EXPECT_EQ(open.band_low, 0.01);
+  EXPECT_EQ(open.band_high, 100.0);
+}
+
+TEST(Fit, ColumnMidlineDistanceOfTwoBands) {
+  // Two horizontal bands, rows 10–12 and 14–18, over columns 5–29 and 0–19: their midlines
+  // (rows 11 and 16) are 5 px apart in the 15 columns both cover.
+  render::Mask a(40, 30), b(40, 30);
+  for (int x = 5; x < 30; ++x)
+    for (int y = 10; y <= 12; ++y) a.set(x, y, true);
+  for (int x = 0; x < 20; ++x)
+    for (int y = 14; y <= 18; ++y) b.set(x, y, true);
+  EXPECT_DOUBLE_EQ(*column_midline_distance_px(a, b), 5.0);
+  EXPECT_FALSE(column_midline_distance_px(a, render::Mask(40, 30)).has_value());
+}
+
 TEST(Fit, MeasuredOverhangAndDropRecoverBendingWithin2Percent) {
   const double truth = 0.08;
   const Settled s = strip_at(truth);
