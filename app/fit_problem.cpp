@@ -195,25 +195,9 @@ std::vector<std::pair<std::string, double>> FitProblem::measure(const Scene& sce
 }
 
 render::Mask FitProblem::silhouette(const Scene& scene, const sim::Simulator& simulator) {
-  render::RenderSettings r = scene.render;
-  r.background = Eigen::Vector3f::Zero();
-  r.front_color = r.back_color = Eigen::Vector3f::Ones();
-  r.ambient = 1.0;
-  r.light_intensity = 0.0;
-  r.shading = render::Shading::lit;
-  r.ground = false;
-  r.cloth_surface.texture.image.reset();
-  std::vector<render::RenderObject> objects = obstacle_render_objects(scene.sim.obstacles, r);
-  for (render::RenderObject& o : objects) o.color = Eigen::Vector3f::Zero();
-  const render::Image image =
-      renderer().render(to_render_mesh(simulator.mesh(), simulator.state().x), r, objects);
-  render::Mask mask(image.width(), image.height());
-  for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < image.width(); ++x) {
-      const render::Rgb8 p = image.at(x, y);
-      mask.set(x, y, 0.299 * p.r + 0.587 * p.g + 0.114 * p.b >= 128.0);
-    }
-  return mask;
+  return renderer().render_mask(to_render_mesh(simulator.mesh(), simulator.state().x), scene.render,
+                                obstacle_render_objects(scene.sim.obstacles, scene.render),
+                                render::Renderer::MaskOf::cloth);
 }
 
 render::Image FitProblem::render_look(const Scene& scene, const sim::Simulator& simulator) {

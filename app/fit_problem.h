@@ -62,9 +62,9 @@ class FitProblem {
   Scene scene_at(const std::vector<double>& values) const;
   Evaluation evaluate(const std::vector<double>& values);
 
-  // Photo targets: the cloth's silhouette at positions x through the scene's camera (rendered
-  // white on black, unlit, obstacles black; cloth where the luminance is ≥ 128) and the
-  // scene's own render of it.
+  // Photo targets: the cloth's silhouette at the simulator's positions through the scene's
+  // camera — the renderer's cloth mask (render/renderer.h: from its geometry, pixel centres,
+  // hidden where an obstacle is in front) — and the scene's own render of it.
   render::Mask silhouette(const Scene& scene, const sim::Simulator& simulator);
   render::Image render_look(const Scene& scene, const sim::Simulator& simulator);
 

@@ -45,8 +45,9 @@ std::vector<TableRow> read_table() {
 std::string fit_text() {
   return R"({"scene": ")" + kSource + R"(/assets/scenes/bendstiff_strip.json",
     "set": {"render.size": [548, 323], "render.camera": {
-      "eye": ["0.1206696 m", "-50 m", "-0.0460218 m"], "target": ["0.1206696 m", 0, "-0.0460218 m"],
-      "up": [0, 0, 1], "fov": "0.1630055 deg", "near": "49 m", "far": "51 m"}},
+      "intrinsics": {"fx": 113533.15, "fy": 113533.15, "cx": -0.5, "cy": 56.5, "size": [548, 323]},
+      "position": [0, "-50 m", 0], "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]],
+      "near": "49 m", "far": "51 m"}},
     "parameters": [{"name": "bend", "start": "0.1 N*m", "min": "0.005 N*m", "max": "2 N*m"}],
     "target": {"photo": {"image": ")" + kData + R"(example_image_x4.png", "mm_per_px": 0.4404}},
     "profile": {"points": 2, "span": 0.1}})";

@@ -27,11 +27,12 @@ fs::path test_dir(const std::string& name) {
   return dir;
 }
 
-// The bendstiff strip seen through a camera at 8× the photo's scale per pixel (274 × 162 px,
+// The bendstiff strip seen through a camera at 8× the photo's scale per pixel (274 × 161 px,
 // 0.8808 mm/px), small enough for a fit test.
 const std::string kSmallCamera = R"("render.size": [274, 161], "render.camera": {
-    "eye": ["0.1206696 m", "-50 m", "-0.0460218 m"], "target": ["0.1206696 m", 0, "-0.0460218 m"],
-    "up": [0, 0, 1], "fov": "0.1625 deg", "near": "49 m", "far": "51 m"})";
+    "intrinsics": {"fx": 56766.58, "fy": 56766.58, "cx": -0.5, "cy": 28.0, "size": [274, 161]},
+    "position": [0, "-50 m", 0], "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]],
+    "near": "49 m", "far": "51 m"})";
 
 std::string fit_text(const std::string& set, const std::string& start, const std::string& target,
                      const std::string& extra = "") {
