@@ -75,9 +75,7 @@ FitResult run_fit(FitProblem& problem,
       result.best = e;
     return e.objective;
   };
-  // NLopt's BOBYQA needs at least two variables; a single one is fitted by Nelder–Mead.
-  const bool bobyqa = spec.optimizer.method == FitMethod::bobyqa && n >= 2;
-  nlopt::opt opt(bobyqa ? nlopt::LN_BOBYQA : nlopt::LN_NELDERMEAD, n);
+  nlopt::opt opt(spec.optimizer.method == FitMethod::bobyqa ? nlopt::LN_BOBYQA : nlopt::LN_NELDERMEAD, n);
   std::vector<double> lo, hi, x;
   for (const FitParameter& p : spec.parameters) {
     lo.push_back(std::log10(p.min));
