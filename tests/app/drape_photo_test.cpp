@@ -109,6 +109,8 @@ TEST(DrapePhoto, NoiseAndAnOffCentreDiscKeepTheNodeCount) {
     const auto res = measure_drape_silhouette(m, cusick_setup(), "synthetic");
     EXPECT_EQ(res.shape.folds, n);
     EXPECT_NEAR(res.shape.drape_coefficient, exact_dc(r_mm, a_mm), 0.01) << "n = " << n;
+    std::printf("n = %d: DC %.4f (exact %.4f), centre (%.2f, %.2f) px\n", n,
+                res.shape.drape_coefficient, exact_dc(r_mm, a_mm), res.center_px.x(), res.center_px.y());
     EXPECT_NEAR(res.center_px.x(), centre.x(), 1.0);
     EXPECT_NEAR(res.center_px.y(), centre.y(), 1.0);
   }
@@ -177,6 +179,7 @@ TEST(DrapePhoto, SegmentedNoisyPhoto) {
   const auto res = measure_drape_silhouette(s.mask, cusick_setup(), "photo.png");
   EXPECT_EQ(res.shape.folds, n);
   EXPECT_NEAR(res.shape.drape_coefficient, exact_dc(r_mm, a_mm), 0.01);
+  std::printf("segmented: DC %.4f (exact %.4f)\n", res.shape.drape_coefficient, exact_dc(r_mm, a_mm));
 }
 
 // Bad input: an error naming the cause.
