@@ -71,7 +71,8 @@ void print_table(const MeasurePhotoOptions& o, const render::Silhouette& s,
   std::string crests;
   for (int k : d.crests)
     crests += (crests.empty() ? " at " : ", ") +
-              format("%.0f", 360.0 * (k + 0.5) / static_cast<double>(d.radii_m.size()));
+              format("%.0f", std::fmod(std::round(360.0 * (k + 0.5) / static_cast<double>(
+                                                      d.radii_m.size())), 360.0));
   std::printf("weft: %s (%dx%d px, silhouette from %s)\n", o.photo.c_str(), m.silhouette.width,
               m.silhouette.height, s.from_mask_image ? o.mask->c_str() : "segmentation");
   std::printf("  drape coefficient  %.3f\n", d.drape_coefficient);
