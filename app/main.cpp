@@ -6,6 +6,7 @@
 #include "app/command.h"
 #include "app/compare_command.h"
 #include "app/diff_command.h"
+#include "app/fit_command.h"
 #include "app/folds_command.h"
 #include "app/gallery_command.h"
 #include "app/measure_command.h"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
       register_run(app, line),     register_stability(app, line), register_sweep(app, line),
       register_measure(app, line), register_folds(app, line),     register_turntable(app, line),
       register_diff(app, line),    register_compare(app, line),   register_gallery(app, line),
+      register_fit(app, line),
   };
   if (argc == 1) {  // no command: say what there is
     std::fputs(app.help().c_str(), stdout);

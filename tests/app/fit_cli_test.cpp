@@ -1,0 +1,83 @@
+// End to end through the real `weft fit`: a measured-number fit of the bendstiff strip writes
+// its log, plots, fitted scene and report, and the fitted scene runs; bad fit files are errors
+// naming the file and key, with nothing written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/app/cli_test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using weft::app::test::CommandResult;
+using weft::app::test::run_weft;
+
+const std::string kStrip = std::string(WEFT_SOURCE_DIR) + "/assets/scenes/bendstiff_strip.json";
+
+class FitCli : public weft::app::test::CliDirectoryTest {
+ protected:
+  FitCli() : CliDirectoryTest("fit_cli") {}
+  // A fit file of the strip with these parameters and target.
+  fs::path write_fit(const std::string& parameters, const std::string& target,
+                     const std::string& scene = kStrip) const {
+    return write_scene("fit.json", R"({"description": "test", "scene": ")" + scene +
+                                       R"(", "parameters": )" + parameters + R"(, "target": )" +
+                                       target + R"(, "profile": {"points": 1}})");
+  }
+};
+
+TEST_F(FitCli, MeasuredFitWritesEverythingAndTheFittedSceneRuns) {
+  const fs::path fit = write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])",
+                                 R"({"measured": {"drop": "80 mm"}})");
+  const CommandResult r = run_weft("fit " + fit.string() + " --out " + (m_dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "fit eval   1  bend=0.05 N*m  objective");
+  EXPECT_CONTAINS(r.output, "bend band");
+  for (const char* file : {"fit.csv", "fit_result.json", "fitted_scene.json", "fit.txt",
+                           "convergence.png", "profile.png", "report.html"})
+    EXPECT_TRUE(fs::exists(m_dir / "out" / file)) << file;
+  std::ifstream csv(m_dir / "out" / "fit.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "evaluation,phase,bend,objective,settled,iterations,residual,seconds,measures");
+  // The fitted scene is a scene: weft measure settles it again.
+  const CommandResult m = run_weft("measure " + (m_dir / "out" / "fitted_scene.json").string() +
+                                   " --frames 2 --out " + (m_dir / "measure").string());
+  EXPECT_EQ(m.exit_code, 0) << m.output;
+}
+
+TEST_F(FitCli, BadFitFilesNameTheFileAndKey) {
+  const auto expect_error = [&](const fs::path& fit, const std::string& message) {
+    const CommandResult r = run_weft("fit " + fit.string() + " --out " + (m_dir / "out").string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_CONTAINS(r.output, fit.string());
+    EXPECT_CONTAINS(r.output, message);
+    EXPECT_FALSE(fs::exists(m_dir / "out"));
+  };
+  const std::string drop = R"({"measured": {"drop": "80 mm"}})";
+  expect_error(write_fit(R"([{"name": "stiffness", "start": 1}])", drop),
+               "parameters[0].name: expected one of 'bend', 'bend_warp'");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N/m"}])", drop), "parameters[0].start");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m", "min": "0.1 N*m"}])", drop),
+               "min ≤ start ≤ max");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m"}, {"name": "bend_warp", "start": "0.05 N*m"}])", drop),
+               "which parameters[0] sets too");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])", R"({"measured": {}})"),
+               "target.measured: expected at least one of");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])",
+                         R"({"point_cloud": {"file": "missing.npy"}})"),
+               "target.point_cloud.file:");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])",
+                         R"({"photo": {"image": ")" + std::string(WEFT_SOURCE_DIR) +
+                             R"(/tests/data/photos/bendstiff/example_image_x4.png"}})"),
+               "is 548×323 px but the scene renders 2193×1294");
+  expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])", drop, "nowhere.json"),
+               "nowhere.json: cannot read scene file");
+}
+
+}  // namespace
