@@ -48,7 +48,7 @@ int run_fit_command(const FitOptions& options) {
   std::printf("weft: fit %s: %s after %zu evaluations (%s)\n", spec.name.c_str(),
               describe_values(spec, result.best.values).c_str(), result.evaluations.size(),
               result.stop_reason.c_str());
-  for (std::size_t i = 0; i < result.fitted.size(); ++i) {
+  for (std::size_t i = 0; i < result.profiles.size(); ++i) {
     const FittedParameter& f = result.fitted[i];
     std::printf("  %s band %s%.4g … %s%.4g %s (objective ≤ optimum + %.3g)\n",
                 spec.parameters[i].name.c_str(), f.low_open ? "≤ " : "", f.band_low,

@@ -104,6 +104,10 @@ FitResult run_fit(FitProblem& problem,
   result.band = spec.profile.band.value_or(default_band(spec.target));
   const Evaluation best = result.best;
   for (std::size_t i = 0; i < n; ++i) {
+    if (spec.profile.points == 0) {  // no profile: no band
+      result.fitted.push_back({best.values[i], best.values[i], best.values[i], true, true});
+      continue;
+    }
     Profile p;
     const FitParameter& param = spec.parameters[i];
     for (int k = -spec.profile.points; k <= spec.profile.points; ++k) {

@@ -33,7 +33,8 @@ struct FitResult {
   std::vector<Evaluation> profile_evaluations;
   Evaluation best;
   std::vector<Profile> profiles;        // one per parameter (empty with profile.points = 0)
-  std::vector<FittedParameter> fitted;  // one per parameter
+  std::vector<FittedParameter> fitted;  // one per parameter; without a profile the band is
+                                        // the value itself, open on both sides
   double band = 0.0;                    // the objective rise that bounds the band
   std::string stop_reason;              // NLopt's, e.g. "x tolerance reached"
 };

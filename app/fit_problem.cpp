@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/measure/drape_measure.h"
+#include "app/chamfer_3d.h"
 #include "app/frame_mesh.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
@@ -38,30 +39,6 @@ std::vector<std::vector<sim::Index>> grid_edges(const sim::ClothMesh& mesh) {
     edges[3].push_back(mesh.index(i, mesh.nv - 1));
   }
   return edges;
-}
-
-// Symmetric mean nearest-neighbour distance between the cloth's used vertices and the points.
-double chamfer_3d_m(const sim::ClothMesh& mesh, const sim::Matrix3X& x, const Points& points) {
-  std::vector<sim::Vec3> cloth;
-  for (sim::Index v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.is_used(v)) cloth.push_back(x.row(v).transpose());
-  std::vector<double> to_cloth(static_cast<std::size_t>(points.rows()),
-                               std::numeric_limits<double>::infinity());
-  double cloth_to_points = 0.0;
-  for (const sim::Vec3& c : cloth) {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (Eigen::Index i = 0; i < points.rows(); ++i) {
-      const double d2 = (points.row(i).transpose() - c).squaredNorm();
-      nearest = std::min(nearest, d2);
-      double& t = to_cloth[static_cast<std::size_t>(i)];
-      t = std::min(t, d2);
-    }
-    cloth_to_points += std::sqrt(nearest);
-  }
-  double points_to_cloth = 0.0;
-  for (const double d2 : to_cloth) points_to_cloth += std::sqrt(d2);
-  return 0.5 * (cloth_to_points / static_cast<double>(cloth.size()) +
-                points_to_cloth / static_cast<double>(points.rows()));
 }
 
 double relative_misfit(double simulated, double target) {
@@ -194,7 +171,7 @@ std::vector<std::pair<std::string, double>> FitProblem::measure(const Scene& sce
       if (t->folds) objective += relative_misfit(d.folds, *t->folds);
     }
   } else if (const auto* cloud = std::get_if<PointCloudTarget>(&m_spec.target)) {
-    objective = 1e3 * chamfer_3d_m(s.mesh(), s.state().x, cloud->points);
+    objective = 1e3 * chamfer_3d(cloth_points(s.mesh(), s.state().x), cloud->points).symmetric_m;
     m.emplace_back("chamfer_3d_mm", objective);
   } else {
     const auto& photo = std::get<PhotoTarget>(m_spec.target);

@@ -112,7 +112,7 @@ nlohmann::ordered_json result_json(const FitSpec& spec, const FitResult& r) {
     const FitParameter& p = spec.parameters[i];
     nlohmann::ordered_json q = {{"name", p.name}, {"unit", p.unit}, {"start", p.start},
                                 {"value", r.best.values[i]}};
-    if (i < r.fitted.size())
+    if (i < r.profiles.size())
       q["band"] = {{"low", r.fitted[i].band_low}, {"high", r.fitted[i].band_high},
                    {"low_open", r.fitted[i].low_open}, {"high_open", r.fitted[i].high_open}};
     j["parameters"].push_back(q);
@@ -173,7 +173,7 @@ std::string report_html(const FitSpec& spec, const FitResult& r, const std::stri
     const FitParameter& p = spec.parameters[i];
     html += "<tr><td>" + p.name + "</td><td>" + base::html_escape(value_text(p, p.start)) +
             "</td><td>" + base::html_escape(value_text(p, r.best.values[i])) + "</td><td>" +
-            (i < r.fitted.size() ? base::html_escape(band_text(p, r.fitted[i])) : "") + "</td></tr>\n";
+            (i < r.profiles.size() ? base::html_escape(band_text(p, r.fitted[i])) : "not profiled") + "</td></tr>\n";
   }
   html += "</table>\n<p>Objective (" + base::html_escape(objective_label(spec.target)) + "): " +
           g(r.best.objective) + "; band: where the profile stays ≤ optimum + " + g(r.band, 3) +

@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "app/chamfer_3d.h"
 #include "app/scene.h"
 #include "app/scene_patch.h"
 #include "app/units.h"
@@ -49,8 +50,6 @@ struct MeasuredTarget {
   std::optional<double> drape_coefficient;
   std::optional<int> folds;
 };
-
-using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 // A point cloud in the scene's frame, metres (.npy, N×3; app/npy_file.h). Objective: the
 // symmetric mean Chamfer distance between the cloth's vertices and the points, mm.
