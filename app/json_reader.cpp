@@ -447,6 +447,23 @@ std::vector<double> ObjectReader::quantities(const std::string& key, Quantity ki
       [&](const Json& e, const Where& w) { return read_quantity(e, w, kind, range); });
 }
 
+Eigen::MatrixXd ObjectReader::matrix(const std::string& key, int rows, int cols) {
+  const std::string row = array_of(static_cast<std::size_t>(cols), "numbers");
+  const std::string expected =
+      array_of(static_cast<std::size_t>(rows), "rows") + ", each " + row;
+  const Json* v = find(key, true, expected);
+  const auto values = read_array<std::vector<double>>(
+      *v, Where{m_file, path_of(key)}, static_cast<std::size_t>(rows), expected,
+      [&](const Json& r, const Where& w) {
+        return read_array<double>(r, w, static_cast<std::size_t>(cols), row,
+                                  [](const Json& e, const Where& we) { return read_number(e, we, {}); });
+      });
+  Eigen::MatrixXd m(rows, cols);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) m(i, j) = values[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  return m;
+}
+
 Eigen::Vector3d ObjectReader::vec3(const std::string& key, std::optional<Eigen::Vector3d> fallback,
                                    const Range& range) {
   std::optional<std::vector<double>> f;

@@ -101,6 +101,10 @@ class ObjectReader {
   Eigen::Vector3d quantity_vec3(const std::string& key, Quantity kind,
                                 std::optional<Eigen::Vector3d> fallback);
 
+  // A required rows × cols matrix written as an array of rows, each an array of numbers
+  // ([[a, b], [c, d]]); element paths "key[i][j]".
+  Eigen::MatrixXd matrix(const std::string& key, int rows, int cols);
+
   // A string naming one of `choices`; the error lists them.
   template <class E>
   E enumeration(const std::string& key, const std::vector<std::pair<std::string, E>>& choices,

@@ -49,6 +49,9 @@ render::Camera orbit_camera(const render::Camera& base, const Eigen::Vector3d& c
   const Eigen::Matrix3d turn =
       Eigen::AngleAxisd(azimuth_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   render::Camera camera = base;
+  // The orbit is a look-at path: a calibrated base camera lends it its position, view axis,
+  // up (its −y axis) and vertical field of view (render/camera.h), not its intrinsics.
+  camera.intrinsics.reset();
   camera.target = center_m;
   camera.eye = center_m + turn * direction * (distance_m * settings.distance_scale);
   camera.up = turn * base.up;

@@ -45,6 +45,13 @@ std::string frame_name(int frame) {
   return name;
 }
 
+// mask_0001.png (output.mask), beside frame_0001.png.
+std::string mask_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "mask_%04d.png", frame);
+  return name;
+}
+
 // mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
 std::string mesh_name(int frame, MeshFormat format) {
   char name[32];
@@ -57,6 +64,7 @@ std::string mesh_name(int frame, MeshFormat format) {
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
   fs::create_directories(dir);
   const int removed = remove_numbered_files(dir, "frame", "png") +
+                      remove_numbered_files(dir, "mask", "png") +
                       remove_numbered_files(dir, "mesh", "(obj|ply|gltf|bin)");
   if (removed)
     std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed,
@@ -149,8 +157,18 @@ class FrameWriter {
       m_obstacles = obstacle_render_objects(m_scene.sim.obstacles, m_scene.sim.obstacle_motions,
                                             m_simulator.state().time_s, m_scene.render);
     const render::RenderMesh cloth = to_render_mesh(m_simulator.mesh(), m_simulator.state().x);
-    render::write_png(m_renderer.render(cloth, m_scene.render, m_obstacles),
-                      m_dir / frame_name(index));
+    const render::Image image = m_renderer.render(cloth, m_scene.render, m_obstacles);
+    if (m_scene.write_alpha)
+      render::write_png(image,
+                        m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
+                                               render::Renderer::MaskOf::surfaces),
+                        m_dir / frame_name(index));
+    else
+      render::write_png(image, m_dir / frame_name(index));
+    if (m_scene.write_mask)
+      render::write_png(m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
+                                               render::Renderer::MaskOf::cloth),
+                        m_dir / mask_name(index));
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format));
   }
@@ -253,6 +271,13 @@ Command register_run(CLI::App& app, const std::string& command_line) {
          "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; normals, UVs = "
          "material coordinates in metres)")
       ->check(CLI::IsMember({"obj", "ply", "gltf"}));
+  cmd->add_flag_callback(
+      "--mask", [o] { o->overrides.push_back({"output.mask", "true", "--mask"}); },
+      "Also write mask_0001.png, ...: the cloth's mask from the renderer's geometry (white = "
+      "cloth not hidden by obstacles or the ground; overrides output.mask)");
+  cmd->add_flag_callback(
+      "--alpha", [o] { o->overrides.push_back({"output.alpha", "true", "--alpha"}); },
+      "Write RGBA frames, the background transparent (overrides output.alpha)");
   cmd->add_flag("--explain", o->explain,
                 "Print the terms and phases the simulation runs, and each phase's share of its time");
   cmd->add_flag("--report", o->report,

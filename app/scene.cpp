@@ -401,6 +401,8 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics) {
 void read_output(ObjectReader r, Scene& scene) {
   scene.fps = r.number("fps", scene.fps, Range::gt(0.0).le(1000.0));
   scene.frames = static_cast<int>(r.integer("frames", scene.frames, Range::closed(1, 100000)));
+  scene.write_mask = r.boolean("mask", scene.write_mask);
+  scene.write_alpha = r.boolean("alpha", scene.write_alpha);
   r.finish();
 }
 
@@ -409,7 +411,71 @@ Eigen::Vector3f read_color(ObjectReader& r, const std::string& key,
   return r.vec3(key, fallback.cast<double>(), Range::closed(0.0, 1.0)).cast<float>();
 }
 
+// "render.camera.intrinsics": a calibrated pinhole's fx, fy, cx, cy (pixels) and image size.
+render::PinholeIntrinsics read_intrinsics(ObjectReader r) {
+  render::PinholeIntrinsics k;
+  k.fx_px = r.number("fx", required, Range::gt(0.0));
+  k.fy_px = r.number("fy", required, Range::gt(0.0));
+  k.cx_px = r.number("cx", required);
+  k.cy_px = r.number("cy", required);
+  const auto size = r.integers("size", 2, required, Range::closed(1, 100000));
+  k.width_px = static_cast<int>(size[0]);
+  k.height_px = static_cast<int>(size[1]);
+  r.finish();
+  return k;
+}
+
+// A calibrated camera: intrinsics and one pose, "position" + "rotation" (camera → world),
+// "camera_to_world" or "world_to_camera" (4×4, OpenCV's [R | t] extrinsics); render/camera.h
+// states the conventions. No look-at key may be given with it.
+render::Camera read_calibrated_camera(ObjectReader& r) {
+  for (const char* key : {"eye", "target", "up", "fov"}) {
+    if (r.has(key))
+      r.fail(key, "a calibrated camera (render.camera.intrinsics) takes no look-at key: give "
+                  "its pose as position + rotation, camera_to_world or world_to_camera");
+  }
+  const render::PinholeIntrinsics k = read_intrinsics(r.object("intrinsics"));
+  const bool has_position = r.has("position"), has_rotation = r.has("rotation");
+  const int poses = int{has_position || has_rotation} + int{r.has("camera_to_world")} +
+                    int{r.has("world_to_camera")};
+  if (poses != 1 || has_position != has_rotation)
+    r.fail("intrinsics", "expected exactly one pose beside the intrinsics: position and rotation "
+                         "(camera to world), camera_to_world or world_to_camera (4x4)");
+  const auto make = [&](const char* key, const auto& make_camera) {
+    try {
+      return make_camera();
+    } catch (const std::invalid_argument& e) {
+      r.fail(key, e.what());
+    }
+  };
+  if (has_position) {
+    const Eigen::Vector3d position = r.quantity_vec3("position", Quantity::length, required);
+    const Eigen::Matrix3d rotation = r.matrix("rotation", 3, 3);
+    return make("rotation", [&] { return render::Camera::calibrated(k, rotation, position); });
+  }
+  if (r.has("camera_to_world")) {
+    const Eigen::Matrix4d pose = r.matrix("camera_to_world", 4, 4);
+    return make("camera_to_world", [&] { return render::Camera::calibrated(k, pose); });
+  }
+  const Eigen::Matrix4d extrinsics = r.matrix("world_to_camera", 4, 4);
+  return make("world_to_camera", [&] {
+    const Eigen::Matrix3d rotation = render::checked_rotation(extrinsics.topLeftCorner<3, 3>());
+    Eigen::Matrix4d pose = Eigen::Matrix4d::Identity();
+    pose.topLeftCorner<3, 3>() = rotation.transpose();
+    pose.topRightCorner<3, 1>() = -rotation.transpose() * extrinsics.topRightCorner<3, 1>();
+    pose.row(3) = extrinsics.row(3);
+    return render::Camera::calibrated(k, pose);
+  });
+}
+
 render::Camera read_camera(ObjectReader r) {
+  if (r.has("intrinsics")) {
+    render::Camera c = read_calibrated_camera(r);
+    c.near_m = r.quantity("near", Quantity::length, c.near_m, Range::gt(0.0));
+    c.far_m = r.quantity("far", Quantity::length, c.far_m, Range::gt(c.near_m));
+    r.finish();
+    return c;
+  }
   render::Camera c;
   c.eye = r.quantity_vec3("eye", Quantity::length, c.eye);
   c.target = r.quantity_vec3("target", Quantity::length, c.target);
@@ -447,6 +513,13 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   s.width = static_cast<int>(size[0]);
   s.height = static_cast<int>(size[1]);
   s.camera = read_camera(r.object("camera"));
+  if (s.camera.intrinsics) {
+    try {
+      s.camera.intrinsics->scaled_to(s.width, s.height);
+    } catch (const std::invalid_argument& e) {
+      r.fail("size", std::string(e.what()) + " (render.camera.intrinsics.size)");
+    }
+  }
 
   ObjectReader light = r.object("light");
   s.light_direction = light.vec3("direction", s.light_direction);

@@ -43,6 +43,9 @@ struct Scene {
 
   double fps = 24.0;  // output frames per second of simulated time
   int frames = 72;    // frames written; frame k (1-based) shows time k / fps
+  // output.mask: also write mask_0001.png, the cloth's mask (render::Renderer::render_mask);
+  // output.alpha: write the frames as RGBA, the background transparent.
+  bool write_mask = false, write_alpha = false;
 
   render::RenderSettings render;
 };

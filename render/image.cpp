@@ -98,19 +98,22 @@ void Image::set(int x, int y, Rgb8 c) {
   m_rgb[i + 2] = c.b;
 }
 
-void write_png(const Image& image, const std::filesystem::path& path) {
-  if (image.width() <= 0 || image.height() <= 0) {
-    throw std::runtime_error("write_png: cannot write an empty " + std::to_string(image.width()) +
-                             "x" + std::to_string(image.height()) + " image to " + quoted(path));
+namespace {
+
+// Encodes width × height pixels of `channels` bytes each (rows top first) and writes them.
+void write_png_bytes(int width, int height, int channels, const std::uint8_t* data,
+                     const std::filesystem::path& path) {
+  if (width <= 0 || height <= 0) {
+    throw std::runtime_error("write_png: cannot write an empty " + std::to_string(width) + "x" +
+                             std::to_string(height) + " image to " + quoted(path));
   }
   // Encode in memory first, so an encoder failure leaves no file at all.
   std::string encoded;
-  const int ok = stbi_write_png_to_func(append_bytes, &encoded, image.width(), image.height(), 3,
-                                        image.data(), image.width() * 3);
+  const int ok = stbi_write_png_to_func(append_bytes, &encoded, width, height, channels, data,
+                                        width * channels);
   if (ok == 0 || encoded.empty()) {
     throw std::runtime_error("write_png: PNG encoding failed for " + quoted(path));
   }
-
   // Write beside the target and rename, so an interrupted run never leaves a half PNG.
   std::filesystem::path tmp = path;
   tmp += ".tmp";
@@ -129,6 +132,33 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     throw std::runtime_error("write_png: cannot rename " + quoted(tmp) + " to " + quoted(path) +
                              ": " + ec.message());
   }
+}
+
+}  // namespace
+
+void write_png(const Image& image, const std::filesystem::path& path) {
+  write_png_bytes(image.width(), image.height(), 3, image.data(), path);
+}
+
+void write_png(const Image& image, const Mask& opaque, const std::filesystem::path& path) {
+  if (opaque.width != image.width() || opaque.height != image.height()) {
+    throw std::invalid_argument("write_png: the alpha mask is " + std::to_string(opaque.width) +
+                                "x" + std::to_string(opaque.height) + " but the image is " +
+                                std::to_string(image.width()) + "x" +
+                                std::to_string(image.height()) + " (" + quoted(path) + ")");
+  }
+  std::vector<std::uint8_t> rgba(4 * opaque.in.size());
+  for (std::size_t i = 0; i < opaque.in.size(); ++i) {
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = image.data()[3 * i + c];
+    rgba[4 * i + 3] = opaque.in[i] ? 255 : 0;
+  }
+  write_png_bytes(image.width(), image.height(), 4, rgba.data(), path);
+}
+
+void write_png(const Mask& mask, const std::filesystem::path& path) {
+  std::vector<std::uint8_t> grey(mask.in.size());
+  for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = mask.in[i] ? 255 : 0;
+  write_png_bytes(mask.width, mask.height, 1, grey.data(), path);
 }
 
 Image read_image(const std::filesystem::path& path) {

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "render/mask.h"
+
 namespace weft::render {
 
 struct Rgb8 {
@@ -32,6 +34,11 @@ class Image {
 
 // Writes a PNG; throws std::runtime_error naming the path when it cannot.
 void write_png(const Image& image, const std::filesystem::path& path);
+// An RGBA PNG: the image's colours, alpha 255 where `opaque` is set and 0 elsewhere (straight,
+// not premultiplied alpha); the sizes must match.
+void write_png(const Image& image, const Mask& opaque, const std::filesystem::path& path);
+// A grey PNG of the mask: 255 where set, 0 elsewhere (mask_from_image reads it back).
+void write_png(const Mask& mask, const std::filesystem::path& path);
 // Reads a PNG/JPG as RGB; throws std::runtime_error naming the path and stb's reason.
 Image read_image(const std::filesystem::path& path);
 

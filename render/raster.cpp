@@ -118,6 +118,33 @@ void prepare_meshes(const RenderMesh& cloth, const std::vector<RenderObject>& ob
   m.object_count = static_cast<GLsizei>(3 * m.objects.triangles.size());
 }
 
+// The mask pass (render_mask): the same frame drawn unlit and flat — counted surfaces white,
+// the others and the background black, one sample per pixel (its centre, as the ray tracer's
+// mask) — so that a pixel is set when its colour is at least half white. The ground's grid
+// lines darken it by at most 16 % and its rim fades into the background with the ray tracer's
+// smoothstep, so its threshold crossing is the ray tracer's r = 0.8.
+RenderSettings mask_settings(const RenderSettings& s, bool cloth_only) {
+  const Eigen::Vector3f white = Eigen::Vector3f::Ones(), black = Eigen::Vector3f::Zero();
+  RenderSettings m = s;
+  m.shading = Shading::lit;
+  m.light_intensity = 0.0;
+  m.ambient = 1.0;
+  m.front_color = m.back_color = white;
+  m.background = black;
+  m.ground_color = cloth_only ? black : white;
+  m.msaa_samples = 1;
+  m.cloth_surface.texture.image = nullptr;
+  return m;
+}
+
+Mask bright_pixels(const Image& image) {
+  Mask mask(image.width(), image.height());
+  const std::uint8_t* rgb = image.data();
+  for (std::size_t i = 0; i < mask.in.size(); ++i)
+    mask.in[i] = std::max({rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}) >= 128;
+  return mask;
+}
+
 }  // namespace
 
 struct RasterRenderer::Impl {
@@ -190,9 +217,8 @@ bool RasterRenderer::Impl::draw_shadow(const RenderSettings& s, const FrameMeshe
 void RasterRenderer::Impl::draw_main_pass(const RenderSettings& s, const FrameMeshes& m,
                                           const Eigen::Matrix4f* light_matrix,
                                           const Eigen::AlignedBox2d& footprint) {
-  const double aspect = static_cast<double>(s.width) / static_cast<double>(s.height);
   const Eigen::Matrix4f view_projection =
-      s.camera.projection_matrix(aspect) * s.camera.view_matrix();
+      s.camera.projection_matrix(s.width, s.height) * s.camera.view_matrix();
   m_targets.bind_for_drawing();
   m_gl.Enable(GL_MULTISAMPLE);
   m_gl.DepthMask(GL_TRUE);
@@ -248,6 +274,14 @@ Image RasterRenderer::render(const RenderMesh& mesh, const RenderSettings& setti
 Image RasterRenderer::render(const RenderMesh& cloth, const RenderSettings& settings,
                              const std::vector<RenderObject>& objects) {
   return m_impl->render(cloth, settings, objects);
+}
+
+Mask RasterRenderer::render_mask(const RenderMesh& cloth, const RenderSettings& settings,
+                                 const std::vector<RenderObject>& objects, bool cloth_only) {
+  std::vector<RenderObject> flat = objects;
+  for (RenderObject& object : flat)
+    object.color = cloth_only ? Eigen::Vector3f::Zero() : Eigen::Vector3f::Ones();
+  return bright_pixels(m_impl->render(cloth, mask_settings(settings, cloth_only), flat));
 }
 
 std::string RasterRenderer::description() const {

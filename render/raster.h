@@ -9,6 +9,7 @@
 
 #include "render/gl_context.h"
 #include "render/image.h"
+#include "render/mask.h"
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
 
@@ -28,6 +29,10 @@ class RasterRenderer {
   // mesh (an object's message starts "object k: ").
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects);
+  // The cloth's mask (cloth_only) or that of every surface, at the pixel centres, from the
+  // geometry (Renderer::render_mask, render/renderer.h).
+  Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
+                   const std::vector<RenderObject>& objects, bool cloth_only);
   std::string description() const;
 
  private:

@@ -30,6 +30,12 @@ class WithClothSurface final : public Renderer {
     return m_backend.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
                             objects);
   }
+  Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
+                   const std::vector<RenderObject>& objects, MaskOf which) override {
+    RenderMesh storage;
+    return m_backend.render_mask(prepare_cloth_mesh(cloth, settings.cloth_surface, storage),
+                                 settings, objects, which == MaskOf::cloth);
+  }
   std::string description() const override { return m_backend.description(); }
 
  private:

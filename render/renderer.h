@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/image.h"
+#include "render/mask.h"
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
 
@@ -23,6 +24,18 @@ class Renderer {
   // "object k: "), std::runtime_error when the back-end fails.
   virtual Image render(const RenderMesh& cloth, const RenderSettings& settings,
                        const std::vector<RenderObject>& objects) = 0;
+  // Which pixels render_mask() sets, each decided at the pixel's centre (one sample, no
+  // antialiasing) from the geometry alone, never from colour:
+  // - cloth: the camera ray meets the cloth first, not hidden by an object or the ground — the
+  //   cloth's mask (mask_0001.png, the silhouette objective of `weft fit`);
+  // - surfaces: the ray meets any surface (cloth, object, or the ground inside the middle of
+  //   its faded rim, r < 0.8 half-sizes) — the opaque part of an RGBA frame.
+  enum class MaskOf { cloth, surfaces };
+  // The mask of the frame render() would draw from the same arguments: same camera, cloth
+  // surface aids (subdivision, thickness shell), objects and ground; the same size. Cheaper
+  // than render(): no lighting, one ray or fragment per pixel. Throws as render().
+  virtual Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
+                           const std::vector<RenderObject>& objects, MaskOf which) = 0;
   virtual std::string description() const = 0;
 };
 

@@ -18,23 +18,9 @@
 #include <vector>
 
 #include "render/image.h"
+#include "render/mask.h"
 
 namespace weft::render {
-
-// width × height, row-major, 1 = cloth, 0 = background.
-struct Mask {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> in;
-
-  Mask() = default;
-  Mask(int w, int h) : width(w), height(h), in(static_cast<std::size_t>(w) * h, 0) {}
-  bool at(int x, int y) const { return in[static_cast<std::size_t>(y) * width + x] != 0; }
-  // false outside the image
-  bool at_or_out(int x, int y) const {
-    return x >= 0 && y >= 0 && x < width && y < height && at(x, y);
-  }
-  void set(int x, int y, bool v) { in[static_cast<std::size_t>(y) * width + x] = v ? 1 : 0; }
-};
 
 struct SegmentationSettings {
   double luma_weight = 0.25;  // weight of ΔY against the chroma differences

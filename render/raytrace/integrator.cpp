@@ -161,12 +161,16 @@ void ground_pattern(const FrameView& view, const Hit& hit, const Eigen::Vector3f
   background_weight = t * t * (3.0f - 2.0f * t);
 }
 
+// The camera ray's direction through image point (px, py) (FrameView's camera).
+Eigen::Vector3f camera_direction(const FrameView& view, float px, float py) {
+  return view.forward + (2.0f * px / static_cast<float>(view.width) - 1.0f) * view.right -
+         (2.0f * py / static_cast<float>(view.height) - 1.0f) * view.up;
+}
+
 // Linear radiance of one camera sample through image point (px, py).
 Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& rng,
                               RayCounts& counts) {
-  const Eigen::Vector3f direction =
-      view.forward + (2.0f * px / static_cast<float>(view.width) - 1.0f) * view.right -
-      (2.0f * py / static_cast<float>(view.height) - 1.0f) * view.up;
+  const Eigen::Vector3f direction = camera_direction(view, px, py);
   ++counts.camera;
   Hit hit;
   if (!intersect(view, view.eye, direction, view.near_m, view.far_m, hit)) return view.background;
@@ -226,6 +230,19 @@ Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& cou
                          static_cast<float>(y) + offset.y(), rng, counts);
   }
   return sum / static_cast<float>(view.samples_per_pixel);
+}
+
+const SurfaceShading* visible_surface(const FrameView& view, int x, int y) {
+  const Eigen::Vector3f direction =
+      camera_direction(view, static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+  Hit hit;
+  if (!intersect(view, view.eye, direction, view.near_m, view.far_m, hit)) return nullptr;
+  if (hit.surface->ground) {
+    float line_factor = 1.0f, background_weight = 0.0f;
+    ground_pattern(view, hit, direction.normalized(), line_factor, background_weight);
+    if (background_weight >= 0.5f) return nullptr;
+  }
+  return hit.surface;
 }
 
 }  // namespace weft::render::rt

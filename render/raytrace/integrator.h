@@ -36,7 +36,9 @@ struct FrameView {
   int width = 0, height = 0;
   // Camera: the ray through image point (px, py) (pixels, (0, 0) the top-left corner) is
   // eye + t (forward + (2 px / width − 1) right − (2 py / height − 1) up), t in [near, far]:
-  // t is the depth along the view axis, as the rasterizer's clip planes.
+  // t is the depth along the view axis, as the rasterizer's clip planes. forward is the view
+  // axis plus, for a calibrated camera, the shift of the image centre from the principal
+  // point (perpendicular to it, so t stays the depth).
   Eigen::Vector3f eye, forward, right, up;  // right, up scaled by the half-extent at depth 1
   float near_m = 0.0f, far_m = 0.0f;
   float pixel_angle = 0.0f;  // radians per pixel at the image centre
@@ -61,5 +63,10 @@ struct FrameView {
 
 // Mean linear radiance (RGB) of pixel (x, y) over its samples; adds the rays it traced.
 Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts);
+
+// The surface the camera ray through the centre of pixel (x, y) meets first; nullptr when it
+// meets none, or the ground where its rim has faded at least half into the background (the
+// masks of Renderer::render_mask).
+const SurfaceShading* visible_surface(const FrameView& view, int x, int y);
 
 }  // namespace weft::render::rt

@@ -95,19 +95,20 @@ void prepare_meshes(const RenderMesh& cloth, const RenderSettings& s,
 }
 
 // Step 3, the camera: Camera::view_matrix's basis (which also checks eye, target and up) and
-// its projection's extent (which checks fov, near, far).
+// its projection's extent and principal point (which checks fov or intrinsics, near, far).
 void set_camera(const Camera& camera, int width, int height, rt::FrameView& view) {
   view.width = width;
   view.height = height;
   const Eigen::Matrix4f view_matrix = camera.view_matrix();
-  const double aspect = static_cast<double>(width) / static_cast<double>(height);
-  const Eigen::Matrix4f projection = camera.projection_matrix(aspect);
+  const Eigen::Matrix4f projection = camera.projection_matrix(width, height);
   const Eigen::Vector3f side = view_matrix.block<1, 3>(0, 0).transpose();
   const Eigen::Vector3f true_up = view_matrix.block<1, 3>(1, 0).transpose();
   view.forward = -view_matrix.block<1, 3>(2, 0).transpose();
-  // At depth 1 the image spans ±1/P(0,0) sideways and ±1/P(1,1) up and down.
+  // At depth 1 the image spans ±1/P(0,0) sideways and ±1/P(1,1) up and down about the
+  // principal point, which lies at NDC (−P(0,2), −P(1,2)) (zero for a look-at camera).
   view.right = side / projection(0, 0);
   view.up = true_up / projection(1, 1);
+  if (camera.intrinsics) view.forward += projection(0, 2) * view.right + projection(1, 2) * view.up;
   view.eye = camera.eye.cast<float>();
   view.near_m = static_cast<float>(camera.near_m);
   view.far_m = static_cast<float>(camera.far_m);
@@ -185,6 +186,11 @@ struct RayTracer::Impl {
 
   Image render(const RenderMesh& cloth, const RenderSettings& s,
                const std::vector<RenderObject>& objects);
+  Mask render_mask(const RenderMesh& cloth, const RenderSettings& s,
+                   const std::vector<RenderObject>& objects, bool cloth_only);
+  // Steps 1 to 3 of render().
+  rt::FrameView prepare(const RenderMesh& cloth, const RenderSettings& s,
+                        const std::vector<RenderObject>& objects, FrameMeshes& meshes);
   // Step 2: the Embree scene, committed.
   void update_scene(const FrameMeshes& m);
   // Step 3: what the pixels read (scene, surfaces, camera, light; integrator.h).
@@ -232,18 +238,45 @@ rt::FrameView RayTracer::Impl::frame_view(const FrameMeshes& m, const RenderSett
   return view;
 }
 
-Image RayTracer::Impl::render(const RenderMesh& cloth, const RenderSettings& s,
-                              const std::vector<RenderObject>& objects) {
+rt::FrameView RayTracer::Impl::prepare(const RenderMesh& cloth, const RenderSettings& s,
+                                       const std::vector<RenderObject>& objects,
+                                       FrameMeshes& meshes) {
   validate(s, max_image_side);
   validate_raytrace(s.raytrace);
   validate(s.cloth_surface);
-  FrameMeshes meshes;
   prepare_meshes(cloth, s, objects, meshes);
   update_scene(meshes);
-  const rt::FrameView view = frame_view(meshes, s, objects);
+  return frame_view(meshes, s, objects);
+}
+
+Image RayTracer::Impl::render(const RenderMesh& cloth, const RenderSettings& s,
+                              const std::vector<RenderObject>& objects) {
+  FrameMeshes meshes;
+  const rt::FrameView view = prepare(cloth, s, objects, meshes);
   Image image(s.width, s.height);
   last_counts = trace_tiles(view, s.raytrace, image, pool);
   return image;
+}
+
+// One camera ray per pixel centre, rows shared among the pool's threads.
+Mask RayTracer::Impl::render_mask(const RenderMesh& cloth, const RenderSettings& s,
+                                  const std::vector<RenderObject>& objects, bool cloth_only) {
+  FrameMeshes meshes;
+  const rt::FrameView view = prepare(cloth, s, objects, meshes);
+  const rt::SurfaceShading* const cloth_surface =
+      cloth_geometry.attached() ? &view.surfaces[cloth_geometry.id()] : nullptr;
+  Mask mask(s.width, s.height);
+  const int threads = thread_count(s.raytrace, s.height);
+  if (!pool || pool->size() != static_cast<std::size_t>(threads))
+    pool = std::make_unique<base::ThreadPool>(threads);
+  pool->run(static_cast<std::size_t>(s.height), [&](std::size_t row) {
+    const int y = static_cast<int>(row);
+    for (int x = 0; x < s.width; ++x) {
+      const rt::SurfaceShading* seen = rt::visible_surface(view, x, y);
+      mask.set(x, y, cloth_only ? seen != nullptr && seen == cloth_surface : seen != nullptr);
+    }
+  });
+  return mask;
 }
 
 RayTracer::RayTracer() : m_impl(std::make_unique<Impl>()) {}
@@ -252,6 +285,11 @@ RayTracer::~RayTracer() = default;
 Image RayTracer::render(const RenderMesh& cloth, const RenderSettings& settings,
                         const std::vector<RenderObject>& objects) {
   return m_impl->render(cloth, settings, objects);
+}
+
+Mask RayTracer::render_mask(const RenderMesh& cloth, const RenderSettings& settings,
+                           const std::vector<RenderObject>& objects, bool cloth_only) {
+  return m_impl->render_mask(cloth, settings, objects, cloth_only);
 }
 
 std::string RayTracer::description() const {

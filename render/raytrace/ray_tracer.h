@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/image.h"
+#include "render/mask.h"
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
 
@@ -38,6 +39,10 @@ class RayTracer {
   // starts "object k: "), std::runtime_error for an Embree failure.
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects);
+  // The cloth's mask (cloth_only) or that of every surface, at the pixel centres, from the
+  // geometry (Renderer::render_mask, render/renderer.h).
+  Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
+                   const std::vector<RenderObject>& objects, bool cloth_only);
   std::string description() const;
   RayCounts last_ray_counts() const;
   // Embree geometries created for the cloth so far (its topology changed, or the first frame).
