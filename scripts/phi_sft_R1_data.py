@@ -7,7 +7,11 @@ the camera's (row, column) order. Standard library only; deterministic.
 SRC is ../shared/photos/phi_sft_R1 (read its README), DST tests/data/photos/phi_sft_R1. Writes
   mask_000.png        the cloth mask box-filtered by FACTOR (1920x1080 -> 480x270), then cut at
                       half coverage (white = cloth)
+  mask_000_cloth.png  its largest 4-connected component: the cloth without the two small blobs
+                      below it that the dataset's mask also holds
   rgb_000.png         the colour frame box-filtered by FACTOR
+  0_R1_quad.obj       the frame-0 template's vertices and quads only (no texture coordinates,
+                      normals or material), the quads' corners as vertex indices
   point_cloud_000.npy every k-th point of ground_truth/point_cloud_000.npy (about POINTS of them;
                       float32, N x 3, metres, camera coordinates: x right, y down, z forward)
 and prints, for both readings of R1_scene.json's (focal_lengths, optical_centers) pairs, the
@@ -85,6 +89,25 @@ def box_downscale(width, height, channels, pixels, factor):
     return w, h, out
 
 
+def components(mask, w, h):
+    """The 4-connected components of the pixels >= 128, largest first, as lists of indices."""
+    seen, found = bytearray(w * h), []
+    for start in range(w * h):
+        if mask[start] < 128 or seen[start]:
+            continue
+        seen[start], stack, part = 1, [start], []
+        while stack:
+            i = stack.pop()
+            part.append(i)
+            x, y = i % w, i // w
+            for j, ok in ((i - 1, x > 0), (i + 1, x < w - 1), (i - w, y > 0), (i + w, y < h - 1)):
+                if ok and mask[j] >= 128 and not seen[j]:
+                    seen[j] = 1
+                    stack.append(j)
+        found.append(part)
+    return sorted(found, key=len, reverse=True)
+
+
 def npy_points(path):
     """The N x 3 little-endian float32 array of a version-1 .npy file, as a flat list."""
     data = Path(path).read_bytes()
@@ -133,6 +156,13 @@ def main():
     sw, sh, small = box_downscale(w, h, 1, mask, a.factor)
     small = bytearray(255 if v >= 128 else 0 for v in small)
     write_png(a.dst / "mask_000.png", sw, sh, 1, small)
+    parts = components(small, sw, sh)
+    cloth = bytearray(sw * sh)
+    for i in parts[0]:
+        cloth[i] = 255
+    write_png(a.dst / "mask_000_cloth.png", sw, sh, 1, cloth)
+    print(f"mask_000: {len(parts)} components of {[len(p) for p in parts]} px; "
+          "mask_000_cloth.png keeps the first")
     w, h, ch, rgb = read_png(a.src / "rgbs/rgb_000.png")
     write_png(a.dst / "rgb_000.png", *box_downscale(w, h, ch, rgb, a.factor)[:2], ch,
               box_downscale(w, h, ch, rgb, a.factor)[2])
@@ -142,6 +172,11 @@ def main():
     write_npy(a.dst / "point_cloud_000.npy",
               [v for i in range(0, n, step) for v in flat[3 * i:3 * i + 3]])
     shutil.copyfile(a.src / "LICENSE", a.dst / "LICENSE")
+    lines = (a.src / "0_R1_quad.obj").read_text().splitlines()
+    kept = [l for l in lines if l.startswith("v ")]
+    kept += ["f " + " ".join(c.split("/")[0] for c in l.split()[1:]) for l in lines if l.startswith("f ")]
+    (a.dst / "0_R1_quad.obj").write_text("# phi-SfT R1 frame-0 template (0_R1_quad.obj): vertices and quads only\n" +
+                                         "\n".join(kept) + "\n")
     scene = json.loads((a.src / "R1_scene.json").read_text())
     f, c = scene["focal_lengths"][0], scene["optical_centers"][0]
     print(f"{n} points, every {step}th kept ({len(range(0, n, step))}); z from "
