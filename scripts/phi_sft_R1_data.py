@@ -16,7 +16,9 @@ SRC is ../shared/photos/phi_sft_R1 (read its README), DST tests/data/photos/phi_
                       float32, N x 3, metres, camera coordinates: x right, y down, z forward)
 and prints, for both readings of R1_scene.json's (focal_lengths, optical_centers) pairs, the
 IoU between the mask and the pixels the full point cloud projects onto (at the small size),
-and the share of points that land inside the mask.
+and the share of points that land inside the mask; and how far the cloud leaves the vertical
+plane through the held corners (template vertices 0 and 992; gravity taken as the camera's +y):
+the mean signed distance per 10 cm cell, + away from the camera.
 """
 import argparse
 import json
@@ -144,6 +146,27 @@ def projection_iou(flat, mask, w, h, factor, f, c):
     return both / union, inside / (len(flat) // 3)
 
 
+def lean_table(flat, obj_path):
+    """Rows of mean out-of-plane distances (mm) of the points, 10 cm cells down and along."""
+    verts = [[float(v) for v in l.split()[1:4]] for l in obj_path.read_text().splitlines()
+             if l.startswith("v ")]
+    c0, c1 = [(-v[0], -v[1], v[2]) for v in (verts[0], verts[992])]
+    dot = lambda a, b: sum(x * y for x, y in zip(a, b))
+    d = [c1[i] - c0[i] for i in range(3)]
+    w = [x / math.sqrt(dot(d, d)) for x in d]
+    v = [-w[1] * x for x in w]
+    v[1] += 1.0
+    v = [x / math.sqrt(dot(v, v)) for x in v]
+    n = (w[1] * v[2] - w[2] * v[1], w[2] * v[0] - w[0] * v[2], w[0] * v[1] - w[1] * v[0])
+    cells = {}
+    for i in range(0, len(flat), 3):
+        q = [flat[i + k] - c0[k] for k in range(3)]
+        key = (min(5, max(0, int(dot(q, v) / 0.1))), min(5, max(0, int(dot(q, w) / 0.1))))
+        cells.setdefault(key, []).append(dot(q, n))
+    return [[1e3 * sum(cells[(r, c)]) / len(cells[(r, c)]) if (r, c) in cells else float("nan")
+             for c in range(6)] for r in range(6)]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("src", type=Path)
@@ -186,6 +209,10 @@ def main():
         iou, share = projection_iou(flat, small, sw, sh, a.factor, ff, cc)
         print(f"{name}: fx {ff[0]}, fy {ff[1]}, cx {cc[0]}, cy {cc[1]}: "
               f"IoU {iou:.3f}, points inside the mask {100 * share:.1f} %")
+    print("out of the corners' vertical plane, mm (+ away from the camera), 10 cm cells: "
+          "rows down from the top edge, columns from vertex 0 towards vertex 992")
+    for row in lean_table(flat, a.src / "0_R1_quad.obj"):
+        print(" ".join(f"{x:7.1f}" for x in row))
 
 
 if __name__ == "__main__":
