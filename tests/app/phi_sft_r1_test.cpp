@@ -96,8 +96,7 @@ const Eigen::Vector3d kCorner992(-0.139769, -0.155677, 1.221038);
 // The bound of 12 mm: the dataset's own frame-0 template, a 32 × 32 vertex set fitted to this
 // frame, scores 6.2 mm on the same cloud (its vertices 17.7 mm apart set that floor); the rest
 // of the misfit is the real scarf's twist out of the corners' vertical plane (up to 38 mm at
-// the lower right, docs/photos.md) that a static hang in still air does not make. The flat
-// sheet the hang starts from scores 10.9 mm, the same sheet 2 cm deeper 24.6 mm.
+// the lower right, docs/photos.md) that a static hang in still air does not make.
 class PhiSftR1Hang : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
