@@ -4,12 +4,14 @@
 #include "app/measure_command.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
+#include "app/drape_photo.h"
 #include "app/frame_stream.h"
 #include "app/progress.h"
 #include "app/version.h"
@@ -56,20 +58,6 @@ class MeasureCsv {
   std::ofstream m_out;
 };
 
-void write_outline(const fs::path& path, const sim::DrapeShape& drape,
-                   const sim::FoldCountSettings& folds) {
-  std::ofstream out(path);
-  out << "theta_deg,radius_m,smoothed_radius_m\n";
-  const std::vector<double> smooth =
-      sim::circular_moving_average(drape.radii_m, folds.smoothing_bins);
-  const int bins = static_cast<int>(drape.radii_m.size());
-  out.precision(9);
-  for (int k = 0; k < bins; ++k)
-    out << 360.0 * (k + 0.5) / bins << ',' << drape.radii_m[static_cast<std::size_t>(k)] << ','
-        << smooth[static_cast<std::size_t>(k)] << '\n';
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
-
 // The table on stdout: one "name  value" line per measurement.
 void print_table(const Scene& scene, const SceneMeasurement& m) {
   const MeasureRow& last = m.rows.back();
@@ -108,6 +96,20 @@ void print_table(const Scene& scene, const SceneMeasurement& m) {
 }
 
 }  // namespace
+
+void write_outline(const fs::path& path, const sim::DrapeShape& drape,
+                   const sim::FoldCountSettings& folds) {
+  std::ofstream out(path);
+  out << "theta_deg,radius_m,smoothed_radius_m\n";
+  const std::vector<double> smooth =
+      sim::circular_moving_average(drape.radii_m, folds.smoothing_bins);
+  const int bins = static_cast<int>(drape.radii_m.size());
+  out.precision(9);
+  for (int k = 0; k < bins; ++k)
+    out << 360.0 * (k + 0.5) / bins << ',' << drape.radii_m[static_cast<std::size_t>(k)] << ','
+        << smooth[static_cast<std::size_t>(k)] << '\n';
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
 
 sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh) {
   sim::Vec3 sum = sim::Vec3::Zero();
@@ -255,21 +257,67 @@ int run_measure(const MeasureOptions& options) {
   return exit_ok;
 }
 
+namespace {
+
+// --photo and its setup (app/drape_photo.h); none of the scene options apply to a photo.
+void add_photo_options(CLI::App& cmd, MeasurePhotoOptions& p, std::string& center) {
+  CLI::Option* photo = cmd.add_option(
+      "--photo", p.photo,
+      "Top-view photo or silhouette of a Cusick drape to measure instead of a scene "
+      "(docs/measure.md); needs --disc-mm, --specimen-mm and --mm-per-px or --disc-px");
+  for (const char* name : {"scene", "--set", "--frames", "--threads", "--drape"})
+    photo->excludes(cmd.get_option(name));
+  const auto needs_photo = [&](CLI::Option* o) { o->needs(photo); };
+  needs_photo(cmd.add_option("--mask-photo", p.mask,
+                             "Mask of the photo (white = cloth) instead of segmenting it"));
+  needs_photo(cmd.add_option("--mm-per-px", p.setup.mm_per_px, "Photo scale, mm per pixel"));
+  needs_photo(cmd.add_option("--disc-px", p.setup.disc_px,
+                             "Support disc's diameter in the photo, pixels (sets the scale)"));
+  needs_photo(cmd.add_option("--disc-mm", p.setup.disc_mm, "Support disc's diameter, mm"));
+  needs_photo(cmd.add_option("--specimen-mm", p.setup.specimen_mm,
+                             "Flat circular specimen's diameter, mm"));
+  needs_photo(cmd.add_option("--center-px", center,
+                             "Disc centre in the photo, X,Y pixels (default: the silhouette's "
+                             "centroid)"));
+}
+
+std::optional<sim::Vec2> parse_center(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  double x = 0.0, y = 0.0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf%c", &x, &y, &tail) != 2 || !std::isfinite(x) ||
+      !std::isfinite(y))
+    throw SceneError("--center-px: expected X,Y in pixels (e.g. 412.5,300), got '" + text + "'");
+  return sim::Vec2(x, y);
+}
+
+}  // namespace
+
 Command register_measure(CLI::App& app, const std::string& command_line) {
   const auto o = std::make_shared<MeasureOptions>();
+  const auto p = std::make_shared<MeasurePhotoOptions>();
+  const auto center = std::make_shared<std::string>();
   o->command_line = command_line;
+  p->command_line = command_line;
   CLI::App* cmd = app.add_subcommand(
-      "measure", "Simulate a scene without rendering; print settle time, drape coefficient and "
-                 "folds; write measure.csv and outline.csv (docs/measure.md)");
+      "measure", "Simulate a scene without rendering, or read a top-view photo of a drape "
+                 "(--photo); print settle time, drape coefficient and folds; write measure.csv "
+                 "and outline.csv (docs/measure.md)");
   cmd->add_option("scene", o->scene, "Scene file; the built-in default scene if omitted");
-  cmd->add_option("--out", o->out, "Output folder (default: out/<scene name>)");
+  cmd->add_option("--out", o->out, "Output folder (default: out/<scene or photo name>)");
   add_set_option(*cmd, o->overrides);
   add_override_option(*cmd, "--frames", "output.frames", o->overrides,
                       "Frames to simulate (overrides output.frames)", "INT");
   add_threads_option(*cmd, o->threads);
   cmd->add_flag("--drape", o->require_drape,
                 "Require the drape measures: an error if no obstacle supports the cloth centre");
-  return {cmd, [o] { return run_measure(*o); }};
+  add_photo_options(*cmd, *p, *center);
+  return {cmd, [o, p, center, cmd] {
+            if (cmd->count("--photo") == 0) return run_measure(*o);
+            p->out = o->out;
+            p->setup.center_px = parse_center(*center);
+            return run_measure_photo(*p);
+          }};
 }
 
 }  // namespace weft::app

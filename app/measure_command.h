@@ -72,7 +72,12 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
 // positions, or none when the scene has no support. For `weft run`'s last line.
 std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulator& simulator);
 
-// Adds `weft measure` to the command line.
+// Writes outline.csv: theta_deg, radius_m and smoothed_radius_m (smoothed as `folds` says),
+// one row per bin of drape.radii_m.
+void write_outline(const std::filesystem::path& path, const sim::DrapeShape& drape,
+                   const sim::FoldCountSettings& folds);
+
+// Adds `weft measure` to the command line (with --photo: app/drape_photo.h).
 Command register_measure(CLI::App& app, const std::string& command_line);
 
 // Runs the job; bad input throws SceneError before anything is written.

@@ -193,16 +193,16 @@ std::vector<double> circular_moving_average(const std::vector<double>& values, i
   return out;
 }
 
-int count_peaks(const std::vector<double>& values, double min_prominence) {
+std::vector<int> find_peaks(const std::vector<double>& values, double min_prominence) {
   const int n = static_cast<int>(values.size());
-  if (n < 3) return 0;
+  std::vector<int> peaks;
+  if (n < 3) return peaks;
   // Start the walk at a lowest sample: then every peak lies strictly inside [1, n), and the
   // walks to either side stop at the latest when they reach it (index 0, or n ≡ 0), beyond
   // which no lower col can be found.
   const int start = static_cast<int>(std::min_element(values.begin(), values.end()) - values.begin());
   std::vector<double> a(static_cast<std::size_t>(n) + 1);
   for (int i = 0; i <= n; ++i) a[static_cast<std::size_t>(i)] = values[static_cast<std::size_t>((start + i) % n)];
-  int peaks = 0;
   for (int i = 1; i < n;) {
     if (!(a[i] > a[i - 1])) {
       ++i;
@@ -214,26 +214,49 @@ int count_peaks(const std::vector<double>& values, double min_prominence) {
       double left_col = a[i - 1], right_col = a[j + 1];
       for (int k = i - 1; k >= 0 && a[k] <= a[i]; --k) left_col = std::min(left_col, a[k]);
       for (int k = j + 1; k <= n && a[k] <= a[i]; ++k) right_col = std::min(right_col, a[k]);
-      if (a[i] - std::max(left_col, right_col) >= min_prominence) ++peaks;
+      if (a[i] - std::max(left_col, right_col) >= min_prominence)
+        peaks.push_back((start + (i + j) / 2) % n);
     }
     i = j + 1;
   }
+  std::sort(peaks.begin(), peaks.end());
   return peaks;
 }
 
-int count_folds(const std::vector<double>& radii_m, const FoldCountSettings& settings) {
+int count_peaks(const std::vector<double>& values, double min_prominence) {
+  return static_cast<int>(find_peaks(values, min_prominence).size());
+}
+
+std::vector<int> fold_crests(const std::vector<double>& radii_m, const FoldCountSettings& settings) {
   const std::vector<double> smooth = circular_moving_average(radii_m, settings.smoothing_bins);
   const auto [lo, hi] = std::minmax_element(smooth.begin(), smooth.end());
   const double threshold =
       std::max(settings.prominence_fraction * (*hi - *lo), settings.min_prominence_m);
-  return count_peaks(smooth, threshold);
+  return find_peaks(smooth, threshold);
+}
+
+int count_folds(const std::vector<double>& radii_m, const FoldCountSettings& settings) {
+  return static_cast<int>(fold_crests(radii_m, settings).size());
+}
+
+DrapeShape measure_shadow(const ShadowMask& shadow, const Vec2& axis_m, double support_m2,
+                          double specimen_m2, const DrapeMeasureSettings& settings) {
+  DrapeShape shape;
+  shape.cell_m = shadow.cell_m;
+  shape.shadow_m2 = shadow.area_m2();
+  shape.drape_coefficient = drape_coefficient(shape.shadow_m2, support_m2, specimen_m2);
+  shape.radii_m = outline_radii(shadow, axis_m, settings.outline_bins);
+  FoldCountSettings folds = settings.folds;
+  folds.min_prominence_m = std::max(folds.min_prominence_m, 2.0 * shape.cell_m);
+  shape.crests = fold_crests(shape.radii_m, folds);
+  shape.folds = static_cast<int>(shape.crests.size());
+  return shape;
 }
 
 DrapeShape measure_drape(const ClothMesh& mesh, const Triangles& triangles, const Matrix3X& x,
                          const DrapeSupport& support, const DrapeMeasureSettings& settings) {
   const double specimen_m2 = specimen_rest_area_m2(mesh);
-  DrapeShape shape;
-  shape.cell_m = settings.cell_fraction * std::sqrt(specimen_m2);
+  double cell_m = settings.cell_fraction * std::sqrt(specimen_m2);
   // Coarser cells when the shadow spreads wide: at most 4096 along its longer side (plus the
   // margin), about 17 million cells, under max_shadow_cells.
   double extent_m = 0.0;
@@ -247,15 +270,9 @@ DrapeShape measure_drape(const ClothMesh& mesh, const Triangles& triangles, cons
         }
     extent_m = (hi - lo).maxCoeff();
   }
-  if (std::isfinite(extent_m)) shape.cell_m = std::max(shape.cell_m, extent_m / 4096.0);
-  const ShadowMask shadow = rasterize_shadow(x, triangles, shape.cell_m);
-  shape.shadow_m2 = shadow.area_m2();
-  shape.drape_coefficient = drape_coefficient(shape.shadow_m2, support.area_m2, specimen_m2);
-  shape.radii_m = outline_radii(shadow, support.axis_m, settings.outline_bins);
-  FoldCountSettings folds = settings.folds;
-  folds.min_prominence_m = std::max(folds.min_prominence_m, 2.0 * shape.cell_m);
-  shape.folds = count_folds(shape.radii_m, folds);
-  return shape;
+  if (std::isfinite(extent_m)) cell_m = std::max(cell_m, extent_m / 4096.0);
+  return measure_shadow(rasterize_shadow(x, triangles, cell_m), support.axis_m, support.area_m2,
+                        specimen_m2, settings);
 }
 
 }  // namespace weft::sim

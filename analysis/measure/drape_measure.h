@@ -107,7 +107,9 @@ std::vector<double> circular_moving_average(const std::vector<double>& values, i
 // is a sample, or a run of equal samples, higher than both neighbours; its prominence is its
 // height above the higher of the two lowest points between it and the nearest strictly
 // higher sample on each side (the lowest point of the whole signal when there is none). A
-// constant signal has no peak; a non-constant one has at least its highest.
+// constant signal has no peak; a non-constant one has at least its highest. find_peaks gives
+// each peak's index (the middle of a run of equal samples), ascending; count_peaks their number.
+std::vector<int> find_peaks(const std::vector<double>& values, double min_prominence);
 int count_peaks(const std::vector<double>& values, double min_prominence);
 
 // How folds are counted from r(θ): smooth, then count the peaks (a fold is a crest of the wavy
@@ -120,6 +122,8 @@ struct FoldCountSettings {
 };
 
 int count_folds(const std::vector<double>& radii_m, const FoldCountSettings& settings);
+// The bins of the fold crests count_folds counts, ascending.
+std::vector<int> fold_crests(const std::vector<double>& radii_m, const FoldCountSettings& settings);
 
 // The drape of one configuration, all of the above together.
 struct DrapeMeasureSettings {
@@ -137,7 +141,15 @@ struct DrapeShape {
   double drape_coefficient = 0.0;
   std::vector<double> radii_m;    // r(θ), outline_bins bins about the support's axis
   int folds = 0;
+  std::vector<int> crests;        // the folds' bins in radii_m, ascending (#folds)
 };
+
+// The drape measured from a shadow, whatever made it — a simulation's triangles
+// (measure_drape) or a top-view photo's silhouette (app/drape_photo.h): one ruler. The shadow's
+// area, DC against support_m2 and specimen_m2 (drape_coefficient), r(θ) about axis_m
+// (outline_radii) and the folds (count_folds, min_prominence_m raised to at least 2 cells).
+DrapeShape measure_shadow(const ShadowMask& shadow, const Vec2& axis_m, double support_m2,
+                          double specimen_m2, const DrapeMeasureSettings& settings = {});
 
 // Measures the drape of positions x (#V×3, m) of `mesh` over `support`. Throws
 // std::invalid_argument when the specimen is no larger than the support (drape_coefficient) or

@@ -298,6 +298,17 @@ TEST(Folds, PeakProminenceOnACircle) {
   EXPECT_THROW(circular_moving_average({1, 2, 3}, 2), std::invalid_argument);
 }
 
+// Where the peaks are: a plateau's middle, a peak across the wrap-around, ascending order.
+TEST(Folds, PeakPositions) {
+  EXPECT_EQ(find_peaks({0, 1, 1, 1, 0, 0}, 0.5), (std::vector<int>{2}));
+  EXPECT_EQ(find_peaks({3, 0, 0, 0, 0}, 1.0), (std::vector<int>{0}));
+  EXPECT_EQ(find_peaks({0.0, 1.0, 0.5, 0.55, 0.0}, 0.04), (std::vector<int>{1, 3}));
+  // cos 5θ on 360 bins: crests at 0°, 72°, … i.e. bins 0, 72, 144, 216, 288.
+  std::vector<double> r(360);
+  for (int k = 0; k < 360; ++k) r[static_cast<std::size_t>(k)] = std::cos(5.0 * k * base::kPi / 180.0);
+  EXPECT_EQ(fold_crests(r, {}), (std::vector<int>{0, 72, 144, 216, 288}));
+}
+
 TEST(SettleTime, ExponentialDecayIsExact) {
   const double v0 = 2.0, tau = 0.4, threshold = settle_speed_threshold_m_s;
   std::vector<double> t, v;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "render/image.h"
 #include "tests/app/cli_test_support.h"
 
 namespace fs = std::filesystem;
@@ -124,3 +125,61 @@ TEST_F(MeasureCli, DrapeWithoutSupportAndBadFramesAreErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// A top-view silhouette of a 6-node drape, r(θ) = 125 + 12 cos 6θ mm at 0.5 mm per pixel,
+// white cloth on black, written as a PNG.
+fs::path write_drape_silhouette(const fs::path& dir) {
+  weft::render::Image image(600, 600);
+  for (int y = 0; y < 600; ++y)
+    for (int x = 0; x < 600; ++x) {
+      const double dx = x - 300.0, dy = 300.0 - y;
+      const double r_px = (125.0 + 12.0 * std::cos(6.0 * std::atan2(dy, dx))) / 0.5;
+      if (std::hypot(dx, dy) < r_px) image.set(x, y, {255, 255, 255});
+    }
+  const fs::path path = dir / "drape.png";
+  weft::render::write_png(image, path);
+  return path;
+}
+
+}  // namespace
+
+// weft measure --photo: the silhouette's DC (exact: (π(125² + 12²/2) − π90²)/(π150² − π90²)
+// = 0.52757; the 0.5 mm pixels' error is about 1e-4) and its 6 nodes, the same table lines as a simulated drape, outline.csv and
+// overlay.png.
+TEST_F(MeasureCli, TopViewPhotoOfADrape) {
+  const fs::path photo = write_drape_silhouette(m_dir);
+  const fs::path out = m_dir / "photo_out";
+  const CommandResult r = run_weft("measure --photo " + photo.string() +
+                                   " --mm-per-px 0.5 --disc-mm 180 --specimen-mm 300 --out " +
+                                   out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::size_t at = r.output.find("drape coefficient  ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(at + 19)), 0.52757, 0.002) << r.output;
+  EXPECT_CONTAINS(r.output, "folds              6 at ");
+  EXPECT_TRUE(fs::exists(out / "overlay.png"));
+  EXPECT_EQ(read_csv(out / "outline.csv").size(), 361u);
+}
+
+TEST_F(MeasureCli, TopViewPhotoErrors) {
+  const fs::path photo = write_drape_silhouette(m_dir);
+  CommandResult r = run_weft("measure --photo " + photo.string() + " --mm-per-px 0.5 --disc-mm 180");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_CONTAINS(r.output, "--specimen-mm (the flat specimen's diameter, mm) must be a finite number > 0");
+  r = run_weft("measure --photo " + photo.string() + " --disc-mm 180 --specimen-mm 300");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_CONTAINS(r.output, "exactly one of --mm-per-px and --disc-px");
+  r = run_weft("measure --photo " + (m_dir / "nope.png").string() +
+               " --mm-per-px 0.5 --disc-mm 180 --specimen-mm 300");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_CONTAINS(r.output, "nope.png: no such file");
+  r = run_weft("measure scene.json --photo " + photo.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_CONTAINS(r.output, "excludes");
+  r = run_weft("measure --photo " + photo.string() +
+               " --mm-per-px 0.5 --disc-mm 180 --specimen-mm 300 --center-px 3,x");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_CONTAINS(r.output, "--center-px: expected X,Y");
+}
