@@ -245,5 +245,34 @@ TEST_F(CameraRender, RasterAndRayTracedClothMasksAgree) {
             << " px in the raster mask)\n";
 }
 
+// A mask is geometry only: a bright environment map shown as the background, lighting both
+// renderers, leaves the cloth mask as it is without one.
+TEST_F(CameraRender, MaskIsTheSameUnderABrightEnvironmentMap) {
+  const Camera camera = camera_above();
+  const RenderMesh cloth = test::rectangle(-0.23, 0.17, -0.11, 0.19, 0.0);
+  auto bright = std::make_shared<const EnvironmentMap>(
+      8, 4, std::vector<Eigen::Vector3f>(32, Eigen::Vector3f::Constant(2.0f)));
+  for (const RendererKind kind : {RendererKind::raster, RendererKind::raytrace}) {
+    RenderSettings s = flat_settings(kind, camera);
+    std::string why;
+    const std::unique_ptr<Renderer> renderer = try_renderer(s, why);
+    if (!renderer) {
+      std::cout << "skipped " << renderer_name(kind) << ": " << why << "\n";
+      continue;
+    }
+    const Mask plain = renderer->render_mask(cloth, s, {}, Renderer::MaskOf::cloth);
+    s.environment.map = bright;
+    s.environment.background = true;
+    const Mask lit = renderer->render_mask(cloth, s, {}, Renderer::MaskOf::cloth);
+    long cloth_px = 0, differ = 0;
+    for (std::size_t i = 0; i < plain.in.size(); ++i) {
+      cloth_px += plain.in[i];
+      differ += plain.in[i] != lit.in[i];
+    }
+    EXPECT_GT(cloth_px, 1000) << renderer_name(kind);
+    EXPECT_EQ(differ, 0) << renderer_name(kind) << ": the environment leaked into the mask";
+  }
+}
+
 }  // namespace
 }  // namespace weft::render
