@@ -10,6 +10,7 @@
 #include "app/measure_command.h"
 #include "app/scene.h"
 #include "app/version.h"
+#include "base/format.h"
 #include "base/constants.h"
 #include "render/canvas.h"
 #include "render/photo_compare/photo_compare.h"
@@ -20,24 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string format(const char* pattern, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, v);
-  return text;
-}
+using base::format;
 
 void require_positive(double v, const std::string& source, const char* option) {
   if (!(std::isfinite(v) && v > 0.0))
     throw SceneError(source + ": " + option + " must be a finite number > 0, got " +
                      format("%g", v));
-}
-
-bool touches_border(const render::Mask& m) {
-  for (int x = 0; x < m.width; ++x)
-    if (m.at(x, 0) || m.at(x, m.height - 1)) return true;
-  for (int y = 0; y < m.height; ++y)
-    if (m.at(0, y) || m.at(m.width - 1, y)) return true;
-  return false;
 }
 
 // The areas must allow a drape coefficient in [0, 1], give or take the 2 % a pixel outline and
@@ -131,7 +120,7 @@ DrapePhotoMeasurement measure_drape_silhouette(const render::Mask& silhouette,
   m.silhouette = render::fill_holes(render::largest_component(silhouette));
   const render::SilhouetteMoments mo = render::moments(m.silhouette);
   if (mo.area_px == 0.0) throw SceneError(source + ": the silhouette is empty: no cloth found");
-  if (touches_border(m.silhouette))
+  if (m.silhouette.border_pixels() > 0)
     throw SceneError(source + ": the silhouette touches the image border: the drape is cut off "
                               "and its area unknown; photograph or crop it with a margin");
   m.center_given = setup.center_px.has_value();

@@ -15,6 +15,7 @@
 #include "app/frame_stream.h"
 #include "app/progress.h"
 #include "app/version.h"
+#include "base/format.h"
 #include "sim/collision/self_intersection.h"
 #include "analysis/measure/settle.h"
 
@@ -24,11 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string format(const char* pattern, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, v);
-  return text;
-}
+using base::format;
 
 std::string support_name(const sim::DrapeSupport& s) {
   return "the " + s.kind + " obstacles[" + std::to_string(s.obstacle) + "]";

@@ -40,9 +40,7 @@ std::vector<std::string> segmentation_doubts(const Silhouette& silhouette, const
   std::vector<std::string> doubts;
   if (silhouette.from_mask_image) return doubts;
   const Mask& m = silhouette.mask;
-  long border = 0;
-  for (int x = 0; x < m.width; ++x) border += m.at(x, 0) + m.at(x, m.height - 1);
-  for (int y = 1; y + 1 < m.height; ++y) border += m.at(0, y) + m.at(m.width - 1, y);
+  const long border = m.border_pixels();
   const auto percent = [](double part, double whole) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f %%", 100.0 * part / whole);
