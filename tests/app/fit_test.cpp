@@ -147,34 +147,53 @@ TEST(Fit, SilhouetteRecoversBendingWithin5Percent) {
   EXPECT_LT(r.best.objective, 1.0);  // px
 }
 
-// A 20 cm square plate clamped at one corner bends along both the warp and the weft: its shape
-// fixes both rigidities, and two parameters take the BOBYQA path.
-TEST(Fit, TwoRigiditiesOfACornerClampedPlateFromItsPointCloud) {
-  const fs::path dir = test_dir("plate");
+// A 20 cm square plate clamped at one corner (bend_warp 2e-3, bend_weft 5e-3 N·m, 200 g/m²)
+// bends along both the warp and the weft, written to dir/plate.json, and its point cloud at rest
+// to dir/cloud.npy.
+void write_corner_clamped_plate(const fs::path& dir) {
   std::ofstream(dir / "plate.json") << R"({"description": "corner-clamped plate",
     "cloth": {"size": ["20 cm", "20 cm"], "resolution": [11, 11], "origin": [0, 0, 0],
       "warp_axis": [1, 0, 0], "weft_axis": [0, 1, 0],
       "material": {"density": "200 g/m^2", "bend_warp": "2e-3 N*m", "bend_weft": "5e-3 N*m"},
       "pins": [{"region": {"u": [0, 0.1], "v": [0, 0.1]}}]},
     "simulation": {"integrator": "dynamic_relaxation"}, "output": {"frames": 1}})";
-  const std::string parameters = R"([{"name": "bend_warp", "start": "1e-3 N*m"},
-                                     {"name": "bend_weft", "start": "1e-2 N*m"}])";
-  {
-    const Scene scene = load_scene(dir / "plate.json");
-    const Settled s = settle_to_rest(scene, SettleSettings{});
-    write_npy_points(dir / "cloud.npy", cloth_points(s.simulator->mesh(), s.simulator->state().x));
-  }
+  const Scene scene = load_scene(dir / "plate.json");
+  const Settled s = settle_to_rest(scene, SettleSettings{});
+  write_npy_points(dir / "cloud.npy", cloth_points(s.simulator->mesh(), s.simulator->state().x));
+}
+
+// The fit of `parameters` (a JSON array) to the plate's own point cloud.
+FitResult fit_plate(const fs::path& dir, const std::string& parameters) {
   const FitSpec spec = parse_fit_spec(
       R"({"scene": "plate.json", "parameters": )" + parameters +
           R"(, "target": {"point_cloud": {"file": "cloud.npy"}}, "profile": {"points": 1, "span": 0.05}})",
       (dir / "f.json").string());
   FitProblem problem(spec);
-  const FitResult r = run_fit(problem);
+  return run_fit(problem);
+}
+
+// The plate's shape fixes both rigidities, and two parameters take the BOBYQA path.
+TEST(Fit, TwoRigiditiesOfACornerClampedPlateFromItsPointCloud) {
+  const fs::path dir = test_dir("plate");
+  write_corner_clamped_plate(dir);
+  const FitResult r = fit_plate(dir, R"([{"name": "bend_warp", "start": "1e-3 N*m"},
+                                         {"name": "bend_weft", "start": "1e-2 N*m"}])");
   std::printf("fitted bend_warp %.5g, bend_weft %.5g N·m (truth 2e-3, 5e-3), objective %.3g mm, "
               "%zu evaluations (%s)\n", r.best.values[0], r.best.values[1], r.best.objective,
               r.evaluations.size(), r.stop_reason.c_str());
   EXPECT_NEAR(r.best.values[0] / 2e-3, 1.0, 0.02);
   EXPECT_NEAR(r.best.values[1] / 5e-3, 1.0, 0.02);
+}
+
+// With the rigidities known, the plate's droop fixes its weight: the density parameter (fitted
+// for the φ-SfT scarf) recovers 200 g/m² from a start half as heavy.
+TEST(Fit, DensityOfACornerClampedPlateFromItsPointCloud) {
+  const fs::path dir = test_dir("plate_density");
+  write_corner_clamped_plate(dir);
+  const FitResult r = fit_plate(dir, R"([{"name": "density", "start": "100 g/m^2"}])");
+  std::printf("fitted density %.5g kg/m² (truth 0.2), objective %.3g mm, %zu evaluations (%s)\n",
+              r.best.values[0], r.best.objective, r.evaluations.size(), r.stop_reason.c_str());
+  EXPECT_NEAR(r.best.values[0] / 0.2, 1.0, 0.02);
 }
 
 }  // namespace
