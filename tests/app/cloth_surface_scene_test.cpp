@@ -16,17 +16,6 @@
 namespace weft::app {
 namespace {
 
-Json scene_with_render(const Json& render) {
-  Json s = Json::parse(R"({
-    "description": "test scene",
-    "cloth": {"size": ["1 m", "1 m"], "resolution": [9, 9],
-              "material": {"density": "0.019 gf/cm^2"}},
-    "output": {"fps": 24, "frames": 2}
-  })");
-  s["render"] = render;
-  return s;
-}
-
 // A folder of its own under the build tree, emptied first.
 std::filesystem::path fresh_dir(const std::string& name) {
   const std::filesystem::path dir =
@@ -46,14 +35,14 @@ std::string error_parsing(const Json& scene, const std::filesystem::path& source
 }
 
 TEST(ClothSurfaceScene, DefaultsLeaveTheClothAlone) {
-  const Scene scene = test::parse_json_scene(scene_with_render(Json::object()));
+  const Scene scene = test::parse_json_scene(test::scene_with_render(Json::object()));
   EXPECT_EQ(scene.render.cloth_surface.subdivision_levels, 0);
   EXPECT_EQ(scene.render.cloth_surface.thickness_m, 0.0);
   EXPECT_FALSE(scene.render.cloth_surface.texture.image);
 }
 
 TEST(ClothSurfaceScene, ReadsSubdivisionThicknessAndAWovenCheck) {
-  const Scene scene = test::parse_json_scene(scene_with_render(Json::parse(R"({
+  const Scene scene = test::parse_json_scene(test::scene_with_render(Json::parse(R"({
     "subdivision": 2, "thickness": "3 mm",
     "texture": {"woven_check": {"stripes": 3, "warp": [1, 0, 0]}, "scale": ["20 cm", "10 cm"]}
   })")));
@@ -71,7 +60,7 @@ TEST(ClothSurfaceScene, TextureFileIsRelativeToTheScene) {
   std::filesystem::create_directories(dir / "textures");
   render::write_png(render::Image(6, 4, {10, 20, 30}), dir / "textures" / "check.png");
   const Scene scene = parse_scene(
-      scene_with_render(Json::parse(R"({"texture": {"file": "textures/check.png"}})")).dump(),
+      test::scene_with_render(Json::parse(R"({"texture": {"file": "textures/check.png"}})")).dump(),
       (dir / "scene.json").string());
   ASSERT_TRUE(scene.render.cloth_surface.texture.image);
   EXPECT_EQ(scene.render.cloth_surface.texture.image->width(), 6);
@@ -82,20 +71,20 @@ TEST(ClothSurfaceScene, BadTextureFileNamesKeyAndFile) {
   const std::filesystem::path dir = fresh_dir("bad");
   const std::filesystem::path source = dir / "scene.json";
   const std::string missing = error_parsing(
-      scene_with_render(Json::parse(R"({"texture": {"file": "nowhere.png"}})")), source);
+      test::scene_with_render(Json::parse(R"({"texture": {"file": "nowhere.png"}})")), source);
   EXPECT_CONTAINS(missing, "render.texture.file");
   EXPECT_CONTAINS(missing, "nowhere.png");
 
   std::ofstream(dir / "not_an_image.png") << "this is text";
   const std::string garbage = error_parsing(
-      scene_with_render(Json::parse(R"({"texture": {"file": "not_an_image.png"}})")), source);
+      test::scene_with_render(Json::parse(R"({"texture": {"file": "not_an_image.png"}})")), source);
   EXPECT_CONTAINS(garbage, "render.texture.file");
   EXPECT_CONTAINS(garbage, "not_an_image.png");
 }
 
 TEST(ClothSurfaceScene, BadValuesNameTheirKey) {
   const auto error_of = [](const char* render) {
-    return test::scene_error_of(scene_with_render(Json::parse(render)));
+    return test::scene_error_of(test::scene_with_render(Json::parse(render)));
   };
   EXPECT_CONTAINS(error_of(R"({"subdivision": 4})"), "render.subdivision");
   EXPECT_CONTAINS(error_of(R"({"thickness": "-1 mm"})"), "render.thickness");

@@ -17,17 +17,6 @@
 namespace weft::app {
 namespace {
 
-Json scene_with_render(const Json& render) {
-  Json s = Json::parse(R"({
-    "description": "test scene",
-    "cloth": {"size": ["1 m", "1 m"], "resolution": [9, 9],
-              "material": {"density": "0.019 gf/cm^2"}},
-    "output": {"fps": 24, "frames": 2}
-  })");
-  s["render"] = render;
-  return s;
-}
-
 // A folder of its own under the build tree, emptied first, holding maps/sky.hdr (8×4).
 std::filesystem::path folder_with_map(const std::string& name) {
   const std::filesystem::path dir =
@@ -50,14 +39,14 @@ std::string error_parsing(const Json& scene, const std::filesystem::path& source
 }
 
 TEST(EnvironmentScene, NoEnvironmentByDefault) {
-  const Scene scene = test::parse_json_scene(scene_with_render(Json::object()));
+  const Scene scene = test::parse_json_scene(test::scene_with_render(Json::object()));
   EXPECT_FALSE(scene.render.environment.map);
 }
 
 TEST(EnvironmentScene, MapIsRelativeToTheSceneWithItsSettings) {
   const std::filesystem::path dir = folder_with_map("relative");
   const Scene scene = parse_scene(
-      scene_with_render(Json::parse(R"({"environment": {"file": "maps/sky.hdr",
+      test::scene_with_render(Json::parse(R"({"environment": {"file": "maps/sky.hdr",
           "rotation": "0.5 rad", "intensity": 2.5, "background": false}})"))
           .dump(),
       (dir / "scene.json").string());
@@ -75,7 +64,7 @@ TEST(EnvironmentScene, BadMapOrValuesNameTheKeyAndFile) {
   const std::filesystem::path dir = folder_with_map("bad");
   const std::filesystem::path source = dir / "scene.json";
   const auto error_of = [&](const char* render) {
-    return error_parsing(scene_with_render(Json::parse(render)), source);
+    return error_parsing(test::scene_with_render(Json::parse(render)), source);
   };
   const std::string missing = error_of(R"({"environment": {"file": "nowhere.hdr"}})");
   EXPECT_CONTAINS(missing, "render.environment.file");

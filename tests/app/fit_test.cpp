@@ -107,6 +107,15 @@ TEST(Fit, MeasuredOverhangAndDropRecoverBendingWithin2Percent) { expect_measured
 
 TEST(Fit, NelderMeadRecoversTheSameWithin2Percent) { expect_measured_recovery("nelder_mead"); }
 
+// A one-parameter fit's B within `relative` of `truth`, its objective below `objective_below`.
+void expect_recovered(const FitResult& r, double truth, double relative, double objective_below) {
+  std::printf("fitted B %.6g N·m, truth %.6g N·m (%+.3f %%), objective %.4g, %zu evaluations\n",
+              r.best.values[0], truth, 100.0 * (r.best.values[0] / truth - 1.0), r.best.objective,
+              r.evaluations.size());
+  EXPECT_NEAR(r.best.values[0] / truth, 1.0, relative) << r.stop_reason;
+  EXPECT_LT(r.best.objective, objective_below);
+}
+
 TEST(Fit, PointCloudRecoversBendingWithin2Percent) {
   const double truth = 0.03;
   const Settled s = strip_at(truth);
@@ -117,11 +126,7 @@ TEST(Fit, PointCloudRecoversBendingWithin2Percent) {
       (dir / "f.json").string());
   FitProblem problem(spec);
   const FitResult r = run_fit(problem);
-  std::printf("fitted B %.6g N·m, truth %.6g N·m (%+.3f %%), objective %.4g, %zu evaluations\n",
-              r.best.values[0], truth, 100.0 * (r.best.values[0] / truth - 1.0), r.best.objective,
-              r.evaluations.size());
-  EXPECT_NEAR(r.best.values[0] / truth, 1.0, 0.02) << r.stop_reason;
-  EXPECT_LT(r.best.objective, 0.5);  // mm
+  expect_recovered(r, truth, 0.02, 0.5);  // objective in mm
 }
 
 TEST(Fit, SilhouetteRecoversBendingWithin5Percent) {
@@ -140,11 +145,7 @@ TEST(Fit, SilhouetteRecoversBendingWithin5Percent) {
       (dir / "f.json").string());
   FitProblem problem(spec);
   const FitResult r = run_fit(problem);
-  std::printf("fitted B %.6g N·m, truth %.6g N·m (%+.3f %%), objective %.4g, %zu evaluations\n",
-              r.best.values[0], truth, 100.0 * (r.best.values[0] / truth - 1.0), r.best.objective,
-              r.evaluations.size());
-  EXPECT_NEAR(r.best.values[0] / truth, 1.0, 0.05) << r.stop_reason;
-  EXPECT_LT(r.best.objective, 1.0);  // px
+  expect_recovered(r, truth, 0.05, 1.0);  // objective in px
 }
 
 // A 20 cm square plate clamped at one corner (bend_warp 2e-3, bend_weft 5e-3 N·m, 200 g/m²)

@@ -31,4 +31,17 @@ inline std::string scene_error_of(const Json& scene) {
   return scene_error_of_text(scene.dump(2));
 }
 
+
+// A small test scene (a 1 m sheet, 9 × 9 vertices, 2 frames) with `render` as its render block.
+inline Json scene_with_render(const Json& render) {
+  Json s = Json::parse(R"({
+    "description": "test scene",
+    "cloth": {"size": ["1 m", "1 m"], "resolution": [9, 9],
+              "material": {"density": "0.019 gf/cm^2"}},
+    "output": {"fps": 24, "frames": 2}
+  })");
+  s["render"] = render;
+  return s;
+}
+
 }  // namespace weft::app::test

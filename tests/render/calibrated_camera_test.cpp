@@ -10,21 +10,10 @@
 #include <string>
 
 #include "render/camera.h"
+#include "tests/render/render_test_support.h"
 
 namespace weft::render {
 namespace {
-
-// A camera-to-world rotation (columns x right, y down, z forward) looking from `eye` at
-// `target` with world z up on screen, then rolled by `roll_rad` about the view axis.
-Eigen::Matrix3d opencv_look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
-                               double roll_rad) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d r;
-  r << x, y, z;
-  return r * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-}
 
 PinholeIntrinsics off_centre_intrinsics() {
   PinholeIntrinsics k;
@@ -46,7 +35,7 @@ Eigen::Vector2d opencv_pixel(const PinholeIntrinsics& k, const Eigen::Matrix3d& 
 TEST(CalibratedCamera, ProjectsAsOpenCVAtTheCalibratedSize) {
   const PinholeIntrinsics k = off_centre_intrinsics();
   const Eigen::Vector3d eye(0.4, -1.7, 0.9);
-  const Eigen::Matrix3d r = opencv_look_at(eye, {0.0, 0.0, 0.3}, 0.2);
+  const Eigen::Matrix3d r = test::opencv_look_at(eye, {0.0, 0.0, 0.3}, 0.2);
   const Camera camera = Camera::calibrated(k, r, eye);
   for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0.3), Eigen::Vector3d(0.25, 0.1, 0.0),
                                    Eigen::Vector3d(-0.3, 0.2, 0.6), Eigen::Vector3d(0.1, -0.4, 1.0)}) {
@@ -70,7 +59,7 @@ TEST(CalibratedCamera, DownscaledImageKeepsTheImageEdges) {
   EXPECT_DOUBLE_EQ(half.cx_px, 0.5 * (351.3 + 0.5) - 0.5);
   EXPECT_DOUBLE_EQ(half.cy_px, 0.5 * (221.7 + 0.5) - 0.5);
   const Eigen::Vector3d eye(0.4, -1.7, 0.9);
-  const Eigen::Matrix3d r = opencv_look_at(eye, {0.0, 0.0, 0.3}, -0.3);
+  const Eigen::Matrix3d r = test::opencv_look_at(eye, {0.0, 0.0, 0.3}, -0.3);
   const Camera camera = Camera::calibrated(k, r, eye);
   const Eigen::Vector3d p(0.2, -0.1, 0.45);
   const Eigen::Vector2d full = opencv_pixel(k, r, eye, p);
@@ -90,7 +79,7 @@ TEST(CalibratedCamera, DownscaledImageKeepsTheImageEdges) {
 TEST(CalibratedCamera, MatrixPoseEqualsPositionAndRotation) {
   const PinholeIntrinsics k = off_centre_intrinsics();
   const Eigen::Vector3d eye(-1.2, 0.5, 1.4);
-  const Eigen::Matrix3d r = opencv_look_at(eye, {0.1, 0.0, 0.2}, 0.7);
+  const Eigen::Matrix3d r = test::opencv_look_at(eye, {0.1, 0.0, 0.2}, 0.7);
   Eigen::Matrix4d pose = Eigen::Matrix4d::Identity();
   pose.topLeftCorner<3, 3>() = r;
   pose.topRightCorner<3, 1>() = eye;
@@ -142,7 +131,7 @@ TEST(CalibratedCamera, BadInputThrowsSayingWhat) {
   pose(3, 0) = 0.5;
   EXPECT_NE(message([&] { Camera::calibrated(k, pose); }).find("last row"), std::string::npos);
   // Round-off within the tolerance is accepted and removed: the rotation comes out orthonormal.
-  Eigen::Matrix3d rounded = opencv_look_at({1, -2, 1}, {0, 0, 0}, 0.1);
+  Eigen::Matrix3d rounded = test::opencv_look_at({1, -2, 1}, {0, 0, 0}, 0.1);
   rounded(0, 0) += 2e-5;
   const Camera c = Camera::calibrated(k, rounded, {1, -2, 1});
   EXPECT_LT((c.rotation.transpose() * c.rotation - Eigen::Matrix3d::Identity()).norm(), 1e-12);

@@ -25,18 +25,6 @@
 namespace weft::render {
 namespace {
 
-// Columns x right, y down, z forward, looking from eye at target with world z up on screen,
-// rolled by roll_rad about the view axis.
-Eigen::Matrix3d opencv_look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
-                               double roll_rad) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d r;
-  r << x, y, z;
-  return r * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-}
-
 // Intrinsics for 640×480 (fx ≠ fy, principal point off the centre); the tests render 320×240.
 PinholeIntrinsics calibration() {
   PinholeIntrinsics k;
@@ -116,7 +104,7 @@ class CameraRender : public ::testing::Test {
 TEST_F(CameraRender, MarkersLandWhereOpenCVProjectsThem) {
   const PinholeIntrinsics k = calibration();
   const Eigen::Vector3d eye(0.45, -1.6, 0.95);
-  const Eigen::Matrix3d r = opencv_look_at(eye, {0.0, 0.0, 0.3}, 0.15);
+  const Eigen::Matrix3d r = test::opencv_look_at(eye, {0.0, 0.0, 0.3}, 0.15);
   const Camera camera = Camera::calibrated(k, r, eye);
   std::vector<Eigen::Vector3d> points;
   for (int i = -2; i <= 2; ++i)
@@ -221,7 +209,7 @@ TEST_F(CameraRender, MaskOfAFlatClothIsItsProjectedRectangle) {
 TEST_F(CameraRender, RasterAndRayTracedClothMasksAgree) {
   const PinholeIntrinsics k = calibration();
   const Eigen::Vector3d eye(0.75, -1.05, 1.0);
-  const Camera camera = Camera::calibrated(k, opencv_look_at(eye, {0.0, 0.0, 0.35}, 0.05), eye);
+  const Camera camera = Camera::calibrated(k, test::opencv_look_at(eye, {0.0, 0.0, 0.35}, 0.05), eye);
   const RenderMesh cloth = make_grid_mesh(32, 32, [](double u, double v) {
     const double x = u - 0.5, y = v - 0.5;
     return Eigen::Vector3d(x, y, 0.6 + 0.08 * std::sin(9.0 * x) * std::cos(5.0 * y) - 0.3 * x * x);

@@ -105,4 +105,16 @@ class FailureEvidence {
   std::vector<std::pair<std::string, Image>> m_images;
 };
 
+// A camera-to-world rotation in OpenCV's axes (columns x right, y down, z forward) looking from
+// `eye` at `target` with world z up on screen, then rolled by `roll_rad` about the view axis.
+inline Eigen::Matrix3d opencv_look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+                                      double roll_rad) {
+  const Eigen::Vector3d z = (target - eye).normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d r;
+  r << x, y, z;
+  return r * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
 }  // namespace weft::render::test
