@@ -24,53 +24,83 @@ Material textile_material(double weight, double stretch_warp, double stretch_wef
   return m;
 }
 
-// Luible, C. (2008), "Study of mechanical properties in the simulation of 3D garments", PhD thesis
-// no. 678, University of Geneva (MIRALab), doi:10.13097/archive-ouverte/unige:688, Annex G "Linear
-// derived fabric input parameters" (thesis pp. 231-236). Luible measured apparel fabrics (numbered
-// 01 to at least 34) with KES-F and derived from them the linear inputs of a cloth simulator (SI):
-// weight in g/m², tensile rigidity ("Elasticity") along weft and warp in N/m (force per width per
-// unit strain) and shear rigidity in N/m per unit shear strain — her Annex F converts KES's
-// G [gf/(cm·deg)] to it with G(tan θ) = 57.3 G(θ in degrees). These are Luible's derived (rounded)
-// simulator inputs, not raw KES characteristic values. The thesis PDF was not readable here: the
-// numbers below are as transcribed, with their fabric numbers and table cells, in the GPL Blender
-// add-on GPUCloth (github.com/PorisulkiP/GPUCloth, GPUCloth/Cpp_Compatibility/properties.py,
-// FABRIC_PRESETS "LUI_*", one stored version), which maps Annex G's column order "Weft, Warp,
-// Shear" to warp/weft as used here and checks the shear column against the thesis text (flannel:
-// "118.13 N/m (mean value of weft and warp G(tan θ))" = its Annex G cell).
-//
-// Bending rigidity: Annex G has bending columns (µN·m), but the transcription leaves them out and
-// no other published warp/weft bending rigidity of these fabrics was found. The bending rigidities
-// below are therefore NOT measurements: they are representative values, B = W c³ (Peirce's
-// cantilever bending length c, B in gf·cm for W in gf/cm² and c in cm), with the measured weight W
-// and a bending length c typical of the fabric class chosen by weft (the rounded c of weft's earlier
-// representative presets: 1.80/1.61, 1.26/1.19, 3.35/2.82 cm). Replace them (material keys override a preset one by one) by measured
-// values when bending matters.
-constexpr const char* representative_bending = "bend_warp, bend_weft";
+}  // namespace
 
-// A Luible Annex G fabric: weight in g/m², tensile warp and weft and shear rigidity in N/m (shear
-// per unit shear strain), and the representative bending lengths in cm (see above).
-Material luible_material(double weight_g_m2, double stretch_warp_N_m, double stretch_weft_N_m,
-                         double shear_N_m, double bending_length_warp_cm,
-                         double bending_length_weft_cm) {
-  const double weight_gf_cm2 = weight_g_m2 * 1e-4;  // 1 g/m² = 1e-4 g/cm², weighing 1e-4 gf/cm²
+// Wang, H., Ramamoorthi, R. and O'Brien, J. F. (2011), "Data-Driven Elastic Models for Cloth:
+// Modeling and Measurement", ACM Transactions on Graphics 30(4), 71:1-71:11 (SIGGRAPH 2011).
+// They measured ten fabrics (stretch, shear and bending tests) and fitted a piecewise-linear
+// model to each; ARCSim (Narain, Samii and O'Brien 2012) distributes the fitted models as its
+// material files materials/<fabric>.json, with each fabric's use and fibre content in
+// materials/README. The numbers below are typed from those files (as stored in
+// github.com/wxhaooo/lyra, materials/, an ARCSim derivative; one stored version). Their meaning is
+// fixed by the ARCSim code that reads them (ARCSim 0.2.1/0.3 src/conf.cpp, src/dde.cpp,
+// src/physics.cpp, src/mesh.cpp; read in copies on GitHub, nothing of it is used here):
+//
+// density: mesh.cpp compute_ms_data: face mass = face area × density, so kg/m².
+//
+// stretching (6 rows × 4): conf.cpp parse(StretchingSamples) makes row 0 the sample at zero
+// strain for every direction and rows 1-5 the samples at a principal stretch of 1 + 1/6 along
+// 0°, 22.5°, 45°, 67.5°, 90° from u; dde.cpp evaluate_stretching_sample interpolates between
+// them by the largest principal stretch ((λ − 1)·6, clamped to [0, 1)), clamps negatives to 0 and
+// doubles the result: k = 2·sample. physics.cpp stretching_force applies, per triangle of rest
+// area a, the gradient of a·(½k0 ε00² + k1 ε00 ε11 + ½k2 ε11² + k3 ε01²) in the Green strain
+// ε = (FᵀF − I)/2 (its comment says so, and grad_e carries 2·k3·ε01; its stretching_energy, used
+// for no force, halves the last term — we follow the force). Small strains: a strain ε along u
+// costs ½k0 ε², a tension per width k0 ε: stretch_warp = k0 = 2·row0[0] N/m (weft: 2·row0[2]).
+// A shear angle γ has ε01 = γ/2 and costs k3 γ²/4 = ½(k3/2) γ²: shear (per radian) = k3/2 =
+// row0[3]. k1 (Poisson coupling, often negative and then clamped to 0) has no weft field. Knits
+// are soft here (tens of N/m) and stiffen fast: the 1/6-stretch rows are up to 10× row 0.
+//
+// bending (3 rows × 5): dde.cpp bending_stiffness picks the row by the direction of the hinge
+// edge in material space (row 0 along u, 1 at 45°, 2 along v) and the column by
+// curv = θ·l/(A0 + A1), the dihedral angle over the mean height of the two triangles, which for a
+// cylinder of curvature κ across the edge is κ: column j is read at curv/2 = 5j m⁻¹ ("samples are
+// per 0.05 cm^-1 = 5 m^-1"), κ = 0, 10, 20, 30, 40 m⁻¹. Column 0 is the zero-curvature value,
+// weft's linear B (the others differ by up to ×2.5 on some fabrics: not representable here).
+// physics.cpp bending_force applies, per interior edge of length l between triangles of rest
+// areas A0, A1, the gradient of ke·shape·(θ − θ0)²/4 with shape = l²/(2(A0 + A1)), i.e.
+//   E = ½ (ke/4) l²/(A0 + A1) (θ − θ0)²,
+// which is exactly weft's hinge ½ k θ² with k = B l²/(A0 + A1) (sim/continuum/hinge_kernel.h) for
+// B = ke/4; that hinge gives the continuum ½ B κ² per area for a grid bent along an axis
+// (HingeBending.CylinderGivesTheContinuumEnergyPerArea; on an equilateral mesh the same hinge
+// gives 9/8 of it). So B = ke/4 N·m, with ke from row 2 (edges along v fold when the cloth
+// curves along u) for bend_warp and from row 0 for bend_weft. These give Peirce bending lengths
+// of 1.2-2.4 cm, the range of garment fabrics.
+//
+// Which yarn direction (warp/wale or weft/course) ARCSim's u is, the files do not say: weft's
+// warp and weft here are ARCSim's u and v. Wang et al. publish no drape coefficient.
+Material material_from_arcsim(const ArcsimFabric& fabric) {
+  const double used[] = {fabric.density_kg_m2, fabric.stretching[0], fabric.stretching[2],
+                         fabric.stretching[3], fabric.bending[0], fabric.bending[2]};
+  for (double v : used)
+    if (!(std::isfinite(v) && v > 0.0))
+      throw std::invalid_argument(
+          "material_from_arcsim: density, stretching c11, c22, c33 and bending along u and v must "
+          "be finite and > 0");
   Material m;
-  m.density_kg_m2 = gf_per_cm2(weight_gf_cm2);
-  m.stretch_warp_N_m = stretch_warp_N_m;
-  m.stretch_weft_N_m = stretch_weft_N_m;
-  m.shear_N_m = shear_N_m;
-  m.bend_warp_Nm = gf_cm(weight_gf_cm2 * std::pow(bending_length_warp_cm, 3));
-  m.bend_weft_Nm = gf_cm(weight_gf_cm2 * std::pow(bending_length_weft_cm, 3));
+  m.density_kg_m2 = fabric.density_kg_m2;
+  m.stretch_warp_N_m = 2.0 * fabric.stretching[0];
+  m.stretch_weft_N_m = 2.0 * fabric.stretching[2];
+  m.shear_N_m = fabric.stretching[3];
+  m.bend_warp_Nm = fabric.bending[2] / 4.0;
+  m.bend_weft_Nm = fabric.bending[0] / 4.0;
   return m;
 }
 
-std::string luible_source(const std::string& fabric) {
-  return "Luible 2008, PhD thesis no. 678, Univ. of Geneva, 'Study of mechanical properties in the "
-         "simulation of 3D garments', Annex G, " +
-         fabric +
-         ": weight, tensile warp/weft and shear rigidity (as transcribed in GPUCloth's "
-         "properties.py; thesis table not checked here). Bending: no published value found, "
-         "representative (B = W c^3 with a typical bending length c); no drape coefficient "
-         "given";
+namespace {
+
+// A Wang et al. fabric: its ARCSim file name, its use and fibre content (materials/README), and
+// the values of the file used (ArcsimFabric).
+MaterialPreset wang2011(const std::string& name, const std::string& file, const std::string& what,
+                        const ArcsimFabric& fabric) {
+  return {name, material_from_arcsim(fabric),
+          "Wang, Ramamoorthi & O'Brien 2011, 'Data-Driven Elastic Models for Cloth: Modeling and "
+          "Measurement', ACM Trans. Graph. 30(4) 71, fabric '" + file + "' (" + what +
+              "), as ARCSim's materials/" + file +
+              ".json: density; stretch = 2 x strain-0 c11, c22 sample, shear = its c33; bending "
+              "= zero-curvature hinge ke / 4, warp from edges along v, weft along u (ARCSim's u/v "
+              "as warp/weft; sim/material_presets.cpp); no drape coefficient given",
+          "", std::nullopt};
 }
 
 std::vector<MaterialPreset> make_presets() {
@@ -87,21 +117,40 @@ std::vector<MaterialPreset> make_presets() {
        "finite-element method', as quoted in seed 002 (Zhou & Sze) section 4 (table number "
        "not checked); no drape coefficient given",
        "", std::nullopt},
-      // Luible fabric 02, cotton shirting, 120 g/m²: tensile 2000 (warp) / 3000 (weft) N/m, shear
-      // 20 N/m. Representative bending lengths 1.8 / 1.6 cm → B = 0.0700 / 0.0492 gf·cm.
-      {"cotton_shirting", luible_material(120.0, 2000.0, 3000.0, 20.0, 1.8, 1.6),
-       luible_source("fabric 02, cotton shirting 120 g/m^2"), representative_bending,
-       std::nullopt},
-      // Luible fabric 07, mulberry silk, 15 g/m² (a very light silk): tensile 6000 (warp) / 4500
-      // (weft) N/m, shear 10 N/m. Representative bending lengths 1.25 / 1.2 cm →
-      // B = 0.0029 / 0.0026 gf·cm.
-      {"silk_mulberry", luible_material(15.0, 6000.0, 4500.0, 10.0, 1.25, 1.2),
-       luible_source("fabric 07, mulberry silk 15 g/m^2"), representative_bending,
-       std::nullopt},
-      // Luible fabric 01, denim, 380 g/m²: tensile 1800 (warp) / 3000 (weft) N/m, shear 102 N/m.
-      // Representative bending lengths 3.35 / 2.8 cm → B = 1.43 / 0.83 gf·cm.
-      {"denim", luible_material(380.0, 1800.0, 3000.0, 102.0, 3.35, 2.8),
-       luible_source("fabric 01, denim 380 g/m^2"), representative_bending, std::nullopt},
+      // Wang et al. 2011 as ARCSim's files give them: {density}, {stretching row 0}, {bending
+      // column 0 of rows 0, 1, 2}.
+      wang2011("wang2011_11oz_black_denim", "11oz-black-denim", "jeans, 99% cotton 1% spandex",
+               {0.324, {205.352005, 10.234077, 1013.88629, 53.387184},
+                {64.196457e-6, 73.384567e-6, 96.951576e-6}}),
+      wang2011("wang2011_camel_ponte_roma", "camel-ponte-roma",
+               "jacket, 60% polyester 40% rayon",
+               {0.284, {31.146198, -12.802702, 44.028667, 31.896357},
+                {36.348366e-6, 33.013252e-6, 37.157593e-6}}),
+      wang2011("wang2011_gray_interlock", "gray-interlock", "t-shirt, 60% cotton 40% polyester",
+               {0.187, {16.593832, -14.695990, 34.477123, 36.860302},
+                {23.191698e-6, 24.749964e-6, 14.267624e-6}}),
+      wang2011("wang2011_ivory_rib_knit", "ivory-rib-knit", "underwear, 95% cotton 5% spandex",
+               {0.276, {42.871021, -0.234556, 65.166023, 83.175644},
+                {46.237591e-6, 30.015930e-6, 32.243889e-6}}),
+      wang2011("wang2011_navy_sparkle_sweat", "navy-sparkle-sweat",
+               "sweater, 96% polyester 4% spandex",
+               {0.224, {12.486332, -19.875324, 3.272434, 17.616289},
+                {59.469658e-6, 40.072277e-6, 45.625023e-6}}),
+      wang2011("wang2011_pink_ribbon_brown", "pink-ribbon-brown", "blanket, 100% polyester",
+               {0.228, {151.503906, 106.028160, 244.830673, 30.250183},
+                {117.070122e-6, 87.509773e-6, 59.774277e-6}}),
+      wang2011("wang2011_royal_target", "royal-target", "pants, 65% cotton 35% polyester",
+               {0.220, {2016.55456, 9.170511, 2034.97644, 104.759674},
+                {125.409805e-6, 107.997696e-6, 125.409805e-6}}),
+      wang2011("wang2011_tango_red_jet_set", "tango-red-jet-set", "jacket, 100% polyester",
+               {0.113, {43.067627, 54.373299, 171.424835, 14.314700},
+                {14.293814e-6, 21.951700e-6, 20.345654e-6}}),
+      wang2011("wang2011_white_dots_on_blk", "white-dots-on-blk", "tablecloth, 100% polyester",
+               {0.128, {2002.08618, 0.345588, 2027.48559, 19.189022},
+                {51.713814e-6, 40.659470e-6, 31.282822e-6}}),
+      wang2011("wang2011_white_swim_solid", "white-swim-solid", "swimsuit, 87% nylon 13% spandex",
+               {0.204, {47.971176, 6.834521, 104.615456, 60.773663},
+                {60.237942e-6, 58.803211e-6, 51.018833e-6}}),
   };
 }
 

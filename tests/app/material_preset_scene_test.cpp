@@ -51,19 +51,20 @@ TEST(MaterialPresetScene, WithoutAPresetTheDefaultIsKangYuWool) {
 }
 
 TEST(MaterialPresetScene, AGivenKeyOverridesThatValueOnly) {
-  const sim::Material denim = sim::material_preset("denim").material;
-  const sim::Material m = material_of({{"preset", "denim"}, {"bend_weft", "0.5 gf*cm"}});
+  const sim::Material denim = sim::material_preset("wang2011_11oz_black_denim").material;
+  const sim::Material m =
+      material_of({{"preset", "wang2011_11oz_black_denim"}, {"bend_weft", "0.5 gf*cm"}});
   EXPECT_NEAR(m.bend_weft_Nm, 0.5 * 9.80665e-5, 1e-15);
   sim::Material expected = denim;
   expected.bend_weft_Nm = m.bend_weft_Nm;
   expect_same(m, expected);
   // Wherever the key stands in the object.
   const sim::Material light =
-      material_of({{"density", "0.03 gf/cm^2"}, {"preset", "silk_mulberry"}});
+      material_of({{"density", "0.03 gf/cm^2"}, {"preset", "wang2011_gray_interlock"}});
   EXPECT_NEAR(light.density_kg_m2, 0.3, 1e-12);
-  sim::Material silk = sim::material_preset("silk_mulberry").material;
-  silk.density_kg_m2 = light.density_kg_m2;
-  expect_same(light, silk);
+  sim::Material interlock = sim::material_preset("wang2011_gray_interlock").material;
+  interlock.density_kg_m2 = light.density_kg_m2;
+  expect_same(light, interlock);
 }
 
 TEST(MaterialPresetScene, AnUnknownPresetListsTheKnownNames) {
@@ -78,8 +79,8 @@ TEST(MaterialPresetScene, APresetMustBeAString) {
 }
 
 TEST(MaterialPresetScene, OverridesAreStillCheckedAndMisspeltKeysStillFail) {
-  EXPECT_CONTAINS(error_of({{"preset", "denim"}, {"shear", "-1 gf/cm"}}), "cloth.material.shear");
-  EXPECT_CONTAINS(error_of({{"presets", "denim"}}), "did you mean 'preset'");
+  EXPECT_CONTAINS(error_of({{"preset", "wang2011_royal_target"}, {"shear", "-1 gf/cm"}}), "cloth.material.shear");
+  EXPECT_CONTAINS(error_of({{"presets", "wang2011_royal_target"}}), "did you mean 'preset'");
 }
 
 }  // namespace
