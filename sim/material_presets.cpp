@@ -49,7 +49,8 @@ Material textile_material(double weight, double stretch_warp, double stretch_wef
 // costs ½k0 ε², a tension per width k0 ε: stretch_warp = k0 = 2·row0[0] N/m (weft: 2·row0[2]).
 // A shear angle γ has ε01 = γ/2 and costs k3 γ²/4 = ½(k3/2) γ²: shear (per radian) = k3/2 =
 // row0[3]. k1 (Poisson coupling, often negative and then clamped to 0) has no weft field. Knits
-// are soft here (tens of N/m) and stiffen fast: the 1/6-stretch rows are up to 10× row 0.
+// are soft here (tens of N/m) and stiffen fast: their 1/6-stretch rows are several times row 0
+// (the sweater's c22 some 90×), which a linear Material cannot follow.
 //
 // bending (3 rows × 5): dde.cpp bending_stiffness picks the row by the direction of the hinge
 // edge in material space (row 0 along u, 1 at 45°, 2 along v) and the column by

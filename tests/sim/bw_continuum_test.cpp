@@ -7,6 +7,7 @@
 #include "sim/cloth_model.h"
 #include "sim/continuum/bw_membrane.h"
 #include "sim/continuum/hinge_bending.h"
+#include "tests/sim/cylinder_bend.h"
 #include "tests/sim/force_term_fd.h"
 
 namespace weft::sim {
@@ -144,16 +145,7 @@ TEST(HingeBending, CylinderGivesTheContinuumEnergyPerArea) {
     for (Index n : {7, 13, 25}) {
       const ClothMesh mesh = small_sheet(n, n, L, W);
       const HingeBending term(mesh, m);
-      Matrix3X x = mesh.rest_positions;
-      for (Eigen::Index i = 0; i < x.rows(); ++i) {
-        const Vec2 uv = mesh.material_coords[static_cast<std::size_t>(i)];
-        const double s = along_warp ? uv.x() : uv.y();
-        const Vec3 across = along_warp ? Vec3(0, uv.y(), 0) : Vec3(uv.x(), 0, 0);
-        const Vec3 along = along_warp ? Vec3::UnitX() : Vec3::UnitY();
-        x.row(i) = (across + std::sin(kappa * s) / kappa * along +
-                    (1.0 - std::cos(kappa * s)) / kappa * Vec3::UnitZ())
-                       .transpose();
-      }
+      const Matrix3X x = test::bent_into_cylinder(mesh, kappa, along_warp);
       const double B = along_warp ? m.bend_warp_Nm : m.bend_weft_Nm;
       const double length = along_warp ? L : W, width = along_warp ? W : L;
       const double h = length / static_cast<double>(n - 1);

@@ -16,6 +16,7 @@
 #include "sim/continuum/hinge_bending.h"
 #include "sim/mass_spring.h"
 #include "tests/sim/cantilever_support.h"
+#include "tests/sim/cylinder_bend.h"
 
 namespace weft::sim {
 namespace {
@@ -184,16 +185,7 @@ TEST(MaterialPresets, ArcsimHingeEnergyIsWeftsHingeEnergyOfTheConvertedRigidity)
   const ClothMesh mesh = make_grid(spec);
   const HingeBending hinges(mesh, m);
   for (bool along_warp : {true, false}) {
-    Matrix3X x = mesh.rest_positions;
-    for (Eigen::Index i = 0; i < x.rows(); ++i) {
-      const Vec2 uv = mesh.material_coords[static_cast<std::size_t>(i)];
-      const double s = along_warp ? uv.x() : uv.y();
-      const Vec3 across = along_warp ? Vec3(0, uv.y(), 0) : Vec3(uv.x(), 0, 0);
-      const Vec3 along = along_warp ? Vec3::UnitX() : Vec3::UnitY();
-      x.row(i) = (across + std::sin(kappa * s) / kappa * along +
-                  (1.0 - std::cos(kappa * s)) / kappa * Vec3::UnitZ())
-                     .transpose();
-    }
+    const Matrix3X x = test::bent_into_cylinder(mesh, kappa, along_warp);
     double arcsim = 0.0;
     for (const Hinge& h : hinges.hinges()) {
       const auto X = [&](int k) { return Vec3(mesh.rest_positions.row(h.v[k]).transpose()); };
@@ -245,7 +237,7 @@ double mean_bending_length_cm(const std::string& name) {
 }
 
 // Peirce bending lengths of garment fabrics lie between about 1 and 5 cm; the data order them:
-// the pants twill (royal-target) is the stiffest, the t-shirt interlock the softest, the denim
+// the polycotton pants fabric (royal-target) is the stiffest, the t-shirt interlock the softest, the denim
 // stiffer than the interlock in both directions. The knits stretch far more easily than the
 // woven polyester and polycotton (tens of N/m against thousands: Wang et al.'s data).
 TEST(MaterialPresets, BendingLengthsSpanGarmentFabricsInThePublishedOrder) {
@@ -278,7 +270,7 @@ TEST(MaterialPresets, BendingLengthsSpanGarmentFabricsInThePublishedOrder) {
 
 // The softest and the stiffest preset as Peirce cantilevers (tests/sim/cantilever_support.h;
 // Baraff–Witkin, which takes a shear rigidity above the stretch one): hung at the same 3 cm
-// overhang the interlock droops further than the pants twill, and each at its own O = 2c shows
+// overhang the interlock droops further than the pants fabric, and each at its own O = 2c shows
 // Peirce's 41.5° chord within the cantilever test's ±2.1°.
 TEST(MaterialPresets, SoftestAndStiffestCantileversOrderAsTheirBendingLengths) {
   using namespace cantilever;  // NOLINT: the strip and its helpers
