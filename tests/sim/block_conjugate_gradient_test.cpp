@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 
 #include <Eigen/SparseCholesky>
@@ -51,6 +52,14 @@ SparseMatrix lower(const SparseMatrix& full) {
   return l;
 }
 
+// Conjugate gradients analysed and set up for the full symmetric matrix A.
+std::unique_ptr<BlockConjugateGradient> prepared(const SparseMatrix& A, int threads = 1) {
+  auto cg = std::make_unique<BlockConjugateGradient>(threads);
+  cg->analyze(lower(A));
+  cg->set_matrix(lower(A));
+  return cg;
+}
+
 Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> g;
@@ -62,11 +71,9 @@ Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
 TEST(BlockConjugateGradient, ReachesTheToleranceAndAgreesWithADirectSolve) {
   const SparseMatrix A = grid_system(12, 0.05, 1);
   const Eigen::VectorXd b = random_vector(A.rows(), 2);
-  BlockConjugateGradient cg(1);
-  cg.analyze(lower(A));
-  cg.set_matrix(lower(A));
+  const auto cg = prepared(A);
   Eigen::VectorXd x;
-  const BlockConjugateGradient::Result r = cg.solve(b, x, 1e-10, 2000);
+  const BlockConjugateGradient::Result r = cg->solve(b, x, 1e-10, 2000);
   EXPECT_FALSE(r.breakdown);
   EXPECT_GT(r.iterations, 1);
   EXPECT_LE(r.relative_residual, 1e-10);
@@ -80,27 +87,23 @@ TEST(BlockConjugateGradient, ReachesTheToleranceAndAgreesWithADirectSolve) {
 TEST(BlockConjugateGradient, StopsAtTheToleranceAndKeepsAGoodGuess) {
   const SparseMatrix A = grid_system(10, 0.05, 3);
   const Eigen::VectorXd b = random_vector(A.rows(), 4);
-  BlockConjugateGradient cg(1);
-  cg.analyze(lower(A));
-  cg.set_matrix(lower(A));
+  const auto cg = prepared(A);
   Eigen::VectorXd x;
-  const auto loose = cg.solve(b, x, 1e-3, 2000);
+  const auto loose = cg->solve(b, x, 1e-3, 2000);
   EXPECT_LE(loose.relative_residual, 1e-3);
   Eigen::VectorXd y;
-  const auto one_less = cg.solve(b, y, 1e-3, loose.iterations - 1);
+  const auto one_less = cg->solve(b, y, 1e-3, loose.iterations - 1);
   EXPECT_GT(one_less.relative_residual, 1e-3);
-  const auto again = cg.solve(b, x, 1e-3, 2000);
+  const auto again = cg->solve(b, x, 1e-3, 2000);
   EXPECT_EQ(again.iterations, 0);
 }
 
 // The block-Jacobi preconditioner is exact on a block-diagonal matrix: one iteration.
 TEST(BlockConjugateGradient, BlockDiagonalMatrixTakesOneIteration) {
   const SparseMatrix A = grid_system(1, 0.5, 5);  // one vertex: a single 3×3 block
-  BlockConjugateGradient cg(1);
-  cg.analyze(lower(A));
-  cg.set_matrix(lower(A));
+  const auto cg = prepared(A);
   Eigen::VectorXd x;
-  const auto r = cg.solve(Eigen::Vector3d(1.0, -2.0, 0.5), x, 1e-12, 10);
+  const auto r = cg->solve(Eigen::Vector3d(1.0, -2.0, 0.5), x, 1e-12, 10);
   EXPECT_EQ(r.iterations, 1);
   EXPECT_LE(r.relative_residual, 1e-12);
 }
@@ -112,10 +115,7 @@ TEST(BlockConjugateGradient, SameBitsForAnyNumberOfThreads) {
   const Eigen::VectorXd b = random_vector(A.rows(), 7);
   Eigen::VectorXd x[3];
   for (int threads = 1; threads <= 3; ++threads) {
-    BlockConjugateGradient cg(threads);
-    cg.analyze(lower(A));
-    cg.set_matrix(lower(A));
-    cg.solve(b, x[threads - 1], 1e-8, 500);
+    prepared(A, threads)->solve(b, x[threads - 1], 1e-8, 500);
   }
   EXPECT_TRUE((x[0].array() == x[1].array()).all());
   EXPECT_TRUE((x[0].array() == x[2].array()).all());
@@ -124,13 +124,11 @@ TEST(BlockConjugateGradient, SameBitsForAnyNumberOfThreads) {
 TEST(BlockConjugateGradient, IndefiniteMatrixIsABreakdown) {
   SparseMatrix A = grid_system(4, 0.05, 8);
   A.coeffRef(6, 6) = -50.0;  // a negative diagonal entry: not positive definite
-  BlockConjugateGradient cg(1);
-  cg.analyze(lower(A));
-  cg.set_matrix(lower(A));
+  const auto cg = prepared(A);
   Eigen::VectorXd x;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(A.rows());
   b[6] = 1.0;
-  EXPECT_TRUE(cg.solve(b, x, 1e-10, 200).breakdown);
+  EXPECT_TRUE(cg->solve(b, x, 1e-10, 200).breakdown);
 }
 
 }  // namespace
