@@ -8,19 +8,8 @@
 namespace weft::sim {
 namespace {
 
-// Rows below which one thread multiplies alone: waking the pool costs more than it saves.
-constexpr Eigen::Index kRowsPerThreadMin = 2048;
-
-// Position of (row, col) in a compressed row-major matrix's value array; the entry must exist.
-int position_of(const Eigen::SparseMatrix<double, Eigen::RowMajor, int>& m, int row, int col) {
-  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[row];
-  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[row + 1];
-  const int* it = std::lower_bound(begin, end, col);
-  if (it == end || *it != col)
-    throw std::logic_error("BlockConjugateGradient: entry (" + std::to_string(row) + ", " +
-                           std::to_string(col) + ") is not in the pattern");
-  return static_cast<int>(it - m.innerIndexPtr());
-}
+// Block rows below which one thread multiplies alone: waking the pool costs more than it saves.
+constexpr std::size_t kBlockRowsPerThreadMin = 700;
 
 }  // namespace
 
@@ -34,76 +23,79 @@ void BlockConjugateGradient::analyze(const SparseMatrix& lower) {
     throw std::logic_error("BlockConjugateGradient::analyze: expected a compressed square matrix "
                            "of 3k rows, got " + std::to_string(lower.rows()) + "x" +
                            std::to_string(lower.cols()));
-  const int n = static_cast<int>(lower.rows());
-  std::vector<Eigen::Triplet<double, int>> entries;
-  entries.reserve(2 * static_cast<std::size_t>(lower.nonZeros()));
-  for (int col = 0; col < n; ++col)
+  const int blocks = static_cast<int>(lower.rows() / 3);
+  // The 3×3 blocks with an entry, in either triangle, and every diagonal block.
+  std::vector<std::vector<int>> columns(static_cast<std::size_t>(blocks));
+  for (int p = 0; p < blocks; ++p) columns[static_cast<std::size_t>(p)].push_back(p);
+  for (int col = 0; col < lower.cols(); ++col)
     for (int k = lower.outerIndexPtr()[col]; k < lower.outerIndexPtr()[col + 1]; ++k) {
-      const int row = lower.innerIndexPtr()[k];
-      entries.emplace_back(row, col, 0.0);
-      if (row != col) entries.emplace_back(col, row, 0.0);
+      const int p = lower.innerIndexPtr()[k] / 3, q = col / 3;
+      columns[static_cast<std::size_t>(p)].push_back(q);
+      columns[static_cast<std::size_t>(q)].push_back(p);
     }
-  // Every diagonal block complete, so that it can be inverted.
-  for (int v = 0; v < n / 3; ++v)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) entries.emplace_back(3 * v + r, 3 * v + c, 0.0);
-  m_full.resize(n, n);
-  m_full.setFromTriplets(entries.begin(), entries.end());
-  m_full.makeCompressed();
-
-  m_to_full.assign(static_cast<std::size_t>(lower.nonZeros()), -1);
+  m_block_start.assign(1, 0);
+  m_block_column.clear();
+  for (std::vector<int>& row : columns) {
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    m_block_column.insert(m_block_column.end(), row.begin(), row.end());
+    m_block_start.push_back(static_cast<int>(m_block_column.size()));
+  }
+  m_blocks.assign(9 * m_block_column.size(), 0.0);
+  // Where entry (row, col) lives in m_blocks (row-major within its block).
+  const auto position = [&](int row, int col) {
+    const int p = row / 3, q = col / 3;
+    const auto begin = m_block_column.begin() + m_block_start[static_cast<std::size_t>(p)];
+    const auto end = m_block_column.begin() + m_block_start[static_cast<std::size_t>(p) + 1];
+    const auto block = std::lower_bound(begin, end, q) - m_block_column.begin();
+    return static_cast<int>(9 * block + 3 * (row % 3) + col % 3);
+  };
+  m_to_block.assign(static_cast<std::size_t>(lower.nonZeros()), -1);
   m_to_mirror.assign(static_cast<std::size_t>(lower.nonZeros()), -1);
-  for (int col = 0; col < n; ++col)
+  for (int col = 0; col < lower.cols(); ++col)
     for (int k = lower.outerIndexPtr()[col]; k < lower.outerIndexPtr()[col + 1]; ++k) {
       const int row = lower.innerIndexPtr()[k];
-      m_to_full[static_cast<std::size_t>(k)] = position_of(m_full, row, col);
-      if (row != col) m_to_mirror[static_cast<std::size_t>(k)] = position_of(m_full, col, row);
+      m_to_block[static_cast<std::size_t>(k)] = position(row, col);
+      if (row != col) m_to_mirror[static_cast<std::size_t>(k)] = position(col, row);
     }
-  m_block_inverse.assign(static_cast<std::size_t>(n / 3), Eigen::Matrix3d::Identity());
-  m_block_positions.clear();
-  for (int v = 0; v < n / 3; ++v)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m_block_positions.push_back(position_of(m_full, 3 * v + r, 3 * v + c));
+  m_diagonal_block.resize(static_cast<std::size_t>(blocks));
+  for (int p = 0; p < blocks; ++p) m_diagonal_block[static_cast<std::size_t>(p)] = position(3 * p, 3 * p);
+  m_block_inverse.assign(static_cast<std::size_t>(blocks), Eigen::Matrix3d::Identity());
 }
 
 void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
-  if (lower.nonZeros() != static_cast<Eigen::Index>(m_to_full.size()) ||
-      lower.rows() != m_full.rows())
+  if (lower.nonZeros() != static_cast<Eigen::Index>(m_to_block.size()) ||
+      lower.rows() != 3 * static_cast<Eigen::Index>(m_diagonal_block.size()))
     throw std::logic_error("BlockConjugateGradient::set_matrix: not the analysed pattern");
-  double* full = m_full.valuePtr();
-  std::fill(full, full + m_full.nonZeros(), 0.0);
+  std::fill(m_blocks.begin(), m_blocks.end(), 0.0);
   const double* values = lower.valuePtr();
-  for (std::size_t k = 0; k < m_to_full.size(); ++k) {
-    full[m_to_full[k]] = values[k];
-    if (m_to_mirror[k] >= 0) full[m_to_mirror[k]] = values[k];
+  for (std::size_t k = 0; k < m_to_block.size(); ++k) {
+    m_blocks[static_cast<std::size_t>(m_to_block[k])] = values[k];
+    if (m_to_mirror[k] >= 0) m_blocks[static_cast<std::size_t>(m_to_mirror[k])] = values[k];
   }
-  for (std::size_t v = 0; v < m_block_inverse.size(); ++v) {
-    Eigen::Matrix3d block;
-    for (int k = 0; k < 9; ++k) block(k / 3, k % 3) = full[m_block_positions[9 * v + static_cast<std::size_t>(k)]];
-    m_block_inverse[v] = block.inverse();
-  }
+  for (std::size_t p = 0; p < m_block_inverse.size(); ++p)
+    m_block_inverse[p] = Block(m_blocks.data() + m_diagonal_block[p]).inverse();
 }
 
 void BlockConjugateGradient::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  const Eigen::Index rows = m_full.rows();
+  const std::size_t blocks = m_diagonal_block.size();
   const std::size_t shares =
-      std::min<std::size_t>(m_pool->size(), static_cast<std::size_t>(std::max<Eigen::Index>(1, rows / kRowsPerThreadMin)));
-  const int* outer = m_full.outerIndexPtr();
-  const int* inner = m_full.innerIndexPtr();
-  const double* values = m_full.valuePtr();
-  const auto rows_of = [&](std::size_t share) {
-    const auto begin = static_cast<Eigen::Index>(base::share_begin(static_cast<std::size_t>(rows), shares, share));
-    const auto end = static_cast<Eigen::Index>(base::share_begin(static_cast<std::size_t>(rows), shares, share + 1));
-    for (Eigen::Index i = begin; i < end; ++i) {
-      double sum = 0.0;
-      for (int k = outer[i]; k < outer[i + 1]; ++k) sum += values[k] * x[inner[k]];
-      y[i] = sum;
+      std::clamp<std::size_t>(blocks / kBlockRowsPerThreadMin, 1, m_pool->size());
+  const auto block_rows_of = [&](std::size_t share) {
+    const std::size_t begin = base::share_begin(blocks, shares, share);
+    const std::size_t end = base::share_begin(blocks, shares, share + 1);
+    for (std::size_t p = begin; p < end; ++p) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (int k = m_block_start[p]; k < m_block_start[p + 1]; ++k)
+        sum.noalias() += Block(m_blocks.data() + 9 * k) *
+                         x.segment<3>(3 * static_cast<Eigen::Index>(m_block_column[static_cast<std::size_t>(k)]));
+      y.segment<3>(3 * static_cast<Eigen::Index>(p)) = sum;
     }
   };
   if (shares == 1) {
-    rows_of(0);
+    block_rows_of(0);
   } else {
-    m_pool->run(shares, rows_of);
+    m_pool->run(shares, block_rows_of);
   }
 }
 
@@ -117,10 +109,10 @@ void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::Vecto
 BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::VectorXd& b,
                                                              Eigen::VectorXd& x, double tolerance,
                                                              int max_iterations) const {
-  if (b.size() != m_full.rows())
+  if (b.size() != 3 * static_cast<Eigen::Index>(m_diagonal_block.size()))
     throw std::logic_error("BlockConjugateGradient::solve: right-hand side has " +
                            std::to_string(b.size()) + " rows, expected " +
-                           std::to_string(m_full.rows()));
+                           std::to_string(3 * m_diagonal_block.size()));
   Result result;
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
   const double b_norm2 = b.squaredNorm();

@@ -4,11 +4,11 @@
 // matrix–vector product shared among threads.
 //
 // The system arrives as SparseSpdSolver takes it: the lower triangle, column-major. analyze()
-// builds a full (both triangles) row-major copy of its pattern once; set_matrix() scatters the
-// values into it. Each thread multiplies a contiguous range of rows, and every row is one
-// sequential dot product, so the product — and with the sequential vector updates and dot
-// products, every iterate — is the same bits for any number of threads (DESIGN.md,
-// Determinism).
+// builds a full (both triangles) copy of its pattern in 3×3 blocks (block compressed rows: one
+// column index per 9 values) once; set_matrix() scatters the values into it. Each thread
+// multiplies a contiguous range of block rows, and every block row is summed in one fixed
+// order, so the product — and with the sequential vector updates and dot products, every
+// iterate — is the same bits for any number of threads (DESIGN.md, Determinism).
 //
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.
@@ -47,16 +47,19 @@ class BlockConjugateGradient {
                int max_iterations) const;
 
  private:
-  using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+  using Block = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;  // y = A x
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
   std::unique_ptr<base::ThreadPool> m_pool;
-  RowMatrix m_full;
-  // For each value of the lower triangle, its position in m_full, and the position of its
-  // mirror (−1 on the diagonal).
-  std::vector<int> m_to_full, m_to_mirror;
-  std::vector<int> m_block_positions;             // per vertex, its 3×3 diagonal block in m_full
+  // Block compressed rows: block row p has the blocks m_block_start[p] … m_block_start[p+1]−1,
+  // in block columns m_block_column[…], their values 9 each (row-major) in m_blocks.
+  std::vector<int> m_block_start, m_block_column;
+  std::vector<double> m_blocks;
+  // For each value of the lower triangle, its index in m_blocks, and its mirror's (−1 on the
+  // diagonal).
+  std::vector<int> m_to_block, m_to_mirror;
+  std::vector<int> m_diagonal_block;             // per vertex, its diagonal block's index in m_blocks
   std::vector<Eigen::Matrix3d> m_block_inverse;  // per vertex
 };
 
