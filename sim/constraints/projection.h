@@ -47,8 +47,11 @@ struct ProjectionSettings {
   bool carry_tension = true;
   // Fast projection: conjugate-gradient iterations allowed per Newton system on the last
   // factorization (an earlier iterate's or step's matrix, used as preconditioner) before
-  // refactorizing. 0 refactorizes every iteration (the paper's iteration).
-  int reuse_iterations = 8;
+  // refactorizing. 0 refactorizes every iteration (the paper's iteration), the default: 8
+  // saves 13–45 % of the CPU time of the 64² hang (tol 1e-2 to 1e-4) but doubled that of the
+  // 128² hang, whose near-singular steps need more iterations than a factorization costs
+  // (docs/inextensibility.md). Choosing it from the factor's cost is future work.
+  int reuse_iterations = 0;
 };
 
 struct [[nodiscard]] ProjectionResult {
