@@ -79,8 +79,8 @@ void add_threads_option(CLI::App& command, std::optional<int>& threads) {
   command
       .add_option_function<int>(
           "--threads", [&threads](const int& n) { threads = n; },
-          "Threads of the ray tracer and of self-collision (0: all hardware threads, the "
-          "default); the output is the same whatever the number")
+          "Threads of the ray tracer, self-collision and implicit Euler's conjugate gradients "
+          "(0: all hardware threads, the default); the output is the same whatever the number")
       ->check(CLI::Range(0, 4096));
 }
 
@@ -88,6 +88,7 @@ void apply_threads(Scene& scene, std::optional<int> threads) {
   if (!threads) return;
   scene.render.raytrace.threads = *threads;
   scene.sim.self_collision.threads = *threads;
+  scene.sim.solver_threads = *threads;
 }
 
 }  // namespace weft::app

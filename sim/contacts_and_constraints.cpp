@@ -54,6 +54,8 @@ bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, doubl
     const ProjectionResult r = timers.time(Phase::project, [&] { return project(x, h_s); });
     total.iterations += r.iterations;
     total.solve_s += r.solve_s;
+    total.factorizations += r.factorizations;
+    total.reuse_iterations += r.reuse_iterations;
     total.converged = r.converged;
     total.max_strain = r.max_strain;
     if (round == kContactRounds ||
@@ -72,6 +74,8 @@ ProjectionResult ContactsAndConstraints::project(Matrix3X& x, double h_s) {
 
 void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& stats) {
   stats.projection_iterations += r.iterations;
+  stats.projection_factorizations += r.factorizations;
+  stats.projection_reuse_iterations += r.reuse_iterations;
   stats.max_projection_iterations = std::max(stats.max_projection_iterations, r.iterations);
   if (!r.converged) ++stats.unconverged_steps;
   stats.worst_projected_strain = std::max(stats.worst_projected_strain, r.max_strain);

@@ -24,6 +24,8 @@ struct Diagnostics {
 struct StepStatistics {
   long steps = 0;
   long projection_iterations = 0;     // summed over steps
+  long projection_factorizations = 0; // numeric factorizations of fast projection's matrix
+  long projection_reuse_iterations = 0;  // its CG iterations on a reused factorization
   int max_projection_iterations = 0;  // in any one step
   long unconverged_steps = 0;         // steps whose projection missed its tolerance
   double worst_projected_strain = 0.0;

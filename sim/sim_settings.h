@@ -47,6 +47,9 @@ struct SimSettings {
   // residual of implicit_cg_tolerance (see ImplicitSolveSettings).
   ImplicitSolve implicit_solve = ImplicitSolve::direct;
   double implicit_cg_tolerance = 1e-4;
+  // Threads of the conjugate gradients' matrix–vector product (0: all hardware threads). Never
+  // changes a bit of the result (`weft run --threads`).
+  int solver_threads = 0;
   // Rigid obstacles (the "collide" phase) and how far the cloth keeps from their surfaces.
   std::vector<Obstacle> obstacles;
   // Keyframed motion of the obstacles: empty (none moves) or one per obstacle (an empty

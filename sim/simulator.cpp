@@ -84,6 +84,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   integrator.implicit_solve.method = settings.implicit_solve;
   integrator.implicit_solve.backend = settings.sparse_backend;
   integrator.implicit_solve.cg_tolerance = settings.implicit_cg_tolerance;
+  integrator.implicit_solve.threads = settings.solver_threads;
   // Dynamic relaxation: one iteration per step of the explicit integrators' step, with
   // fictitious masses stable at it (sim/integrators/dynamic_relaxation.h).
   integrator.relaxation_max_step_s = m_time_step_s;

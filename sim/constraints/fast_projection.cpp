@@ -88,7 +88,8 @@ void FastProjection::fill_matrix() {
 // configuration make J M⁻¹ Jᵀ singular; a diagonal shift of 1e-10, then 1e-6, of its mean
 // diagonal regularises it (a tiny compliance) without changing the pattern.
 bool FastProjection::factorize_with_fallback() {
-  if (m_solver->factorize(m_matrix)) return true;
+  m_reusable = m_solver->factorize(m_matrix);
+  if (m_reusable) return true;
   double mean_diagonal = 0.0;
   for (int s : m_diagonal_slots) mean_diagonal += m_matrix.valuePtr()[s];
   mean_diagonal /= static_cast<double>(std::max<std::size_t>(1, m_diagonal_slots.size()));
@@ -98,6 +99,46 @@ bool FastProjection::factorize_with_fallback() {
     for (int s : m_diagonal_slots) m_matrix.valuePtr()[s] += shift;
     applied += shift;
     if (m_solver->factorize(m_matrix)) return true;
+  }
+  return false;
+}
+
+bool FastProjection::solve_newton_system(double forcing, Eigen::VectorXd& mu,
+                                         ProjectionResult& result) {
+  if (m_reusable && m_settings.reuse_iterations > 0 && reuse_factorization(forcing, mu, result))
+    return true;
+  ++result.factorizations;
+  if (!factorize_with_fallback()) return false;
+  mu = m_solver->solve(m_c);
+  return mu.allFinite();
+}
+
+// Preconditioned conjugate gradients (A is symmetric positive definite, and so is the
+// preconditioner: a Cholesky factorization of an earlier A). A first solve alone would be a
+// chord step, which converges only linearly; the iterations correct it to the forcing term.
+bool FastProjection::reuse_factorization(double forcing, Eigen::VectorXd& mu,
+                                         ProjectionResult& result) {
+  const auto A = m_matrix.selfadjointView<Eigen::Lower>();
+  const double target = forcing * m_c.lpNorm<Eigen::Infinity>();  // max strain is a max norm
+  mu.setZero(m_c.size());
+  Eigen::VectorXd r = m_c;
+  Eigen::VectorXd z = m_solver->solve(r);
+  Eigen::VectorXd p = z;
+  Eigen::VectorXd Ap(m_c.size());
+  double rz = r.dot(z);
+  for (int k = 0; k < m_settings.reuse_iterations; ++k) {
+    ++result.reuse_iterations;
+    Ap.noalias() = A * p;
+    const double pAp = p.dot(Ap);
+    if (!(pAp > 0.0) || !(rz > 0.0)) return false;
+    const double step = rz / pAp;
+    mu += step * p;
+    r -= step * Ap;
+    if (r.lpNorm<Eigen::Infinity>() <= target) return mu.allFinite();
+    z = m_solver->solve(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
   }
   return false;
 }
@@ -157,11 +198,11 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
     ++result.iterations;
     const base::Stopwatch watch;
     fill_matrix();
-    const bool factorized = factorize_with_fallback();
     Eigen::VectorXd mu;
-    if (factorized) mu = m_solver->solve(m_c);
+    // Forcing term ∝ the strain: the inexact Newton step keeps the quadratic order.
+    const bool solved = solve_newton_system(0.1 * std::min(1.0, result.max_strain), mu, result);
     result.solve_s += watch.seconds();
-    if (!factorized || !mu.allFinite()) break;
+    if (!solved) break;
 
     // δ = −M⁻¹ Jᵀ μ, with ∇_b C = 2 d / l = −∇_a C.
     step.setZero();

@@ -6,11 +6,16 @@
 // constraints, so convergence is quadratic near the solution.
 //
 // The matrix J M⁻¹ Jᵀ (#constraints square) has a fixed sparsity pattern — edges sharing a
-// free vertex — analysed once; each iteration refills its values in place and refactorizes.
+// free vertex — analysed once; each iteration refills its values in place. It is solved by
+// conjugate gradients preconditioned by the last factorization — an earlier iterate's or an
+// earlier step's matrix, which differs little — to a relative residual (max norm, as the
+// strain) proportional to the current strain (an inexact Newton method with a forcing term that keeps the order quadratic,
+// Dembo, Eisenstat & Steihaug 1982); when that takes more than `reuse_iterations` iterations
+// the matrix is refactorized and solved directly.
 // Robustness: a full step that does not halve Σ C² is shortened to the exact minimiser of Σ C²
 // along it (C is quadratic, so that is a quartic in the step length: no extra factorization);
 // a factorization that fails (redundant constraints make the matrix singular) is retried with
-// a small diagonal shift; when the cap is reached or no step reduces Σ C², the best iterate
+// a small diagonal shift (and is then not reused); when the cap is reached or no step reduces Σ C², the best iterate
 // (smallest max strain) is kept and the result says it did not converge. Near a singular root
 // — a nearly flat sheet, a chain pulled taut between pins at its rest length — Newton-type
 // steps lose their quadratic convergence; the simulator avoids starting there by carrying the
@@ -45,6 +50,12 @@ class FastProjection final : public ConstraintProjector {
   double evaluate(const Matrix3X& x);  // fills m_d, m_c; returns Σ C²
   void fill_matrix();
   bool factorize_with_fallback();
+  // μ with ‖A μ − C‖∞ ≤ forcing ‖C‖∞ (A = J M⁻¹ Jᵀ, filled): by the reused factorization or a new
+  // one (counted in `result`). False when A cannot be factorized or μ is not finite.
+  bool solve_newton_system(double forcing, Eigen::VectorXd& mu, ProjectionResult& result);
+  // Conjugate gradients on A μ = C preconditioned by the last factorization, from μ = 0; false
+  // when `forcing` is not reached within the allowed iterations.
+  bool reuse_factorization(double forcing, Eigen::VectorXd& mu, ProjectionResult& result);
   double line_search(const Matrix3X& step, double merit) const;  // α, or 0 if none helps
 
   std::vector<EdgeConstraint> m_constraints;
@@ -54,6 +65,10 @@ class FastProjection final : public ConstraintProjector {
   std::vector<Contribution> m_contributions;
   std::vector<int> m_diagonal_slots;
   std::unique_ptr<SparseSpdSolver> m_solver;
+  // m_solver holds a factorization of an earlier matrix that needed no diagonal shift: a
+  // preconditioner for conjugate gradients. After a shift the matrix is (nearly) singular —
+  // redundant constraints — and each iteration factorizes afresh.
+  bool m_reusable = false;
   Matrix3X m_d;          // #C×3 edge vectors x_b − x_a at the current iterate
   Eigen::VectorXd m_c;   // #C constraint values
   Eigen::VectorXd m_multipliers;  // #C Σ α μ of the last project(), kg·m (x moved by −M⁻¹Jᵀ Σαμ)

@@ -45,6 +45,13 @@ struct ProjectionSettings {
   // Fast projection: carry each step's constraint force into the next step's prediction
   // (carried_tension.h). Off only to measure what it buys.
   bool carry_tension = true;
+  // Fast projection: conjugate-gradient iterations allowed per Newton system on the last
+  // factorization (an earlier iterate's or step's matrix, used as preconditioner) before
+  // refactorizing. 0 refactorizes every iteration (the paper's iteration), the default: 8
+  // saves 13–45 % of the CPU time of the 64² hang (tol 1e-2 to 1e-4) but doubled that of the
+  // 128² hang, whose near-singular steps need more iterations than a factorization costs
+  // (docs/inextensibility.md). Choosing it from the factor's cost is future work.
+  int reuse_iterations = 0;
 };
 
 struct [[nodiscard]] ProjectionResult {
@@ -52,6 +59,8 @@ struct [[nodiscard]] ProjectionResult {
   int iterations = 0;
   double max_strain = 0.0;  // after the projection
   double solve_s = 0.0;     // wall time in factorizations and solves
+  int factorizations = 0;   // numeric factorizations of J M⁻¹ Jᵀ (fast projection)
+  int reuse_iterations = 8; // conjugate-gradient iterations on a reused factorization
 };
 
 class ConstraintProjector {

@@ -1,6 +1,5 @@
 #include "sim/integrators/implicit_euler.h"
 
-#include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
@@ -8,6 +7,7 @@
 #include <vector>
 
 #include "base/timer.h"
+#include "sim/linear/block_conjugate_gradient.h"
 
 namespace weft::sim {
 
@@ -30,7 +30,7 @@ struct ImplicitEuler::Impl {
   std::vector<int> slots;  // valuePtr index of each contribution, in assembly order
   ImplicitSolveSettings solve_settings;
   std::unique_ptr<SparseSpdSolver> solver;  // direct
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> cg;
+  std::unique_ptr<BlockConjugateGradient> cg;  // conjugate gradients
   Eigen::VectorXd last_dv;  // conjugate gradients' warm start
   Matrix3X forces;          // #V×3 scratch, N
   Matrix3X velocity_forces; // #V×3 scratch, N
@@ -103,8 +103,8 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
     solver = make_sparse_spd_solver(solve.backend);
     solver->analyze(A);
   } else {
-    cg.setTolerance(solve.cg_tolerance);
-    cg.setMaxIterations(solve.cg_max_iterations);
+    cg = std::make_unique<BlockConjugateGradient>(solve.threads);
+    cg->analyze(A);
     last_dv = Eigen::VectorXd::Zero(3 * n);
   }
 }
@@ -157,12 +157,14 @@ bool ImplicitEuler::Impl::solve_system(const Eigen::VectorXd& rhs, Eigen::Vector
     dv = solver->solve(rhs);
     return dv.allFinite();  // NaN/inf in, or a factorization that should have failed
   }
-  cg.compute(A);
-  dv = cg.solveWithGuess(rhs, last_dv);
-  result.cg_iterations = static_cast<int>(cg.iterations());
+  cg->set_matrix(A);
+  dv = last_dv;
+  const BlockConjugateGradient::Result r =
+      cg->solve(rhs, dv, solve_settings.cg_tolerance, solve_settings.cg_max_iterations);
+  result.cg_iterations = r.iterations;
   // Not converging within the cap still leaves a usable (smaller-residual) Δv; a breakdown
   // (non-SPD A, non-finite input) does not.
-  if (cg.info() == Eigen::NumericalIssue || !dv.allFinite()) return false;
+  if (r.breakdown || !dv.allFinite()) return false;
   last_dv = dv;
   return true;
 }

@@ -37,9 +37,10 @@ class TimeIntegrator {
 };
 
 // How implicit Euler solves each step's linear system: a sparse direct factorization
-// (SparseBackend), or conjugate gradients with a Jacobi preconditioner, warm-started from the
-// previous step's Δv and stopped at a relative residual ‖r‖/‖b‖ ≤ tolerance (inexact Newton:
-// cheaper per step on large meshes; the step's accuracy is then that of the residual).
+// (SparseBackend), or conjugate gradients with a 3×3 block-Jacobi preconditioner
+// (sim/linear/block_conjugate_gradient.h), warm-started from the previous step's Δv and stopped
+// at a relative residual ‖r‖/‖b‖ ≤ tolerance (inexact Newton: cheaper per step on large meshes;
+// the step's accuracy is then that of the residual).
 enum class ImplicitSolve { direct, conjugate_gradient };
 
 struct ImplicitSolveSettings {
@@ -47,6 +48,9 @@ struct ImplicitSolveSettings {
   SparseBackend backend = default_sparse_backend();  // direct
   double cg_tolerance = 1e-4;                        // conjugate gradients: relative residual
   int cg_max_iterations = 200;
+  // Conjugate gradients: threads of the matrix–vector product (0: all hardware threads). The
+  // result is the same bits for any number.
+  int threads = 0;
 };
 
 struct IntegratorSettings {

@@ -132,7 +132,11 @@ TEST(FastProjection, PinnedVerticesNeverMove) {
 // One pin: two pins at exactly their rest distance make the edge chain between them a taut
 // string whose only solution is straight, a singular root where Newton is linear (tested with
 // the two-corner hang in simulator_test.cpp).
-TEST(FastProjection, ConvergesQuadratically) {
+// Also with the factorization reused as a preconditioner (reuse_iterations > 0): an inexact
+// Newton method whose forcing term is proportional to the strain keeps the order.
+class FastProjectionReuse : public testing::TestWithParam<int> {};
+
+TEST_P(FastProjectionReuse, ConvergesQuadratically) {
   const ClothMesh mesh = grid(21);
   const Eigen::VectorXd w = inverse_masses(mesh, {mesh.index(0, 20)});
   const auto constraints = make_edge_constraints(mesh, ConstrainedEdges::warp_weft, w);
@@ -140,8 +144,12 @@ TEST(FastProjection, ConvergesQuadratically) {
   std::vector<double> strains;
   for (int k = 0; k <= 5; ++k) {
     Matrix3X x = start;
-    FastProjection p(constraints, w, fast(0.0, k), default_sparse_backend());
-    strains.push_back(p.project(x).max_strain);
+    ProjectionSettings settings = fast(0.0, k);
+    settings.reuse_iterations = GetParam();
+    FastProjection p(constraints, w, settings, default_sparse_backend());
+    const ProjectionResult r = p.project(x);
+    if (GetParam() > 0 && k >= 3) EXPECT_LT(r.factorizations, k) << "iteration " << k;
+    strains.push_back(r.max_strain);
   }
   ASSERT_GT(strains[0], 1e-2);
   // Quadratic: s_{k+1} ≤ c s_k² with a bounded c (the one-edge oracle has c = 1/2; the sheet's
@@ -156,6 +164,11 @@ TEST(FastProjection, ConvergesQuadratically) {
   }
   EXPECT_LT(strains[5], 1e-11);
 }
+
+INSTANTIATE_TEST_SUITE_P(ReuseIterations, FastProjectionReuse, testing::Values(0, 8),
+                         [](const testing::TestParamInfo<int>& reuse) {
+                           return "reuse" + std::to_string(reuse.param);
+                         });
 
 // Redundant constraints: a pinned top row (edges between pinned vertices dropped) plus a
 // closed loop of pins around the centre. No NaN; converges.

@@ -32,8 +32,7 @@ ClothMesh hang_mesh(const Hang& h) {
   return make_grid(grid);
 }
 
-Simulator make_hang(const Hang& h) {
-  const ClothMesh mesh = hang_mesh(h);
+SimSettings hang_settings(const Hang& h) {
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
   s.time_step_s = h.step_s;
@@ -45,8 +44,15 @@ Simulator make_hang(const Hang& h) {
   // factorization of the 3#V system (bench/inextensibility_sweep), and projection corrects it.
   s.implicit_solve = ImplicitSolve::conjugate_gradient;
   s.implicit_cg_tolerance = 1e-3;
+  return s;
+}
+
+Simulator make_hang(const Hang& h, const SimSettings& s) {
+  const ClothMesh mesh = hang_mesh(h);
   return Simulator(mesh, Material{}, resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), s);
 }
+
+Simulator make_hang(const Hang& h) { return make_hang(h, hang_settings(h)); }
 
 // Runs `seconds` and returns the largest strain left by any step after `from_s`, checking that
 // every step reported by the statistics converged from then on.
@@ -213,8 +219,11 @@ TEST(InextensibleCloth, OnlyFastProjectionCarriesTension) {
 // freedom (≈ 3n constraints on 3n coordinates), so the sheet cannot bend without stretching and
 // drapes like a plate; the quad mesh's warp/weft edges (≈ 2n constraints) leave one free
 // direction per vertex. The same 1 m sheet dropped centred on a 25 cm sphere, with friction:
-// the quad mesh's free corners fall much lower. (The triangle mesh's projection cannot converge:
-// no isometric bend of it exists; the statistics say so and its best iterates are what locks.)
+// the quad mesh drapes — its free corners fall below the sphere's centre while every step meets
+// the tolerance — and the triangle mesh's projection cannot converge (no isometric bend of it
+// exists): most of its steps miss, and what it keeps are best iterates stretched far beyond any
+// tolerance (140 % before issue 18's solver changes, 200 % after). Where those iterates leave
+// its corners depends on how each failed step ends, so only the failure is asserted.
 TEST(InextensibleCloth, TriangleEdgeConstraintsLockTheDrape) {
   const auto corner_height = [](ConstrainedEdges edges, long* unconverged, double* strain,
                                 double* depth) {
@@ -252,14 +261,65 @@ TEST(InextensibleCloth, TriangleEdgeConstraintsLockTheDrape) {
   const double triangle = corner_height(ConstrainedEdges::triangle_edges, &triangle_unconverged,
                                         &triangle_strain, &triangle_depth);
   std::printf("corner height after 1.5 s: quad mesh %.3f m, triangle mesh %.3f m "
-              "(unconverged steps %ld, %ld)\n", quad, triangle, quad_unconverged, triangle_unconverged);
-  EXPECT_LT(quad, triangle - 0.1) << "the quad mesh drapes at least 10 cm lower at the corners";
+              "(unconverged steps %ld, %ld; max strain %.2g, %.2g)\n", quad, triangle,
+              quad_unconverged, triangle_unconverged, quad_strain, triangle_strain);
+  EXPECT_LT(quad, -0.25) << "the quad mesh's corners hang below the sphere's centre";
   // Contacts and constraints together: the quad drape meets the tolerance on the sphere and
   // stays outside it (to within its 2 mm collision thickness); the locked one cannot.
   EXPECT_EQ(quad_unconverged, 0);
   EXPECT_LE(quad_strain, 1e-3);
   EXPECT_LT(quad_depth, 2e-3) << "penetration of the sphere, m";
-  EXPECT_GT(triangle_unconverged, 0) << "a locked mesh cannot meet the constraints on a sphere";
+  EXPECT_GT(triangle_unconverged, 36 * 5 / 2) << "a locked mesh misses most steps on a sphere";
+  EXPECT_GT(triangle_strain, 0.1) << "its best iterates are far from inextensible";
+}
+
+
+// Issue 18: the projection solves its Newton systems by conjugate gradients on an earlier
+// factorization (ProjectionSettings::reuse_iterations) — an inexact Newton method. On the 32²
+// hang it must still meet the tolerance after every step, with fewer factorizations than
+// iterations, and end where the paper's iteration (a factorization per iteration) ends, within
+// what the tolerance allows.
+TEST(InextensibleCloth, ReusedFactorizationsMeetTheToleranceWithFewerFactorizations) {
+  Hang h;
+  Matrix3X x_paper, x_reused;
+  long factorizations[2] = {0, 0}, iterations[2] = {0, 0};
+  for (int reuse : {0, 8}) {
+    SimSettings s = hang_settings(h);
+    s.projection.reuse_iterations = reuse;
+    Simulator run = make_hang(h, s);
+    const int k = reuse > 0 ? 1 : 0;
+    for (int step = 0; step < 60; ++step) {
+      run.step(h.step_s);
+      const StepStatistics st = run.take_step_statistics();
+      EXPECT_EQ(st.unconverged_steps, 0) << "reuse " << reuse << ", step " << step;
+      EXPECT_LE(st.worst_projected_strain, h.tolerance) << "reuse " << reuse << ", step " << step;
+      factorizations[k] += st.projection_factorizations;
+      iterations[k] += st.projection_iterations;
+    }
+    (reuse > 0 ? x_reused : x_paper) = run.state().x;
+  }
+  EXPECT_EQ(factorizations[0], iterations[0]);  // the paper's iteration
+  EXPECT_LT(factorizations[1], iterations[1] * 3 / 4);
+  // Both are within the tolerance of the same constraint manifold after 0.5 s of swinging; the
+  // sheets agree to a few millimetres (the inexact steps differ at the level of the tolerance).
+  EXPECT_LT((x_paper - x_reused).rowwise().norm().maxCoeff(), 5e-3);
+}
+
+// Implicit Euler's conjugate gradients share the matrix–vector product among threads; the
+// result must be the same bits for any number (DESIGN.md, Determinism). 40² vertices: a
+// 4800-row system, large enough to be split.
+TEST(InextensibleCloth, SameBitsForOneAndTwoSolverThreads) {
+  Hang h;
+  h.n = 40;
+  Matrix3X x[2];
+  for (int threads : {1, 2}) {
+    SimSettings s = hang_settings(h);
+    s.solver_threads = threads;
+    Simulator sim = make_hang(h, s);
+    sim.advance(0.25);
+    x[threads - 1] = sim.state().x;
+  }
+  EXPECT_TRUE((x[0].array() == x[1].array()).all());
 }
 
 }  // namespace
