@@ -208,8 +208,11 @@ void Simulator::check_finite() const {
 // At the first advance(), for a passive cloth: the energy check_growth() compares with.
 void Simulator::start_energy_guard() {
   m_energy_guard_started = true;
+  // Nothing feeds energy in. Not with constraints either: a projection that cannot converge
+  // (the locking triangle-edge constraints) leaves its best iterate, energy and all.
   const bool passive = m_moving_pins.empty() && !m_settings.aero.enabled &&
-                       !any_moves(m_settings.obstacle_motions);
+                       !any_moves(m_settings.obstacle_motions) &&
+                       m_settings.projection.method == ProjectionMethod::none;
   if (!passive) return;
   double mass_kg = 0.0;
   for (Index i = 0; i < m_state.x.rows(); ++i)
@@ -237,9 +240,12 @@ void Simulator::check_growth() const {
   if (!m_start_energy_J) return;
   const double gain_J = d.total_energy_J() - *m_start_energy_J;
   if (gain_J > m_energy_margin_J) {
+    Index fastest = 0;
+    m_state.v.rowwise().squaredNorm().maxCoeff(&fastest);
     std::ostringstream q;
-    q << "the total energy grew by " << gain_J << " J since the start, more than the " << m_energy_margin_J
-      << " J a cloth with still pins and obstacles can gain (try a smaller time_step)";
+    q << "the total energy grew by " << gain_J << " J since the start, more than the "
+      << m_energy_margin_J << " J a cloth with still pins and obstacles can gain (fastest: vertex "
+      << fastest << " at " << m_state.v.row(fastest).norm() << " m/s; try a smaller time_step)";
     throw DivergenceError(m_steps, m_state.time_s, q.str());
   }
 }
