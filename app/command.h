@@ -10,9 +10,12 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+}  // namespace CLI
 
 namespace weft::app {
+
+struct Range;  // app/json_reader.h
 
 // Exit codes of the weft command.
 enum ExitCode : int { exit_ok = 0, exit_bad_input = 1, exit_failure = 2, exit_diverged = 3 };
@@ -29,6 +32,20 @@ struct Command {
 // (exit 0), a command-line error or bad input as one line "weft: error: …" (the command's
 // parse_error_code, or exit_bad_input), another failure as exit_failure.
 int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv);
+
+// Every command of `weft`, registered on `app` in the order `weft --help` lists them (app/main.cpp;
+// tests/app/command_options_test.cpp walks their options).
+std::vector<Command> register_commands(CLI::App& app, const std::string& command_line);
+
+// Bounds a numeric option: each value must be a finite number in `range`, else a command-line
+// error "--NAME: expected a number in …, got 'TEXT'" (NaN and infinities included). Every
+// numeric option of every command goes through it or through the scene reader.
+CLI::Option* check_range(CLI::Option* option, const Range& range);
+
+// Every option and argument given must have a non-empty value: an empty path ('') is a
+// command-line error naming the option rather than a silent default. Returns that error, or
+// an empty string.
+std::string empty_value_error(const CLI::App& command);
 
 // The command line as typed, recorded in the output folders' run.txt and the like.
 std::string joined_command_line(int argc, char** argv);

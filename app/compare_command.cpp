@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/html_escape.h"
+#include "app/json_reader.h"
 #include "app/run_command.h"
 #include "base/constants.h"
 #include "render/photo_compare/photo_compare.h"
@@ -301,9 +302,10 @@ Command register_compare(CLI::App& app, const std::string& /*command_line*/) {
                   "instead of aligning the silhouettes");
   cmd->add_option("--out", o->out, "Output folder (default: out/compare)");
   cmd->add_flag("--json", o->json, "Print the numbers as one JSON object");
-  cmd->add_option("--fold-sigma", o->fold_sigma_px,
-                  "Gaussian sigma in photo pixels for the fold maps (default: 1 % of the "
-                  "diagonal, at least 1.5)");
+  check_range(cmd->add_option("--fold-sigma", o->fold_sigma_px,
+                              "Gaussian sigma in photo pixels for the fold maps (default: 1 % of "
+                              "the diagonal, at least 1.5)"),
+              Range::gt(0.0).le(1000.0));
   return {cmd, [o] { return run_compare(*o); }};
 }
 

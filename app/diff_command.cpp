@@ -12,6 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/json_reader.h"
+#include "app/output_files.h"
+
 namespace weft::app {
 namespace {
 
@@ -138,9 +141,11 @@ int run_diff(const DiffOptions& o) {
       const auto t = parse_thresholds(f, "--fail");
       fail.insert(fail.end(), t.begin(), t.end());
     }
-    if (o.pixel_threshold < 0 || o.pixel_threshold > 255)
-      throw std::invalid_argument("--pixel-threshold: expected 0..255, got " +
-                                  std::to_string(o.pixel_threshold));
+    // (--pixel-threshold is bounded by its option, check_range in app/command.h.)
+    for (const std::filesystem::path& input : {o.a, o.b})
+      if (o.heatmap && same_file(*o.heatmap, input))
+        throw std::invalid_argument("--heatmap: " + o.heatmap->string() + " is the input " +
+                                    input.string() + "; write the heatmap to another file");
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "weft diff: error: %s\n", e.what());
     return diff_bad_arguments;
@@ -186,8 +191,10 @@ Command register_diff(CLI::App& app, const std::string& /*command_line*/) {
   cmd->add_option("--fail", o->fail, "Thresholds that fail, e.g. 'ssim<0.95,over>0.01'; repeatable")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->add_option("--pixel-threshold", o->pixel_threshold,
-                  "A pixel differs when a channel differs by more than this (0..255, default 8)");
+  check_range(cmd->add_option("--pixel-threshold", o->pixel_threshold,
+                              "A pixel differs when a channel differs by more than this (0..255, "
+                              "default 8)"),
+              Range::closed(0, 255));
   // Its exit code 1 means "warn": a command-line error is diff_bad_arguments.
   return {cmd, [o] { return run_diff(*o); }, diff_bad_arguments};
 }

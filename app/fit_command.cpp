@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "app/fit_report.h"
+#include "app/json_reader.h"
 #include "app/progress.h"
 
 namespace weft::app {
@@ -69,10 +70,12 @@ Command register_fit(CLI::App& app, const std::string& command_line) {
              "report.html (docs/photos.md)");
   cmd->add_option("fit", o->spec, "Fit file (JSON: scene, parameters, target)")->required();
   cmd->add_option("--out", o->out, "Output folder (default: out/<fit file name>)");
-  cmd->add_option("--max-evaluations", o->max_evaluations,
-                  "Overrides optimizer.max_evaluations")->check(CLI::PositiveNumber);
-  cmd->add_option("--profile-points", o->profile_points,
-                  "Overrides profile.points (0: no profile)")->check(CLI::NonNegativeNumber);
+  check_range(cmd->add_option("--max-evaluations", o->max_evaluations,
+                              "Overrides optimizer.max_evaluations"),
+              Range::closed(1, 1e6));
+  check_range(cmd->add_option("--profile-points", o->profile_points,
+                              "Overrides profile.points (0: no profile)"),
+              Range::closed(0, 1000));
   return {cmd, [o] { return run_fit_command(*o); }};
 }
 

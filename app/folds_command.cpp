@@ -12,6 +12,7 @@
 
 #include "app/folds_overlay.h"
 #include "app/frame_mesh.h"
+#include "app/json_reader.h"
 #include "app/run_command.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
@@ -138,6 +139,12 @@ int run_folds(const FoldsOptions& options) {
   } catch (const sim::TensionFieldInputError& e) {
     throw SceneError(folds_flag(e.field()) + ": " + e.what());
   }
+  // Inputs each in range can still combine beyond what doubles hold (h ≫ L): say so, not nan.
+  if (!std::isfinite(result.boundary_length_m) || !std::isfinite(result.z_max_m) ||
+      !std::isfinite(result.relative_error))
+    throw SceneError("--h-cm, --L-cm, --d-cm: these proportions (h/l = " +
+                     std::to_string(in.height_m / in.span_m()) +
+                     ") give a non-finite L' or z_max; the model needs h and l of similar sizes");
   const sim::FoldPattern pattern = sim::make_fold_pattern(in, result, options.interpolation);
 
   // Check everything the outputs need before writing anything.
@@ -212,17 +219,33 @@ FoldsOptions folds_options(FoldsOptions o, const FoldsFlags& f) {
 
 // The required flags of the inputs, in the paper's units.
 void add_input_flags(CLI::App& cmd, FoldsFlags& f, FoldsOptions& o) {
-  cmd.add_option("--h-cm", f.h_cm, "Height h of the cloth, cm")->required();
-  cmd.add_option("--L-cm", f.L_cm, "Width L of the flat cloth, cm")->required();
-  cmd.add_option("--d-cm", f.d_cm, "Support displacement d, cm: the span is l = L - d")->required();
-  cmd.add_option("--t-mm", f.t_mm, "Thickness t, mm")->required();
-  cmd.add_option("--E-MPa", f.E_MPa, "Young's modulus E, MPa")->required();
-  cmd.add_option("--w-N-mm2", f.w_N_mm2, "Weight per area w, N/mm^2 (e.g. 15e-7)")->required();
-  cmd.add_option("--nu", o.inputs.poisson_ratio, "Poisson's ratio (default 0.3)");
-  cmd.add_option("--c", o.inputs.load_constant,
-                 "Load-condition constant c of eq. (7) (default: the fit to the paper's Table 1)");
-  cmd.add_option("--Q", f.Q, "Amplitude ratio Q > 1, instead of eq. (7)'s");
-  cmd.add_option("--tolerance", o.inputs.tolerance, "On |L' - L|/L (default 0.05)");
+  // Bounds a person could mean (a cloth up to 100 m, a sheet up to 10 cm thick); the model
+  // itself checks how they combine (sim/folds/tension_field.h).
+  const Range length_cm = Range::gt(0.0).le(1e4);
+  check_range(cmd.add_option("--h-cm", f.h_cm, "Height h of the cloth, cm"), length_cm)->required();
+  check_range(cmd.add_option("--L-cm", f.L_cm, "Width L of the flat cloth, cm"), length_cm)
+      ->required();
+  check_range(cmd.add_option("--d-cm", f.d_cm, "Support displacement d, cm: the span is l = L - d"),
+              Range::closed(0.0, 1e4))
+      ->required();
+  check_range(cmd.add_option("--t-mm", f.t_mm, "Thickness t, mm"), Range::gt(0.0).le(100.0))
+      ->required();
+  check_range(cmd.add_option("--E-MPa", f.E_MPa, "Young's modulus E, MPa"),
+              Range::gt(0.0).le(1e6))
+      ->required();
+  check_range(cmd.add_option("--w-N-mm2", f.w_N_mm2, "Weight per area w, N/mm^2 (e.g. 15e-7)"),
+              Range::gt(0.0).le(1.0))
+      ->required();
+  check_range(cmd.add_option("--nu", o.inputs.poisson_ratio, "Poisson's ratio (default 0.3)"),
+              Range::gt(-1.0).le(0.5));
+  check_range(cmd.add_option("--c", o.inputs.load_constant,
+                             "Load-condition constant c of eq. (7) (default: the fit to the "
+                             "paper's Table 1)"),
+              Range::gt(0.0).le(1e6));
+  check_range(cmd.add_option("--Q", f.Q, "Amplitude ratio Q > 1, instead of eq. (7)'s"),
+              Range::gt(1.0).le(1e6));
+  check_range(cmd.add_option("--tolerance", o.inputs.tolerance, "On |L' - L|/L (default 0.05)"),
+              Range::gt(0.0).lt(1.0));
 }
 
 }  // namespace
@@ -245,7 +268,10 @@ Command register_folds(CLI::App& app, const std::string& command_line) {
       ->check(CLI::IsMember({"cosine", "linear"}));
   cmd->add_option("--overlay", o->overlay, "Photo (PNG/JPG) to draw the fold lines on: writes folds_overlay.png");
   cmd->add_option("--supports", o->supports, "x1,y1,x2,y2: the supports' pixels in the photo");
-  cmd->add_option("--bottom", o->bottom_px, "Pixel row of the cloth's bottom at the middle (default: same scale as across)");
+  check_range(cmd->add_option("--bottom", o->bottom_px,
+                              "Pixel row of the cloth's bottom at the middle (default: same scale "
+                              "as across)"),
+              Range::closed(0.0, 1e5));
   return {cmd, [o, f] { return run_folds(folds_options(*o, *f)); }};
 }
 

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/json_reader.h"
 #include "app/progress.h"
 #include "app/run_command.h"
 #include "app/run_report.h"
@@ -189,8 +190,10 @@ Command register_gallery(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--scenes", o->scenes, "Folder of scene files (default: assets/scenes)");
   cmd->add_option("--out", o->out,
                   "Output folder (default: out/gallery; the repository's gallery/ only if given)");
-  cmd->add_option("--frames-scale", o->frames_scale,
-                  "Run each scene for this fraction of its frames, e.g. 0.25 for a quick look");
+  check_range(cmd->add_option("--frames-scale", o->frames_scale,
+                              "Run each scene for this fraction of its frames, e.g. 0.25 for a "
+                              "quick look"),
+              Range::gt(0.0).le(10.0));
   cmd->add_option_function<std::string>(
       "--only",
       [o](const std::string& text) {

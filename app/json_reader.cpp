@@ -265,6 +265,31 @@ std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::si
   return {line, column};
 }
 
+// Throws when arrays and objects nest deeper than max_json_depth: nlohmann's dump() and the
+// readers walk a value recursively, so a hostile file could otherwise overflow the stack.
+void check_json_depth(const std::string& text, const std::string& file) {
+  std::size_t depth = 0;
+  bool in_string = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth <= max_json_depth) continue;
+      const auto [line, column] = line_column(text, i);
+      throw_scene_error(file + ":" + std::to_string(line) + ":" + std::to_string(column), "",
+                        "arrays and objects nest deeper than " + std::to_string(max_json_depth) +
+                            " levels (the limit of weft's JSON reader)");
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
 }  // namespace
 
 void throw_scene_error(const std::string& file, const std::string& path, const std::string& what) {
@@ -272,6 +297,7 @@ void throw_scene_error(const std::string& file, const std::string& path, const s
 }
 
 Json parse_json(const std::string& text, const std::string& file) {
+  check_json_depth(text, file);
   StrictChecker checker;
   if (!Json::sax_parse(text, &checker)) {
     if (!checker.positioned) throw_scene_error(file, checker.error_path, checker.error_message);

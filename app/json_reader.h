@@ -24,8 +24,12 @@ namespace weft::app {
 // Keeps the file's key order, so that "the first unknown key" is the first in the file.
 using Json = nlohmann::ordered_json;
 
+// How deeply arrays and objects may nest in a JSON text weft reads (scene files need 6).
+inline constexpr std::size_t max_json_depth = 64;
+
 // Parses JSON text strictly. A syntax error reads "FILE:LINE:COLUMN: malformed JSON: …"; a
-// duplicate key or a number too large for a double is an error naming its key path too.
+// duplicate key or a number too large for a double is an error naming its key path too, and
+// nesting deeper than max_json_depth an error at its line and column.
 Json parse_json(const std::string& text, const std::string& file);
 
 // Throws SceneError("FILE: PATH: what"), or "FILE: what" when the path is empty.

@@ -13,6 +13,7 @@
 
 #include "app/drape_photo.h"
 #include "app/frame_stream.h"
+#include "app/json_reader.h"
 #include "app/progress.h"
 #include "app/version.h"
 #include "base/format.h"
@@ -267,12 +268,18 @@ void add_photo_options(CLI::App& cmd, MeasurePhotoOptions& p, std::string& cente
   const auto needs_photo = [&](CLI::Option* o) { o->needs(photo); };
   needs_photo(cmd.add_option("--mask-photo", p.mask,
                              "Mask of the photo (white = cloth) instead of segmenting it"));
-  needs_photo(cmd.add_option("--mm-per-px", p.setup.mm_per_px, "Photo scale, mm per pixel"));
-  needs_photo(cmd.add_option("--disc-px", p.setup.disc_px,
-                             "Support disc's diameter in the photo, pixels (sets the scale)"));
-  needs_photo(cmd.add_option("--disc-mm", p.setup.disc_mm, "Support disc's diameter, mm"));
-  needs_photo(cmd.add_option("--specimen-mm", p.setup.specimen_mm,
-                             "Flat circular specimen's diameter, mm"));
+  const Range positive = Range::gt(0.0).le(1e5);  // mm or pixels
+  needs_photo(check_range(
+      cmd.add_option("--mm-per-px", p.setup.mm_per_px, "Photo scale, mm per pixel"), positive));
+  needs_photo(check_range(cmd.add_option("--disc-px", p.setup.disc_px,
+                                         "Support disc's diameter in the photo, pixels (sets the "
+                                         "scale)"),
+                          positive));
+  needs_photo(check_range(
+      cmd.add_option("--disc-mm", p.setup.disc_mm, "Support disc's diameter, mm"), positive));
+  needs_photo(check_range(cmd.add_option("--specimen-mm", p.setup.specimen_mm,
+                                         "Flat circular specimen's diameter, mm"),
+                          positive));
   needs_photo(cmd.add_option("--center-px", center,
                              "Disc centre in the photo, X,Y pixels (default: the silhouette's "
                              "centroid)"));

@@ -11,9 +11,21 @@ namespace weft::app {
 namespace fs = std::filesystem;
 
 void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  const fs::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  }
+  std::error_code error;
+  fs::rename(partial, path, error);
+  if (error) throw std::runtime_error(path.string() + ": cannot write (" + error.message() + ")");
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  return fs::equivalent(a, b, error) && !error;
 }
 
 int remove_numbered_files(const fs::path& dir, const std::string& prefix,

@@ -7,8 +7,14 @@
 
 namespace weft::app {
 
-// Writes `text` to `path`; throws std::runtime_error naming the path when it cannot.
+// Writes `text` to `path` atomically (to PATH.partial, then renamed: a reader sees the old file
+// or the whole new one, never a part); throws std::runtime_error naming the path when it
+// cannot. render::write_png does the same for images.
 void write_text(const std::filesystem::path& path, const std::string& text);
+
+// Whether two paths name the same file (the same file twice, through links or `..`), e.g. an
+// output that would overwrite an input. A path that does not exist is the same as no other.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
 // Removes the files in `dir` named <prefix>_<4 or more digits>.<extension> (extension a
 // regular expression such as "png" or "(obj|ply|gltf|bin)"); returns how many.

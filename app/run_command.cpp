@@ -60,9 +60,9 @@ std::string mesh_name(int frame, MeshFormat format) {
 }
 
 // Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
-// folder holds one run, and writes the scene (with its overrides) and run.txt.
+// folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
+// first frame is ready: a run that fails before it leaves an earlier run's files as they were.
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
-  fs::create_directories(dir);
   const int removed = remove_numbered_files(dir, "frame", "png") +
                       remove_numbered_files(dir, "mask", "png") +
                       remove_numbered_files(dir, "mesh", "(obj|ply|gltf|bin)");
@@ -127,6 +127,7 @@ class FrameWriter {
         m_progress(stderr, scene.frames, "frame") {}
 
   void write(const Frame& frame) {
+    if (m_rows.empty()) prepare_output(m_dir, m_scene, m_options);
     FrameStats row;
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
@@ -194,7 +195,7 @@ int report_divergence(const FrameDivergence& d, const fs::path& dir, const Scene
     std::fprintf(stderr, "weft: kept frames 1..%d and stats.csv in %s\n", d.frame - 1,
                  dir.c_str());
   else
-    std::fprintf(stderr, "weft: no frame was finished; stats.csv is in %s\n", dir.c_str());
+    std::fprintf(stderr, "weft: no frame was finished; %s is as it was\n", dir.c_str());
   if (options.report && !rows.empty())
     std::printf("weft: report of the frames written: %s\n",
                 write_run_report(dir, scene, options.command_line, rows).c_str());
@@ -238,7 +239,7 @@ int run_scene(const RunOptions& options) {
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
-  prepare_output(dir, scene, options);
+  fs::create_directories(dir);
   print_header(scene, *simulator, *renderer, options.explain);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
   const FrameStreamEnd end =

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -125,21 +126,38 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
   return pin;
 }
 
-// Resolves each pin against the grid alone, so that an error names its own key path.
+// Resolves each pin against the grid alone, so that an error names its own key path; warns of
+// a vertex pinned twice and of a cloth pinned everywhere.
 void check_pins(const std::vector<sim::PinSpec>& pins, const sim::GridSpec& grid,
-                const std::string& file, const std::string& pins_path) {
+                const std::string& file, const std::string& pins_path,
+                std::vector<std::string>& warnings) {
   if (pins.empty()) return;  // no pins: the cloth falls freely
   const sim::ClothMesh mesh = sim::make_grid(grid);
+  std::map<sim::Index, std::size_t> pinned_by;  // vertex → the first pin holding it
   for (std::size_t k = 0; k < pins.size(); ++k) {
+    const std::string path = pins_path + "[" + std::to_string(k) + "]";
     try {
-      (void)sim::resolve_pins({pins[k]}, mesh);
+      std::size_t twice = 0, first = 0;
+      for (const sim::Index v : sim::resolve_pins({pins[k]}, mesh)) {
+        const auto [at, added] = pinned_by.emplace(v, k);
+        if (!added && twice++ == 0) first = at->second;
+      }
+      if (twice)
+        warnings.push_back(file + ": " + path + ": " + std::to_string(twice) +
+                           " of its vertices are pinned already by " + pins_path + "[" +
+                           std::to_string(first) + "]");
     } catch (const std::invalid_argument& e) {
       std::string what = e.what();
       const std::string prefix = "pin 0: ";  // resolve_pins names the pin by its index, here 0
       if (what.compare(0, prefix.size(), prefix) == 0) what.erase(0, prefix.size());
-      throw_scene_error(file, pins_path + "[" + std::to_string(k) + "]", what);
+      throw_scene_error(file, path, what);
     }
   }
+  sim::Index used = 0;
+  for (sim::Index v = 0; v < mesh.vertex_count(); ++v) used += mesh.is_used(v) ? 1 : 0;
+  if (static_cast<sim::Index>(pinned_by.size()) >= used)
+    warnings.push_back(file + ": " + pins_path + ": every vertex of the cloth is pinned: nothing " +
+                       "moves but what a pin path moves");
 }
 
 // "cloth": the grid, its shape, its material and its pins.
@@ -175,7 +193,7 @@ void read_cloth(ObjectReader r, Scene& scene) {
     scene.pin_paths.push_back(std::move(path));
   }
   r.finish();
-  check_pins(scene.pins, g, r.file(), r.path_of("pins"));
+  check_pins(scene.pins, g, r.file(), r.path_of("pins"), scene.warnings);
 }
 
 // "mesh": a closed triangle mesh read from a file (app/mesh_file.h), its path relative to the
@@ -225,7 +243,8 @@ sim::ObstacleMotion read_obstacle_motion(ObjectReader& r) {
 
 // One obstacle object: exactly one of "sphere", "plane", "box", "cylinder", "capsule", "mesh"
 // (sim::Obstacle), and an optional "motion".
-sim::Obstacle read_obstacle(ObjectReader r, sim::ObstacleMotion& motion) {
+sim::Obstacle read_obstacle(ObjectReader r, sim::ObstacleMotion& motion,
+                            std::vector<std::string>& warnings) {
   const std::vector<std::string> kinds = {"sphere", "plane", "box", "cylinder", "capsule", "mesh"};
   std::vector<std::string> present;
   for (const std::string& kind : kinds)
@@ -271,6 +290,9 @@ sim::Obstacle read_obstacle(ObjectReader r, sim::ObstacleMotion& motion) {
     c.a_m = o.quantity_vec3("a", Quantity::length, required);
     c.b_m = o.quantity_vec3("b", Quantity::length, required);
     c.radius_m = o.quantity("radius", Quantity::length, required, Range::gt(0.0));
+    if (c.a_m == c.b_m)
+      warnings.push_back(o.file() + ": " + o.path() +
+                         ": 'a' and 'b' are the same point: a sphere (write it as one)");
     obstacle = c;
   } else {
     obstacle = read_mesh_obstacle(o);
@@ -390,6 +412,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics) {
   s.time_step_s = r.quantity_or_keyword("time_step", Quantity::time, "auto", Range::gt(0.0));
   s.time_step_safety = r.number("time_step_safety", s.time_step_safety, Range::gt(0.0).le(1.0));
   s.max_speed_m_s = r.quantity("max_speed", Quantity::speed, s.max_speed_m_s, Range::gt(0.0));
+  s.max_strain = r.number("max_strain", s.max_strain, Range::gt(0.0));
   s.projection = read_constraints(r.object("constraints"));
   s.collision_thickness_m =
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
@@ -575,9 +598,14 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   if (scene.description.find_first_not_of(" \t\r\n") == std::string::npos)
     top.fail("description", "expected a non-empty string saying what the scene shows");
   read_cloth(top.required_object("cloth"), scene);
+  if (const Json* list = document.contains("obstacles") ? &document.at("obstacles") : nullptr;
+      list && list->is_array() && list->size() > max_obstacles)
+    top.fail("obstacles", "expected at most " + std::to_string(max_obstacles) +
+                              " obstacles (the limit: each is tested against every vertex in "
+                              "every step), got " + std::to_string(list->size()));
   for (ObjectReader& obstacle : top.objects("obstacles")) {
     sim::ObstacleMotion motion;
-    scene.sim.obstacles.push_back(read_obstacle(obstacle, motion));
+    scene.sim.obstacles.push_back(read_obstacle(obstacle, motion, scene.warnings));
     scene.sim.obstacle_motions.push_back(std::move(motion));
   }
   read_simulation(top.object("simulation"), scene.sim, scene.dynamics);
@@ -601,7 +629,13 @@ Scene load_scene(const std::filesystem::path& path) {
   std::string text;
   char buffer[65536];
   std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
+    text.append(buffer, n);
+    if (text.size() > max_scene_file_bytes)  // e.g. /dev/zero: stop, do not read on
+      throw SceneError(path.string() + ": the scene file is larger than " +
+                       std::to_string(max_scene_file_bytes >> 20) +
+                       " MiB (the limit; meshes go in their own files)");
+  }
   if (std::ferror(file.get())) cannot_read();
   return parse_scene(text, path.string());
 }
@@ -628,6 +662,15 @@ std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
     throw SceneError(scene.source + ": cloth.material: " + e.what());
   } catch (const std::invalid_argument& e) {  // other settings the simulator cannot take
     throw SceneError(scene.source + ": " + e.what());
+  }
+  try {
+    (void)simulator->substeps(1.0 / scene.fps);  // the time step against the frame's duration
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.source + ": " +
+                     (scene.sim.time_step_s ? "simulation.time_step: "
+                                            : "cloth.material: the automatic time step (from "
+                                              "the density and stiffness) ") +
+                     e.what());
   }
   if (scene.tension_field)
     simulator->set_initial_positions(folded_start(*scene.tension_field, scene.grid, scene.material,

@@ -3,6 +3,7 @@
 #include "app/scene_options.h"
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <regex>
 
 #include "render/render_settings.h"
@@ -12,8 +13,10 @@ namespace weft::app {
 Scene load_scene_with(const std::optional<std::filesystem::path>& path,
                       const std::vector<Setting>& overrides) {
   Scene scene = path ? load_scene(*path) : default_scene();
-  if (overrides.empty()) return scene;
-  return patched_scene(scene, overrides);
+  if (!overrides.empty()) scene = patched_scene(scene, overrides);
+  for (const std::string& warning : scene.warnings)
+    std::fprintf(stderr, "weft: warning: %s\n", warning.c_str());
+  return scene;
 }
 
 void add_set_option(CLI::App& command, std::vector<Setting>& overrides) {
@@ -81,7 +84,7 @@ void add_threads_option(CLI::App& command, std::optional<int>& threads) {
           "--threads", [&threads](const int& n) { threads = n; },
           "Threads of the ray tracer, self-collision and implicit Euler's conjugate gradients "
           "(0: all hardware threads, the default); the output is the same whatever the number")
-      ->check(CLI::Range(0, 4096));
+      ->check(CLI::Range(0, 4096));  // (an int: CLI11 rejects NaN and fractions itself)
 }
 
 void apply_threads(Scene& scene, std::optional<int> threads) {

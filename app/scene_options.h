@@ -19,7 +19,8 @@ class App;
 namespace weft::app {
 
 // The scene file (or the built-in default scene) with the overrides applied through
-// patched_scene (none: the file as it is, its text unchanged).
+// patched_scene (none: the file as it is, its text unchanged). Prints the scene's warnings
+// ("weft: warning: …") to stderr.
 Scene load_scene_with(const std::optional<std::filesystem::path>& path,
                       const std::vector<Setting>& overrides);
 

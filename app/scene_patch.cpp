@@ -109,9 +109,11 @@ SettingValues parse_set_option(const std::string& text) {
 }
 
 Json setting_json(const std::string& value) {
-  Json parsed = Json::parse(value, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) return Json(value);
-  return parsed;
+  try {
+    return parse_json(value, "--set");  // strict, and bounded in depth
+  } catch (const SceneError&) {
+    return Json(value);
+  }
 }
 
 Json patch_document(Json document, const std::vector<Setting>& settings) {

@@ -22,7 +22,8 @@ struct SettingValues {
 SettingValues parse_set_option(const std::string& text);
 
 // A value as JSON: the value itself when it parses as JSON (numbers, arrays, objects, true,
-// "quoted strings"), else the text as a JSON string (so 1 ms or auto need no quotes).
+// "quoted strings") read by parse_json(), else the text as a JSON string (so 1 ms or auto need
+// no quotes; nor does text that parse_json() rejects, such as nesting beyond its limit).
 Json setting_json(const std::string& value);
 
 // One choice of a value for each key.

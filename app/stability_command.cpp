@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "app/json_reader.h"
 #include "app/output_files.h"
 #include "app/progress.h"
 #include "app/scene.h"
@@ -400,7 +401,8 @@ Command register_stability(CLI::App& app, const std::string& command_line) {
   CLI::App* cmd = app.add_subcommand(
       "stability", "Sweep time step x stiffness for each integrator; write stability.png/.csv");
   cmd->add_option("--out", o->out, "Output folder (default: out/stability)");
-  cmd->add_option("--size", o->size, "Vertices per side of the 1 m cloth (default 12)");
+  check_range(cmd->add_option("--size", o->size, "Vertices per side of the 1 m cloth (default 12)"),
+              Range::closed(3, 48));
   cmd->add_option_function<std::vector<std::string>>(
          "--integrators",
          [o](const std::vector<std::string>& names) {
@@ -408,11 +410,14 @@ Command register_stability(CLI::App& app, const std::string& command_line) {
          },
          "Comma-separated integrators (default: all)")
       ->delimiter(',');
-  cmd->add_option("--stiffness-scales", o->stiffness_scales,
-                  "Comma-separated factors on every rigidity (default 0.1,0.3,1,3,10,30,100)")
-      ->delimiter(',');
-  cmd->add_option("--steps-per-row", o->steps_per_row,
-                  "Time steps h per heatmap row, log spaced (default 24)");
+  check_range(cmd->add_option("--stiffness-scales", o->stiffness_scales,
+                              "Comma-separated factors on every rigidity (default "
+                              "0.1,0.3,1,3,10,30,100)")
+                  ->delimiter(','),
+              Range::closed(1e-4, 1e4));
+  check_range(cmd->add_option("--steps-per-row", o->steps_per_row,
+                              "Time steps h per heatmap row, log spaced (default 24)"),
+              Range::closed(2, 200));
   return {cmd, [o] { return run_stability(*o); }};
 }
 

@@ -1,9 +1,11 @@
 #pragma once
-// stats.csv: one row per written frame, flushed as it is written so that a run that stops
-// (divergence, interruption) keeps the rows of the frames it wrote.
+// stats.csv: one row per written frame. The file is rewritten atomically with each row
+// (app/output_files.h), so a run that stops (divergence, interruption) keeps the rows of the
+// frames it wrote, never half a line, and a run that stops before its first frame leaves an
+// earlier run's file as it was.
 
 #include <filesystem>
-#include <fstream>
+#include <string>
 
 #include "sim/diagnostics.h"
 #include "sim/simulator.h"
@@ -21,12 +23,12 @@ struct FrameStats {
 
 class StatsCsv {
  public:
-  explicit StatsCsv(const std::filesystem::path& path);  // throws std::runtime_error
-  void write(const FrameStats& row);
+  explicit StatsCsv(const std::filesystem::path& path);  // writes nothing yet
+  void write(const FrameStats& row);                       // throws std::runtime_error
 
  private:
   std::filesystem::path m_path;
-  std::ofstream m_out;
+  std::string m_text;  // the header and every row so far
 };
 
 }  // namespace weft::app

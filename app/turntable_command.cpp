@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/json_reader.h"
 #include "app/output_files.h"
 #include "app/contact_sheet.h"
 #include "app/ffmpeg_video.h"
@@ -260,17 +261,21 @@ Command register_turntable(CLI::App& app, const std::string& command_line) {
                   "Scene file (.json; simulated to its last frame first) or mesh file "
                   "(.obj, .ply, .stl, .gltf, .glb, .fbx)")
       ->required();
-  cmd->add_option("--frames", o->frames,
-                  "Images around the orbit; frame i at azimuth 360*i/N (default 36)");
+  check_range(cmd->add_option("--frames", o->frames,
+                              "Images around the orbit; frame i at azimuth 360*i/N (default 36)"),
+              Range::closed(1, max_turntable_frames));
   cmd->add_option("--out", o->out, "Output folder (default: out/<input name>_turntable)");
   add_set_option(*cmd, o->overrides);
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
   add_render_options(*cmd, o->overrides);
   add_threads_option(*cmd, o->threads);
-  cmd->add_option("--elevation-deg", o->orbit.elevation_deg,
-                  "Camera elevation above the cloth centre, degrees (default: the scene camera's)");
-  cmd->add_option("--distance-scale", o->orbit.distance_scale,
-                  "Factor on the scene camera's distance to its target (default 1)");
+  check_range(cmd->add_option("--elevation-deg", o->orbit.elevation_deg,
+                              "Camera elevation above the cloth centre, degrees (default: the "
+                              "scene camera's)"),
+              Range::gt(-90.0).lt(90.0));
+  check_range(cmd->add_option("--distance-scale", o->orbit.distance_scale,
+                              "Factor on the scene camera's distance to its target (default 1)"),
+              Range::gt(0.0).le(1e3));
   add_override_option(*cmd, "--sim-frames", "output.frames", o->overrides,
                       "Simulate to this frame instead of output.frames", "INT");
   return {cmd, [o] { return run_turntable(*o); }};

@@ -112,8 +112,12 @@ class UnitParser {
 
   Unit atom() {
     if (consume("(")) {
+      if (++m_depth > max_unit_parentheses)
+        fail("parentheses nested deeper than " + std::to_string(max_unit_parentheses) +
+             " levels (the limit)");
       const Unit inner = expression();
       if (!consume(")")) fail("missing ')'");
+      --m_depth;
       return inner;
     }
     if (!at_end() && is_digit(peek())) {
@@ -148,6 +152,7 @@ class UnitParser {
 
   std::string_view m_text;
   std::size_t m_pos = 0;
+  int m_depth = 0;  // parentheses open at m_pos
 };
 
 }  // namespace
@@ -330,8 +335,10 @@ std::string describe_dimension(const Dimension& d) {
 
 double parse_quantity(std::string_view text, Quantity kind) {
   const auto fail = [&](const std::string& reason) {
-    throw UnitError("expected " + quantity_description(kind) + ", got '" + std::string(text) +
-                    "' (" + reason + ")");
+    const std::string shown =
+        text.size() <= 80 ? std::string(text) : std::string(text.substr(0, 80)) + "…";
+    throw UnitError("expected " + quantity_description(kind) + ", got '" + shown + "' (" +
+                    reason + ")");
   };
   std::string_view s = trim(text);
   if (s.empty()) fail("an empty string");

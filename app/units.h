@@ -63,6 +63,9 @@ class UnitError : public std::invalid_argument {
 // The units an expression may name (no general SI prefixes: "min" is minutes, "Pa" pascals).
 const std::vector<NamedUnit>& unit_table();
 
+// How deeply parentheses may nest in a unit expression (the parser is recursive).
+inline constexpr int max_unit_parentheses = 16;
+
 // Parses a unit expression such as "gf*cm^2/cm". Throws UnitError naming the problem.
 Unit parse_unit(std::string_view expression);
 

@@ -45,8 +45,11 @@ void append_bytes(void* context, void* data, int size) {
                                              static_cast<std::size_t>(size));
 }
 
-// Writes bytes to path; throws naming the path and the system's reason.
-void write_file(const std::filesystem::path& path, const std::string& bytes) {
+// Writes bytes to path, atomically: to PATH.partial first, renamed over PATH once complete,
+// so that an interrupted run never leaves a truncated PNG. Throws naming the path and the
+// system's reason.
+void write_file(const std::filesystem::path& final_path, const std::string& bytes) {
+  const std::filesystem::path path = final_path.string() + ".partial";
   errno = 0;
   FilePtr file(std::fopen(path.c_str(), "wb"));
   if (!file) {
@@ -62,6 +65,10 @@ void write_file(const std::filesystem::path& path, const std::string& bytes) {
   if (std::fclose(file.release()) != 0) {
     throw std::runtime_error("write_png: cannot close " + quoted(path) + ": " +
                              std::strerror(errno));
+  }
+  if (std::rename(path.c_str(), final_path.c_str()) != 0) {
+    throw std::runtime_error("write_png: cannot rename " + quoted(path) + " to " +
+                             quoted(final_path) + ": " + std::strerror(errno));
   }
 }
 

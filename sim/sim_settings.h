@@ -39,6 +39,13 @@ struct SimSettings {
   // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
   // explosion, not physics: free fall reaches 100 m/s only after 10 s).
   double max_speed_m_s = 200.0;
+  // Divergence guards for a blow-up that stays finite, checked after each Simulator::advance():
+  // a warp or weft edge strained beyond max_strain (5 = 500 %: no fabric; a wool sheet 1000×
+  // softer than Kang & Yu's stretches about 170 % under its own weight), and, when nothing
+  // feeds energy in (no moving pin or obstacle, no air), a total energy (kinetic + elastic +
+  // gravity) grown above its start by more than M |g| D + ½ M (1 m/s)² + the start's kinetic
+  // and elastic energy (M the cloth's mass, D its diagonal): damping only takes energy out.
+  double max_strain = 5.0;
   // Inextensibility after the unconstrained step (the "project" phase). With a projection
   // method the warp/weft springs are replaced by constraints.
   ProjectionSettings projection;

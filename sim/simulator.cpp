@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "sim/constraints/inextensibility.h"
+
 
 namespace weft::sim {
 namespace {
@@ -93,13 +95,26 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
 
 Simulator::~Simulator() = default;
 
+long Simulator::substeps(double dt_s) const {
+  const double ratio = dt_s / m_time_step_s;
+  if (!(ratio <= max_substeps)) {  // NaN included
+    std::ostringstream what;
+    what << "a time of " << dt_s << " s needs " << ratio << " steps of " << m_time_step_s
+         << " s, more than the limit of " << max_substeps;
+    throw std::invalid_argument(what.str());
+  }
+  return std::max(1L, static_cast<long>(std::ceil(ratio - 1e-9)));
+}
+
 void Simulator::advance(double dt_s) {
   if (dt_s <= 0.0) return;
-  const long substeps = static_cast<long>(std::ceil(dt_s / m_time_step_s - 1e-9));
-  const double h = dt_s / static_cast<double>(substeps);
+  const long n = substeps(dt_s);
+  if (!m_energy_guard_started) start_energy_guard();
+  const double h = dt_s / static_cast<double>(n);
   const double t_end = m_state.time_s + dt_s;
-  for (long s = 0; s < substeps; ++s) step(h);
+  for (long s = 0; s < n; ++s) step(h);
   m_state.time_s = t_end;  // no drift from summing substeps
+  check_growth();
 }
 
 void Simulator::set_initial_positions(const Matrix3X& x) {
@@ -188,6 +203,51 @@ void Simulator::check_finite() const {
         << m_settings.max_speed_m_s << " m/s; try a smaller time_step)";
       throw DivergenceError(m_steps, m_state.time_s, q.str());
     }
+  }
+}
+
+// At the first advance(), for a passive cloth: the energy check_growth() compares with.
+void Simulator::start_energy_guard() {
+  m_energy_guard_started = true;
+  // Nothing feeds energy in. Not with constraints either: a projection that cannot converge
+  // (the locking triangle-edge constraints) leaves its best iterate, energy and all.
+  const bool passive = m_moving_pins.empty() && !m_settings.aero.enabled &&
+                       !any_moves(m_settings.obstacle_motions) &&
+                       m_settings.projection.method == ProjectionMethod::none;
+  if (!passive) return;
+  double mass_kg = 0.0;
+  for (Index i = 0; i < m_state.x.rows(); ++i)
+    if (m_mesh.is_used(i)) mass_kg += m_system.mass_kg[i];
+  const double diagonal_m = (m_state.x.colwise().maxCoeff() - m_state.x.colwise().minCoeff()).norm();
+  const Diagnostics start = diagnostics();
+  m_start_energy_J = start.total_energy_J();
+  m_energy_margin_J = mass_kg * m_settings.gravity_m_s2.norm() * diagonal_m + 0.5 * mass_kg +
+                      start.kinetic_energy_J + std::abs(start.elastic_energy_J);
+}
+
+// A blow-up that stays finite (a step far above the critical one can swing the cloth to
+// 1000 % strain at bounded speed): the strain limit, and energy a passive cloth cannot gain.
+void Simulator::check_growth() const {
+  const Diagnostics d = diagnostics();
+  for (const EdgeConstraint& e : m_warp_weft_edges) {
+    const double strain = std::abs(edge_strain(m_state.x.row(e.a), m_state.x.row(e.b), e.rest_m));
+    if (!(strain > m_settings.max_strain)) continue;
+    std::ostringstream q;
+    q << "the edge from vertex " << e.a << " to vertex " << e.b << " is strained "
+      << 100.0 * strain << " % (limit " << 100.0 * m_settings.max_strain
+      << " %; try a smaller time_step)";
+    throw DivergenceError(m_steps, m_state.time_s, q.str());
+  }
+  if (!m_start_energy_J) return;
+  const double gain_J = d.total_energy_J() - *m_start_energy_J;
+  if (gain_J > m_energy_margin_J) {
+    Index fastest = 0;
+    m_state.v.rowwise().squaredNorm().maxCoeff(&fastest);
+    std::ostringstream q;
+    q << "the total energy grew by " << gain_J << " J since the start, more than the "
+      << m_energy_margin_J << " J a cloth with still pins and obstacles can gain (fastest: vertex "
+      << fastest << " at " << m_state.v.row(fastest).norm() << " m/s; try a smaller time_step)";
+    throw DivergenceError(m_steps, m_state.time_s, q.str());
   }
 }
 

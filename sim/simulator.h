@@ -2,6 +2,7 @@
 // The time stepper: Simulator::step() is a list of named, timed phases.
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ class DivergenceError : public std::runtime_error {
   std::string m_quantity;
 };
 
+// The most steps one advance() takes (a frame, for the commands).
+inline constexpr double max_substeps = 1e6;
+
 // A cloth simulation: the System (masses, gravity, damping, force terms, pins) of a mesh and
 // material, the TimeIntegrator the settings name, and the contacts-and-constraints phase.
 // Not movable (the System and the phase refer to its members).
@@ -42,8 +46,13 @@ class Simulator {
             const SimSettings& settings);
   ~Simulator();
 
-  // Advances by exactly dt_s, in equal substeps of at most time_step(). Throws DivergenceError.
+  // Advances by exactly dt_s, in equal substeps of at most time_step(). Throws DivergenceError,
+  // and std::invalid_argument as substeps().
   void advance(double dt_s);
+  // The number of equal steps, each at most time_step(), that advance(dt_s) takes: at least 1.
+  // Throws std::invalid_argument when that is more than max_substeps (a time step of 1e-300 s,
+  // or the automatic step of an absurd density), rather than overflowing to none.
+  long substeps(double dt_s) const;
   // Moves these pinned vertices along the path (offsets from their rest positions, at the
   // simulated time). Throws std::invalid_argument naming a vertex that is not pinned.
   void set_pin_path(const std::vector<Index>& vertices, const PinPath& path);
@@ -87,6 +96,8 @@ class Simulator {
   void integrate(double h_s);
   void filter_velocities(bool corrected, bool kinetic_reset, double h_s);
   void check_finite() const;
+  void start_energy_guard();
+  void check_growth() const;
   std::string explain_integrate() const;
   std::string explain_forces() const;
 
@@ -102,6 +113,11 @@ class Simulator {
   std::vector<EdgeConstraint> m_warp_weft_edges;  // for the strain diagnostic
   State m_state;
   Matrix3X m_x_start;  // #V×3 start-of-step positions: velocity filter, friction
+  // The energy guard of check_growth(): the total energy at the first advance() and how much
+  // it may grow; none when pins, obstacles or air feed energy in.
+  bool m_energy_guard_started = false;
+  std::optional<double> m_start_energy_J;
+  double m_energy_margin_J = 0.0;
   double m_critical_step_s = 0.0;
   double m_time_step_s = 0.0;
   long m_steps = 0;

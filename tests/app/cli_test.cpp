@@ -18,25 +18,12 @@ namespace {
 
 using Result = weft::app::test::CommandResult;
 using weft::app::test::run_weft;
+using weft::app::test::tiny_scene;
 
 class Cli : public weft::app::test::CliDirectoryTest {
  protected:
   Cli() : CliDirectoryTest("cli") {}
 };
-
-// A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels.
-std::string tiny_scene(const std::string& cloth_extra = "", const std::string& top_extra = "") {
-  return R"({
-  "description": "tiny end-to-end test scene",
-  "cloth": {
-    "size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
-    "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}])" +
-         cloth_extra + R"(
-  },
-  "output": {"fps": 24, "frames": 4},
-  "render": {"size": [96, 64], "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]}})" +
-         top_extra + "\n}\n";
-}
 
 TEST_F(Cli, VersionAndHelp) {
   const Result version = run_weft("--version");

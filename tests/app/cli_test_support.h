@@ -46,6 +46,20 @@ inline std::filesystem::path fresh_test_directory(const std::string& suite) {
   return dir;
 }
 
+// A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels.
+inline std::string tiny_scene(const std::string& cloth_extra = "", const std::string& top_extra = "") {
+  return R"({
+  "description": "tiny end-to-end test scene",
+  "cloth": {
+    "size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
+    "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}])" +
+         cloth_extra + R"(
+  },
+  "output": {"fps": 24, "frames": 4},
+  "render": {"size": [96, 64], "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]}})" +
+         top_extra + "\n}\n";
+}
+
 // A fixture with that folder in m_dir and scene files written into it.
 class CliDirectoryTest : public ::testing::Test {
  protected:

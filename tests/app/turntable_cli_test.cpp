@@ -160,7 +160,7 @@ TEST_F(TurntableCli, BadInputIsAnErrorWithNothingWritten) {
   const CommandResult zero =
       run_weft("turntable " + scene.string() + " --frames 0 --out " + out.string());
   EXPECT_EQ(zero.exit_code, 1) << zero.output;
-  EXPECT_CONTAINS(zero.output, "--frames: expected an integer in 1..3600");
+  EXPECT_CONTAINS(zero.output, "--frames: expected a number in [1, 3600], got '0'");
 
   const fs::path text = write_file("notes.txt", "hello");
   const CommandResult unknown = run_weft("turntable " + text.string() + " --out " + out.string());
