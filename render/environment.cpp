@@ -15,6 +15,7 @@
 #include <stb_image_write.h>
 
 #include "base/constants.h"
+#include "render/image.h"
 
 namespace weft::render {
 
@@ -123,13 +124,9 @@ EnvironmentMap read_environment_map(const std::filesystem::path& path) {
   int width = 0, height = 0, channels = 0;
   std::unique_ptr<float, void (*)(void*)> pixels(
       stbi_loadf(path.c_str(), &width, &height, &channels, 3), stbi_image_free);
-  if (!pixels) {
-    const char* reason = stbi_failure_reason();
-    std::string why = reason ? reason : "unknown reason";
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) why = "no such file (" + why + ")";
-    throw std::runtime_error("read_environment_map: cannot read '" + path.string() + "': " + why);
-  }
+  if (!pixels)
+    throw std::runtime_error("read_environment_map: cannot read '" + path.string() +
+                             "': " + stb_read_failure(path));
   std::vector<Eigen::Vector3f> radiance(static_cast<std::size_t>(width) * height);
   for (std::size_t k = 0; k < radiance.size(); ++k)
     radiance[k] = Eigen::Vector3f(pixels.get() + 3 * k).cwiseMax(0.0f);

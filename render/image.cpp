@@ -168,18 +168,21 @@ void write_png(const Mask& mask, const std::filesystem::path& path) {
   write_png_bytes(mask.width, mask.height, 1, grey.data(), path);
 }
 
+std::string stb_read_failure(const std::filesystem::path& path) {
+  const char* reason = stbi_failure_reason();
+  std::string why = reason ? reason : "unknown reason";
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) why = "no such file (" + why + ")";
+  return why;
+}
+
 Image read_image(const std::filesystem::path& path) {
   int width = 0, height = 0, channels_in_file = 0;
   // 3 requested channels: stb converts grey/grey-alpha/RGBA to RGB; rows come top row first.
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load(path.c_str(), &width, &height, &channels_in_file, 3), stbi_image_free);
-  if (!pixels) {
-    const char* reason = stbi_failure_reason();
-    std::string why = reason ? reason : "unknown reason";
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) why = "no such file (" + why + ")";
-    throw std::runtime_error("read_image: cannot read " + quoted(path) + ": " + why);
-  }
+  if (!pixels)
+    throw std::runtime_error("read_image: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   Image image(width, height);
   std::memcpy(image.data(), pixels.get(),
               static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "render/mask.h"
@@ -41,5 +42,8 @@ void write_png(const Image& image, const Mask& opaque, const std::filesystem::pa
 void write_png(const Mask& mask, const std::filesystem::path& path);
 // Reads a PNG/JPG as RGB; throws std::runtime_error naming the path and stb's reason.
 Image read_image(const std::filesystem::path& path);
+
+// Why stb_image just failed to read `path`: its failure reason, or that there is no such file.
+std::string stb_read_failure(const std::filesystem::path& path);
 
 }  // namespace weft::render

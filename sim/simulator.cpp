@@ -228,7 +228,6 @@ void Simulator::start_energy_guard() {
 // A blow-up that stays finite (a step far above the critical one can swing the cloth to
 // 1000 % strain at bounded speed): the strain limit, and energy a passive cloth cannot gain.
 void Simulator::check_growth() const {
-  const Diagnostics d = diagnostics();
   for (const EdgeConstraint& e : m_warp_weft_edges) {
     const double strain = std::abs(edge_strain(m_state.x.row(e.a), m_state.x.row(e.b), e.rest_m));
     if (!(strain > m_settings.max_strain)) continue;
@@ -239,7 +238,7 @@ void Simulator::check_growth() const {
     throw DivergenceError(m_steps, m_state.time_s, q.str());
   }
   if (!m_start_energy_J) return;
-  const double gain_J = d.total_energy_J() - *m_start_energy_J;
+  const double gain_J = diagnostics().total_energy_J() - *m_start_energy_J;
   if (gain_J > m_energy_margin_J) {
     Index fastest = 0;
     m_state.v.rowwise().squaredNorm().maxCoeff(&fastest);

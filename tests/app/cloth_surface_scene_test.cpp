@@ -25,15 +25,6 @@ std::filesystem::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-std::string error_parsing(const Json& scene, const std::filesystem::path& source) {
-  try {
-    parse_scene(scene.dump(), source.string());
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(ClothSurfaceScene, DefaultsLeaveTheClothAlone) {
   const Scene scene = test::parse_json_scene(test::scene_with_render(Json::object()));
   EXPECT_EQ(scene.render.cloth_surface.subdivision_levels, 0);
@@ -70,13 +61,13 @@ TEST(ClothSurfaceScene, TextureFileIsRelativeToTheScene) {
 TEST(ClothSurfaceScene, BadTextureFileNamesKeyAndFile) {
   const std::filesystem::path dir = fresh_dir("bad");
   const std::filesystem::path source = dir / "scene.json";
-  const std::string missing = error_parsing(
+  const std::string missing = test::scene_error_of(
       test::scene_with_render(Json::parse(R"({"texture": {"file": "nowhere.png"}})")), source);
   EXPECT_CONTAINS(missing, "render.texture.file");
   EXPECT_CONTAINS(missing, "nowhere.png");
 
   std::ofstream(dir / "not_an_image.png") << "this is text";
-  const std::string garbage = error_parsing(
+  const std::string garbage = test::scene_error_of(
       test::scene_with_render(Json::parse(R"({"texture": {"file": "not_an_image.png"}})")), source);
   EXPECT_CONTAINS(garbage, "render.texture.file");
   EXPECT_CONTAINS(garbage, "not_an_image.png");

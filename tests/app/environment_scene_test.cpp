@@ -29,15 +29,6 @@ std::filesystem::path folder_with_map(const std::string& name) {
   return dir;
 }
 
-std::string error_parsing(const Json& scene, const std::filesystem::path& source) {
-  try {
-    parse_scene(scene.dump(), source.string());
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(EnvironmentScene, NoEnvironmentByDefault) {
   const Scene scene = test::parse_json_scene(test::scene_with_render(Json::object()));
   EXPECT_FALSE(scene.render.environment.map);
@@ -64,7 +55,7 @@ TEST(EnvironmentScene, BadMapOrValuesNameTheKeyAndFile) {
   const std::filesystem::path dir = folder_with_map("bad");
   const std::filesystem::path source = dir / "scene.json";
   const auto error_of = [&](const char* render) {
-    return error_parsing(test::scene_with_render(Json::parse(render)), source);
+    return test::scene_error_of(test::scene_with_render(Json::parse(render)), source);
   };
   const std::string missing = error_of(R"({"environment": {"file": "nowhere.hdr"}})");
   EXPECT_CONTAINS(missing, "render.environment.file");

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "app/json_reader.h"
@@ -17,10 +18,12 @@ inline Scene parse_json_scene(const Json& scene) {
   return parse_scene(scene.dump(2), "scene.json");
 }
 
-// The SceneError message of the text read as "scene.json", or "no error".
-inline std::string scene_error_of_text(const std::string& text) {
+// The SceneError message of the text read as `source` (its relative paths resolve from there),
+// or "no error".
+inline std::string scene_error_of_text(const std::string& text,
+                                       const std::string& source = "scene.json") {
   try {
-    parse_scene(text, "scene.json");
+    parse_scene(text, source);
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -29,6 +32,11 @@ inline std::string scene_error_of_text(const std::string& text) {
 
 inline std::string scene_error_of(const Json& scene) {
   return scene_error_of_text(scene.dump(2));
+}
+
+// The same for a scene read as the file `source` (one line of JSON).
+inline std::string scene_error_of(const Json& scene, const std::filesystem::path& source) {
+  return scene_error_of_text(scene.dump(), source.string());
 }
 
 

@@ -264,13 +264,9 @@ TEST_F(RayTraceEnvironment, UnoccludedSphereAgreesWithTheShIrradiance) {
 }
 
 TEST_F(RayTraceEnvironment, RasterizerShowsTheShApproximationAndTheSameBackground) {
-  std::unique_ptr<GlContext> context;
-  try {
-    context = make_osmesa_context(64, 64);
-  } catch (const std::exception& e) {
-    GTEST_SKIP() << "no OSMesa context: " << e.what();
-  }
-  RasterRenderer raster(std::move(context));
+  std::string why;
+  const std::unique_ptr<RasterRenderer> raster = test::osmesa_raster_or_null(why);
+  if (!raster) GTEST_SKIP() << "no OSMesa context: " << why;
   RenderSettings s = lit_by(std::make_shared<const EnvironmentMap>(read_environment_map(
                                 std::filesystem::path(WEFT_SOURCE_DIR) /
                                 "tests/data/hdri/studio_128x64.hdr")),
@@ -283,7 +279,7 @@ TEST_F(RayTraceEnvironment, RasterizerShowsTheShApproximationAndTheSameBackgroun
   const Eigen::Vector3f center(0, 0, 0.5);
   const RenderMesh sphere = make_sphere_mesh(center.cast<double>(), 0.5, 128, 64);
   RayTracer tracer;
-  const Image rasterized = raster.render(sphere, s, {});
+  const Image rasterized = raster->render(sphere, s, {});
   const Image traced = tracer.render(sphere, s, {});
   m_rendered.add("raster", rasterized);
   m_rendered.add("raytrace", traced);

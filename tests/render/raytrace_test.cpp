@@ -230,13 +230,9 @@ TEST_F(RayTrace, BadInputThrowsNamingTheSettingOrObject) {
 }
 
 TEST_F(RayTrace, SilhouetteMatchesTheRasterizer) {
-  std::unique_ptr<GlContext> context;
-  try {
-    context = make_osmesa_context(64, 64);
-  } catch (const std::exception& e) {
-    GTEST_SKIP() << "no OSMesa context: " << e.what();
-  }
-  RasterRenderer raster(std::move(context));
+  std::string why;
+  const std::unique_ptr<RasterRenderer> raster = test::osmesa_raster_or_null(why);
+  if (!raster) GTEST_SKIP() << "no OSMesa context: " << why;
   RenderSettings s = view_from_above(160, 120);
   s.camera.eye = {1.3, -1.7, 1.4};
   s.camera.target = {0, 0, 0.35};
@@ -244,7 +240,7 @@ TEST_F(RayTrace, SilhouetteMatchesTheRasterizer) {
   s.msaa_samples = 1;  // one sample at each pixel centre, as the ray tracer's single sample
   const RenderMesh cloth = wavy_sheet(32, 0.6);
   const std::vector<RenderObject> sphere{{make_sphere_mesh({0, 0, 0.25}, 0.25, 32, 16)}};
-  const Image rasterized = raster.render(cloth, s, sphere);
+  const Image rasterized = raster->render(cloth, s, sphere);
   m_rendered.add("raster", rasterized);
   const Image traced = render(cloth, s, "traced", sphere);
 

@@ -11,11 +11,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "render/camera.h"
+#include "render/gl_context.h"
 #include "render/image.h"
 #include "render/raster.h"
 #include "render/render_mesh.h"
@@ -115,6 +117,17 @@ inline Eigen::Matrix3d opencv_look_at(const Eigen::Vector3d& eye, const Eigen::V
   Eigen::Matrix3d r;
   r << x, y, z;
   return r * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+// A rasterizer on an OSMesa context, or null (with the reason in `why`) where this machine
+// cannot make one: the caller skips.
+inline std::unique_ptr<RasterRenderer> osmesa_raster_or_null(std::string& why) {
+  try {
+    return std::make_unique<RasterRenderer>(make_osmesa_context(64, 64));
+  } catch (const std::exception& e) {
+    why = e.what();
+    return nullptr;
+  }
 }
 
 }  // namespace weft::render::test
