@@ -5,11 +5,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "app/measure_command.h"
 #include "app/scene.h"
-#include "app/version.h"
+#include "app/output_files.h"
 #include "base/format.h"
 #include "base/constants.h"
 #include "render/canvas.h"
@@ -189,12 +188,7 @@ int run_measure_photo(const MeasurePhotoOptions& o) {
   const sim::DrapeMeasureSettings settings;
   const DrapePhotoMeasurement m = measure_drape_silhouette(s.mask, o.setup, source, settings);
   const fs::path dir = o.out.value_or(fs::path("out") / o.photo.stem());
-  fs::create_directories(dir);
-  {
-    std::ofstream txt(dir / "measure.txt");
-    txt << "weft " << version() << "\ncommand: " << o.command_line << "\nphoto: " << o.photo.string()
-        << "\n";
-  }
+  start_output(dir, {}, {{"measure.txt", run_record(o.command_line, {{"photo", o.photo.string()}})}});
   write_outline(dir / "outline.csv", m.shape, settings.folds);
   render::write_png(drape_photo_overlay(photo, m, settings.folds), dir / "overlay.png");
   print_table(o, s, m);

@@ -10,7 +10,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
+
+#include "app/output_files.h"
 
 extern char** environ;
 
@@ -34,6 +37,34 @@ std::optional<std::filesystem::path> find_on_path(const std::string& program) {
   return std::nullopt;
 }
 
+namespace {
+
+// Runs ffmpeg on `args` and waits for it; throws std::runtime_error "OUTPUT: <why>" when it
+// cannot start or does not succeed.
+void run_ffmpeg(const std::filesystem::path& ffmpeg, std::vector<std::string> args,
+                const std::filesystem::path& output) {
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ);
+  if (spawned != 0)
+    throw std::runtime_error(output.string() + ": cannot start " + ffmpeg.string() + ": " +
+                             std::strerror(spawned));
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR)
+      throw std::runtime_error(output.string() + ": lost track of ffmpeg: " +
+                               std::strerror(errno));
+  if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+    throw std::runtime_error(output.string() + ": ffmpeg failed with exit status " +
+                             std::to_string(WEXITSTATUS(status)));
+  if (!WIFEXITED(status))
+    throw std::runtime_error(output.string() + ": ffmpeg was stopped by a signal");
+}
+
+}  // namespace
+
 VideoResult encode_video(const std::filesystem::path& ffmpeg, const std::filesystem::path& pattern,
                          double fps, const std::filesystem::path& output) {
   char rate[32];
@@ -41,7 +72,8 @@ VideoResult encode_video(const std::filesystem::path& ffmpeg, const std::filesys
   std::vector<std::string> args = {ffmpeg.string(), "-nostdin", "-y", "-loglevel", "error",
                                     "-framerate", rate, "-start_number", "1",
                                     "-i", pattern.string()};
-  if (output.extension() == ".gif") {
+  const bool gif = output.extension() == ".gif";
+  if (gif) {
     // One palette for the whole sequence, made from its own colours.
     args.insert(args.end(), {"-filter_complex",
                              "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop", "0"});
@@ -49,33 +81,17 @@ VideoResult encode_video(const std::filesystem::path& ffmpeg, const std::filesys
     args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
                              "-pix_fmt", "yuv420p"});
   }
-  args.push_back(output.string());
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
+  // Written to OUTPUT.partial, whose extension ffmpeg cannot read the format from.
+  args.insert(args.end(), {"-f", gif ? "gif" : "mp4"});
   VideoResult result;
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ);
-  if (spawned != 0) {
-    result.message = output.string() + ": cannot start " + ffmpeg.string() + ": " +
-                     std::strerror(spawned);
-    return result;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      result.message = output.string() + ": lost track of ffmpeg: " + std::strerror(errno);
-      return result;
-    }
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+  try {
+    write_atomically(output, [&](const std::filesystem::path& partial) {
+      args.push_back(partial.string());
+      run_ffmpeg(ffmpeg, args, output);
+    });
     result.ok = true;
-  } else if (WIFEXITED(status)) {
-    result.message = output.string() + ": ffmpeg failed with exit status " +
-                     std::to_string(WEXITSTATUS(status));
-  } else {
-    result.message = output.string() + ": ffmpeg was stopped by a signal";
+  } catch (const std::runtime_error& e) {
+    result.message = e.what();
   }
   return result;
 }

@@ -20,7 +20,7 @@ struct VideoResult {
 // at `fps` frames per second into `output`: an H.264 .mp4 (yuv420p, sides padded to even) or a
 // looping .gif (with a palette made from the frames), by the extension. Runs `ffmpeg` (found
 // on $PATH, the executable given) without a shell and waits for it; ffmpeg's own messages
-// go to stderr.
+// go to stderr. The video is written to OUTPUT.partial and renamed: never a part of one.
 VideoResult encode_video(const std::filesystem::path& ffmpeg, const std::filesystem::path& pattern,
                          double fps, const std::filesystem::path& output);
 

@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 
 #include "app/json_reader.h"
+#include "app/output_files.h"
 #include "app/progress.h"
 #include "app/run_command.h"
 #include "app/run_report.h"
@@ -103,8 +103,9 @@ void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
     fs::remove_all(scratch);
     throw std::runtime_error("weft run stopped with exit code " + std::to_string(code));
   }
-  fs::copy_file(scratch / frame_file_name(frames), options.out / (entry.name + ".png"),
-                fs::copy_options::overwrite_existing);
+  write_atomically(options.out / (entry.name + ".png"), [&](const fs::path& partial) {
+    fs::copy_file(scratch / frame_file_name(frames), partial, fs::copy_options::overwrite_existing);
+  });
   render::write_png(frame_contact_sheet(scratch, evenly_spaced_frames(frames, report_sheet_frames),
                                         scene.fps),
                     options.out / (entry.name + "_sheet.png"));
@@ -146,7 +147,6 @@ int run_gallery(const GalleryOptions& options) {
     throw SceneError("--frames-scale: expected a number in (0, 10], e.g. 0.25, got " +
                      std::to_string(options.frames_scale));
   const std::vector<fs::path> files = selected(scene_files(options.scenes), options.only);
-  fs::create_directories(options.out);
 
   std::vector<GalleryEntry> entries;
   const int n = static_cast<int>(files.size());
@@ -164,9 +164,8 @@ int run_gallery(const GalleryOptions& options) {
     }
     entries.push_back(std::move(entry));
   }
-  const fs::path readme_path = options.out / "README.md";
-  std::ofstream(readme_path) << readme(entries, options);
-  if (!fs::exists(readme_path)) throw std::runtime_error(readme_path.string() + ": cannot write");
+  fs::create_directories(options.out);  // when no scene got as far as its first frame
+  write_text(options.out / "README.md", readme(entries, options));
 
   std::vector<std::string> failed;
   for (const GalleryEntry& e : entries)

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
@@ -14,8 +14,8 @@
 #include "app/drape_photo.h"
 #include "app/frame_stream.h"
 #include "app/json_reader.h"
+#include "app/output_files.h"
 #include "app/progress.h"
-#include "app/version.h"
 #include "base/format.h"
 #include "sim/collision/self_intersection.h"
 #include "analysis/measure/settle.h"
@@ -32,28 +32,26 @@ std::string support_name(const sim::DrapeSupport& s) {
   return "the " + s.kind + " obstacles[" + std::to_string(s.obstacle) + "]";
 }
 
+// measure.csv, rewritten whole (app/output_files.h) with each simulated frame's row.
 class MeasureCsv {
  public:
-  explicit MeasureCsv(const fs::path& path) : m_path(path), m_out(path) {
-    if (!m_out) throw std::runtime_error(path.string() + ": cannot write");
-    m_out << "frame,time_s,kinetic_energy_J,max_speed_m_s,drape_coefficient,folds\n";
-    m_out.flush();
+  explicit MeasureCsv(const fs::path& path)
+      : m_path(path), m_text("frame,time_s,kinetic_energy_J,max_speed_m_s,drape_coefficient,folds\n") {}
+  void add(const MeasureRow& r) {
+    std::ostringstream row;
+    row.precision(9);
+    row << r.frame << ',' << r.time_s << ',' << r.kinetic_energy_J << ',' << r.max_speed_m_s
+        << ',';
+    if (r.drape_coefficient) row << *r.drape_coefficient;
+    row << ',';
+    if (r.folds) row << *r.folds;
+    m_text += row.str() + '\n';
   }
-  void write(const MeasureRow& r) {
-    m_out.precision(9);
-    m_out << r.frame << ',' << r.time_s << ',' << r.kinetic_energy_J << ',' << r.max_speed_m_s
-          << ',';
-    if (r.drape_coefficient) m_out << *r.drape_coefficient;
-    m_out << ',';
-    if (r.folds) m_out << *r.folds;
-    m_out << '\n';
-    m_out.flush();
-    if (!m_out) throw std::runtime_error(m_path.string() + ": write failed");
-  }
+  void save() const { write_text(m_path, m_text); }
 
  private:
   fs::path m_path;
-  std::ofstream m_out;
+  std::string m_text;  // the header and every row so far
 };
 
 // The table on stdout: one "name  value" line per measurement.
@@ -97,7 +95,7 @@ void print_table(const Scene& scene, const SceneMeasurement& m) {
 
 void write_outline(const fs::path& path, const sim::DrapeShape& drape,
                    const sim::FoldCountSettings& folds) {
-  std::ofstream out(path);
+  std::ostringstream out;
   out << "theta_deg,radius_m,smoothed_radius_m\n";
   const std::vector<double> smooth =
       sim::circular_moving_average(drape.radii_m, folds.smoothing_bins);
@@ -106,7 +104,7 @@ void write_outline(const fs::path& path, const sim::DrapeShape& drape,
   for (int k = 0; k < bins; ++k)
     out << 360.0 * (k + 0.5) / bins << ',' << drape.radii_m[static_cast<std::size_t>(k)] << ','
         << smooth[static_cast<std::size_t>(k)] << '\n';
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  write_text(path, out.str());
 }
 
 sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh) {
@@ -211,13 +209,8 @@ int run_measure(const MeasureOptions& options) {
   const std::optional<sim::DrapeSupport> support =
       scene_support(scene, simulator->mesh(), options.require_drape);
 
+  // The output folder is touched when the first frame is measured (start_output).
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
-  fs::create_directories(dir);
-  {
-    std::ofstream txt(dir / "measure.txt");
-    txt << "weft " << version() << "\ncommand: " << options.command_line
-        << "\nscene: " << scene.source << "\n";
-  }
   MeasureCsv csv(dir / "measure.csv");
   std::fprintf(stderr,
                "weft: measuring %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms, %s\n",
@@ -227,10 +220,16 @@ int run_measure(const MeasureOptions& options) {
                        : "no support under the cloth: settle time only");
   Progress progress(stderr, scene.frames, "frame");
   SceneMeasurement m;
+  int measured = 0;  // the last frame in measure.csv
   try {
     m = measure_scene(scene, *simulator, options.require_drape, [&](const MeasureRow& row) {
-      csv.write(row);
+      csv.add(row);
       if (row.frame == 0) return;
+      if (row.frame == 1)
+        start_output(dir, {}, {{"measure.txt", run_record(options.command_line,
+                                                          {{"scene", scene.source}})}});
+      csv.save();
+      measured = row.frame;
       std::string detail = format("t = %.2f s", row.time_s) +
                            format(", max speed %.3g m/s", row.max_speed_m_s);
       if (row.drape_coefficient)
@@ -241,8 +240,11 @@ int run_measure(const MeasureOptions& options) {
   } catch (const sim::DivergenceError& e) {
     progress.finish();
     std::fprintf(stderr, "weft: error: %s\n", e.what());
-    std::fprintf(stderr, "weft: measure.csv up to the last finished frame is in %s\n",
-                 dir.c_str());
+    if (measured > 0)
+      std::fprintf(stderr, "weft: measure.csv up to the last finished frame is in %s\n",
+                   dir.c_str());
+    else
+      std::fprintf(stderr, "weft: no frame was finished; %s is as it was\n", dir.c_str());
     return exit_diverged;
   }
   progress.finish();

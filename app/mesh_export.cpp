@@ -5,12 +5,15 @@
 #include <assimp/scene.h>
 
 #include <assimp/Exporter.hpp>
+#include <filesystem>
 #include <stdexcept>
 
 #include "app/scene.h"
 
 namespace weft::app {
 namespace {
+
+namespace fs = std::filesystem;
 
 // assimp's exporter ids.
 const char* exporter_id(MeshFormat format) {
@@ -99,10 +102,24 @@ void export_mesh(const render::RenderMesh& mesh, MeshFormat format,
     scene.mRootNode->mTransformation =
         aiMatrix4x4(1, 0, 0, 0,  0, 0, 1, 0,  0, -1, 0, 0,  0, 0, 0, 1);
   }
+  // assimp writes the file and its companions (an OBJ's .mtl, a glTF's .bin) itself: into a
+  // folder PATH.partial, whose files are then moved beside PATH, companions first, so that a
+  // reader never sees a part of a mesh file, nor one without its companions.
+  const fs::path folder = path.string() + ".partial";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
   Assimp::Exporter exporter;
-  if (exporter.Export(&scene, exporter_id(format), path.string()) != aiReturn_SUCCESS)
+  if (exporter.Export(&scene, exporter_id(format), (folder / path.filename()).string()) !=
+      aiReturn_SUCCESS) {
+    fs::remove_all(folder);
     throw std::runtime_error(path.string() + ": cannot export mesh: " +
                              exporter.GetErrorString());
+  }
+  for (const auto& entry : fs::directory_iterator(folder))
+    if (entry.path().filename() != path.filename())
+      fs::rename(entry.path(), path.parent_path() / entry.path().filename());
+  fs::rename(folder / path.filename(), path);
+  fs::remove(folder);
 }
 
 }  // namespace weft::app

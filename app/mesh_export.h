@@ -22,7 +22,8 @@ const char* mesh_extension(MeshFormat format);
 // z-up coordinates; the glTF's root node turns them to glTF's y-up (x, y, z) → (x, z, −y), so
 // that viewers show the cloth upright, and the vertex data stays in weft's coordinates.
 // Throws std::runtime_error "PATH: cannot export mesh: <assimp's reason>" when it cannot, and
-// std::invalid_argument for an empty or malformed mesh (render::validate).
+// std::invalid_argument for an empty or malformed mesh (render::validate). The files are
+// written whole: into a folder PATH.partial, then moved beside PATH (companions first).
 void export_mesh(const render::RenderMesh& mesh, MeshFormat format,
                  const std::filesystem::path& path);
 

@@ -2,25 +2,38 @@
 
 #include "app/output_files.h"
 
+#include <cstdio>
 #include <fstream>
 #include <regex>
 #include <stdexcept>
+
+#include "app/version.h"
 
 namespace weft::app {
 
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& path, const std::string& text) {
+void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  try {
+    write(partial);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(partial, ignored);
+    throw;
   }
   std::error_code error;
   fs::rename(partial, path, error);
   if (error) throw std::runtime_error(path.string() + ": cannot write (" + error.message() + ")");
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  write_atomically(path, [&](const fs::path& partial) {
+    std::ofstream out(partial);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  });
 }
 
 bool same_file(const fs::path& a, const fs::path& b) {
@@ -36,6 +49,25 @@ int remove_numbered_files(const fs::path& dir, const std::string& prefix,
     if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
       ++removed;
   return removed;
+}
+
+void start_output(const fs::path& dir, const std::vector<NumberedFiles>& earlier,
+                  const std::vector<std::pair<std::string, std::string>>& files) {
+  fs::create_directories(dir);
+  int removed = 0;
+  for (const NumberedFiles& kind : earlier)
+    removed += remove_numbered_files(dir, kind.prefix, kind.extension);
+  if (removed)
+    std::fprintf(stderr, "weft: replaced %d files of an earlier run in %s\n", removed,
+                 dir.c_str());
+  for (const auto& [name, text] : files) write_text(dir / name, text);
+}
+
+std::string run_record(const std::string& command_line,
+                       const std::vector<std::pair<std::string, std::string>>& inputs) {
+  std::string text = "weft " + std::string(version()) + "\ncommand: " + command_line + "\n";
+  for (const auto& [key, value] : inputs) text += key + ": " + value + "\n";
+  return text;
 }
 
 }  // namespace weft::app

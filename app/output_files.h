@@ -1,9 +1,15 @@
 #pragma once
 // Writing into an output folder, shared by the commands: a text file, and clearing the
 // numbered files (frame_0001.png, mesh_0001.obj, turntable_0001.png, …) an earlier run left.
+// Every file is written whole (NAME.partial, then renamed), and a command touches its folder
+// only when its first output is ready (start_output), so a command that fails before leaves an
+// earlier run's files as they were (docs/reliability.md).
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace weft::app {
 
@@ -11,6 +17,30 @@ namespace weft::app {
 // or the whole new one, never a part); throws std::runtime_error naming the path when it
 // cannot. render::write_png does the same for images.
 void write_text(const std::filesystem::path& path, const std::string& text);
+
+// Writes `path` atomically: `write` makes the file at the path it is given (PATH.partial),
+// which is then renamed over `path`; a throwing `write` leaves `path` as it was and removes the
+// partial file. Throws std::runtime_error naming `path` when the rename fails.
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path&)>& write);
+
+// Numbered files of one kind, e.g. {"frame", "png"} for frame_0001.png (remove_numbered_files).
+struct NumberedFiles {
+  std::string prefix;
+  std::string extension;  // a regular expression: "png", "(obj|mtl|ply|gltf|bin)"
+};
+
+// What a command writes first into its output folder, when its first output is ready: creates
+// `dir`, removes the numbered files of an earlier run (saying on stderr how many), so that the
+// folder holds one run, and writes each {name, text} of `files` (the run's record: run.txt,
+// scene.json, …). Until then the command leaves the folder alone.
+void start_output(const std::filesystem::path& dir, const std::vector<NumberedFiles>& earlier,
+                  const std::vector<std::pair<std::string, std::string>>& files);
+
+// The record of how an output folder was made (run.txt, turntable.txt, measure.txt, …):
+// "weft VERSION", "command: COMMAND_LINE" and one "KEY: VALUE" line per input.
+std::string run_record(const std::string& command_line,
+                       const std::vector<std::pair<std::string, std::string>>& inputs);
 
 // Whether two paths name the same file (the same file twice, through links or `..`), e.g. an
 // output that would overwrite an input. A path that does not exist is the same as no other.

@@ -16,7 +16,6 @@
 #include "app/renderer_choice.h"
 #include "app/scene.h"
 #include "app/stats_csv.h"
-#include "app/version.h"
 #include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -63,15 +62,9 @@ std::string mesh_name(int frame, MeshFormat format) {
 // folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
 // first frame is ready: a run that fails before it leaves an earlier run's files as they were.
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
-  const int removed = remove_numbered_files(dir, "frame", "png") +
-                      remove_numbered_files(dir, "mask", "png") +
-                      remove_numbered_files(dir, "mesh", "(obj|ply|gltf|bin)");
-  if (removed)
-    std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed,
-                 dir.c_str());
-  write_text(dir / "scene.json", scene.text);
-  write_text(dir / "run.txt", "weft " + std::string(version()) + "\ncommand: " +
-                                  options.command_line + "\nscene: " + scene.source + "\n");
+  start_output(dir, {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"}},
+               {{"scene.json", scene.text},
+                {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
 }
 
 void print_header(const Scene& scene, const sim::Simulator& simulator,
@@ -239,7 +232,6 @@ int run_scene(const RunOptions& options) {
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
-  fs::create_directories(dir);
   print_header(scene, *simulator, *renderer, options.explain);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
   const FrameStreamEnd end =

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <memory>
 #include <stdexcept>
 
@@ -16,7 +16,7 @@
 #include "app/scene.h"
 #include "app/scene_patch.h"
 #include "app/sweep_plot.h"
-#include "app/version.h"
+#include "app/output_files.h"
 #include "analysis/sweep_metrics.h"
 #include "render/image.h"
 #include "sim/pins.h"
@@ -140,7 +140,7 @@ std::string number(const char* format, double v) {
 
 void write_csv(const fs::path& path, const std::vector<SettingValues>& options,
                const std::vector<SweepRun>& runs, std::size_t reference) {
-  std::ofstream out(path);
+  std::ostringstream out;
   out << "run";
   for (const SettingValues& o : options) out << "," << csv_field(o.key);
   out << ",wall_time_s,steps,time_step_s,rms_error_m,max_strain,silhouette_difference,diverged,"
@@ -159,7 +159,7 @@ void write_csv(const fs::path& path, const std::vector<SettingValues>& options,
     }
     out << "," << r.diverged << "," << r.pareto << "," << (k == reference) << "\n";
   }
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  write_text(path, out.str());
 }
 
 // The table on stdout, columns padded to their widest cell.
@@ -237,7 +237,8 @@ int run_sweep(const SweepOptions& options) {
   if (reference < runs.size()) compare_with_reference(runs, reference);
 
   const fs::path dir = options.out.value_or(fs::path("out") / ("sweep-" + base.name));
-  fs::create_directories(dir);
+  start_output(dir, {}, {{"scene.json", base.text},
+                         {"run.txt", run_record(options.command_line, {{"scene", base.source}})}});
   write_csv(dir / "sweep.csv", values, runs, reference);
   std::vector<PlotRun> plot_runs;
   for (std::size_t k = 0; k < runs.size(); ++k) {
@@ -247,14 +248,6 @@ int run_sweep(const SweepOptions& options) {
   }
   chart::write_png(sweep_chart(plot_runs, "weft sweep: " + base.name + ", error vs time"),
                    dir / "sweep.png");
-  {
-    std::ofstream scene_copy(dir / "scene.json");
-    scene_copy << base.text;
-    std::ofstream run_txt(dir / "run.txt");
-    run_txt << "weft " << version() << "\ncommand: " << options.command_line
-            << "\nscene: " << base.source << "\n";
-    if (!scene_copy || !run_txt) throw std::runtime_error(dir.string() + ": cannot write");
-  }
 
   print_table(values, runs, reference);
   if (reference == runs.size()) {

@@ -23,7 +23,6 @@
 #include "app/progress.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
-#include "app/version.h"
 #include "base/constants.h"
 #include "sim/simulator.h"
 
@@ -194,16 +193,11 @@ int run_turntable(const TurntableOptions& options) {
   const Eigen::Vector3d center = bounding_box_center(subject.mesh);
   const render::Camera base = subject.settings.camera;
 
-  // The input is good: now the output folder.
+  // The output folder is touched when the first image is ready (start_output).
   const fs::path dir = options.out.value_or(fs::path("out") / (subject.name + "_turntable"));
-  fs::create_directories(dir);
-  if (const int removed = remove_numbered_files(dir, "turntable", "png"))
-    std::fprintf(stderr, "weft: replaced %d turntable frames of an earlier run in %s\n", removed,
-                 dir.c_str());
-  write_text(dir / "turntable.txt", "weft " + std::string(version()) + "\ncommand: " +
-                                        options.command_line + "\ninput: " +
-                                        options.input.string() + "\n");
-  if (is_scene) write_text(dir / "scene.json", subject.text);
+  std::vector<std::pair<std::string, std::string>> records = {
+      {"turntable.txt", run_record(options.command_line, {{"input", options.input.string()}})}};
+  if (is_scene) records.emplace_back("scene.json", subject.text);
 
   const int n = options.frames;
   std::fprintf(stderr,
@@ -220,6 +214,7 @@ int run_turntable(const TurntableOptions& options) {
     render::RenderSettings settings = subject.settings;
     settings.camera = orbit_camera(base, center, i, n, options.orbit);
     const render::Image image = renderer.render(subject.mesh, settings, subject.objects);
+    if (i == 0) start_output(dir, {{"turntable", "png"}}, records);
     render::write_png(image, dir / frame_name(i + 1));
     thumbnails.push_back(thumbnail(image, thumb_width));
     labels.push_back(angle_label(orbit_azimuth_deg(i, n)));
