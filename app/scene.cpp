@@ -573,6 +573,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   }
 
   s.shading = r.enumeration("shading", render::shading_names, {s.shading});
+  s.strain_full_scale = r.number("strain_scale", s.strain_full_scale, Range::gt(0.0).le(10.0));
   s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
   if (s.msaa_samples & (s.msaa_samples - 1))
     r.fail("msaa", "expected 1, 2, 4 or 8 samples, got " + std::to_string(s.msaa_samples));

@@ -68,7 +68,9 @@ void add_size_option(CLI::App& command, std::vector<Setting>& overrides,
 
 void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
   add_override_option(command, "--shading", "render.shading", overrides,
-                      "lit, or normals: the normal as colour (overrides render.shading)");
+                      "lit; normals: the normal as colour; strain: the cloth in false colour by its "
+                      "strain, with a legend (±5 %; --set render.strain_scale=0.01 for ±1 %) "
+                      "(overrides render.shading)");
   command.get_option("--shading")->check(CLI::IsMember(base::enum_name_list(render::shading_names)));
   add_override_option(command, "--renderer", "render.renderer", overrides,
                       "raster (OSMesa, fast previews) or raytrace (Embree: soft shadows, ambient "

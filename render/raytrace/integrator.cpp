@@ -104,6 +104,10 @@ bool intersect(const FrameView& view, const Eigen::Vector3f& origin,
     const Eigen::Vector2f uv = w * mesh.uvs[t[0]] + u * mesh.uvs[t[1]] + v * mesh.uvs[t[2]];
     hit.reflectance = reflectance_from_color(sample_cloth_texture(*surface.texture, uv));
   }
+  if (const std::vector<Eigen::Vector3f>* colours = surface.vertex_colours) {
+    hit.reflectance = reflectance_from_color(w * (*colours)[t[0]] + u * (*colours)[t[1]] +
+                                             v * (*colours)[t[2]]);
+  }
   return true;
 }
 

@@ -28,6 +28,9 @@ struct SurfaceShading {
   // Replaces `front` by the texture's colour at the hit's material coordinates (mesh->uvs,
   // interpolated) when set and the mesh has one UV per vertex (render/texture.h).
   const ClothTexture* texture = nullptr;
+  // Replaces `front` and `back` (and the texture) by the vertex colours, interpolated, when
+  // set (one per vertex of mesh: the strain false colour, render/strain_colour.h).
+  const std::vector<Eigen::Vector3f>* vertex_colours = nullptr;
 };
 
 // One frame's scene and settings in the units and form the inner loop wants.

@@ -24,6 +24,7 @@
 #include "render/raytrace/embree_scene.h"
 #include "render/raytrace/integrator.h"
 #include "render/raytrace/shading.h"
+#include "render/strain_colour.h"
 
 namespace weft::render {
 
@@ -73,6 +74,7 @@ struct FrameMeshes {
   std::vector<RenderMesh> object_storage;
   std::vector<const RenderMesh*> objects;
   RenderMesh ground;  // empty without a ground
+  std::vector<Eigen::Vector3f> cloth_colours;  // Shading::strain: the cloth's false colours
 };
 
 // Step 1 (validate_raytrace and validate(RenderSettings) are checked before).
@@ -87,6 +89,8 @@ void prepare_meshes(const RenderMesh& cloth, const RenderSettings& s,
     if (!objects[k].color.allFinite()) throw std::invalid_argument(name + ": colour is not finite");
     m.objects.push_back(&with_normals(objects[k].mesh, m.object_storage[k]));
   }
+  if (s.shading == Shading::strain)
+    m.cloth_colours = strain_colours(*m.cloth, static_cast<float>(s.strain_full_scale));
   if (s.ground) {
     m.ground =
         make_square_patch(Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m),
@@ -225,7 +229,8 @@ rt::FrameView RayTracer::Impl::frame_view(const FrameMeshes& m, const RenderSett
   add_surface(cloth_geometry,
               {m.cloth, rt::reflectance_from_color(s.front_color),
                rt::reflectance_from_color(s.back_color), true, false,
-               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr});
+               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr,
+               m.cloth_colours.empty() ? nullptr : &m.cloth_colours});
   const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
   add_surface(ground_geometry, {&m.ground, ground_reflectance, ground_reflectance, false, true});
   for (std::size_t k = 0; k < objects.size(); ++k) {
