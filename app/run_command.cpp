@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "app/frame_mesh.h"
+#include "app/frame_png.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
@@ -158,14 +159,8 @@ class FrameWriter {
       m_obstacles = obstacle_render_objects(m_scene.sim.obstacles, m_scene.sim.obstacle_motions,
                                             m_simulator.state().time_s, m_scene.render);
     const render::RenderMesh cloth = to_render_mesh(m_simulator.mesh(), m_simulator.state().x);
-    const render::Image image = m_renderer.render(cloth, m_scene.render, m_obstacles);
-    if (m_scene.write_alpha)
-      render::write_png(image,
-                        m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
-                                               render::Renderer::MaskOf::surfaces),
-                        m_dir / frame_name(index));
-    else
-      render::write_png(image, m_dir / frame_name(index));
+    render_frame_png(m_renderer, cloth, m_scene.render, m_obstacles, m_scene.write_alpha,
+                     m_dir / frame_name(index));
     if (m_scene.write_mask)
       render::write_png(m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
                                                render::Renderer::MaskOf::cloth),

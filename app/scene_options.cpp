@@ -78,6 +78,29 @@ void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
   command.get_option("--renderer")->check(CLI::IsMember(render::renderer_choices()));
   add_override_option(command, "--samples", "render.raytrace.samples", overrides,
                       "Ray tracer samples per pixel (overrides render.raytrace.samples)", "INT");
+  add_background_option(command, overrides);
+}
+
+void add_background_option(CLI::App& command, std::vector<Setting>& overrides) {
+  command
+      .add_option_function<std::string>(
+          "--background",
+          [&overrides](const std::string& text) {
+            static const std::regex colour(R"(\s*([^,\s]+)\s*,\s*([^,\s]+)\s*,\s*([^,\s]+)\s*)");
+            std::smatch m;
+            if (text == "transparent")
+              overrides.push_back({"output.alpha", "true", "--background " + text});
+            else if (std::regex_match(text, m, colour))
+              overrides.push_back({"render.colors.background",
+                                   "[" + m[1].str() + "," + m[2].str() + "," + m[3].str() + "]",
+                                   "--background " + text});
+            else
+              throw SceneError("--background: expected 'transparent' or a colour R,G,B (each "
+                               "0..1, e.g. 1,1,1), got '" + text + "'");
+          },
+          "transparent: RGBA frames, alpha 0 where no surface is seen (≡ --set output.alpha=true); "
+          "or R,G,B in 0..1: the background colour (overrides render.colors.background)")
+      ->type_name("transparent|R,G,B");
 }
 
 void add_threads_option(CLI::App& command, std::optional<int>& threads) {
