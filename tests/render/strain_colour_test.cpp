@@ -52,6 +52,16 @@ RenderMesh strained_sheet() {
   return mesh;
 }
 
+// The renderer the settings name, or null with the reason when it cannot start here.
+std::unique_ptr<Renderer> renderer_or_null(const RenderSettings& s, std::string& why) {
+  try {
+    return make_renderer(s);
+  } catch (const std::exception& e) {
+    why = e.what();
+    return nullptr;
+  }
+}
+
 class StrainShading : public ::testing::TestWithParam<RendererKind> {
  protected:
   void TearDown() override { m_evidence.save_if_failed(); }
@@ -64,12 +74,9 @@ TEST_P(StrainShading, HalvesTakeTheEndsOfTheMapAndTheLegendIsDrawn) {
   s.shading = Shading::strain;
   s.strain_full_scale = 0.05;
   s.raytrace.samples_per_pixel = 4;
-  std::unique_ptr<Renderer> renderer;
-  try {
-    renderer = make_renderer(s);
-  } catch (const std::exception& e) {
-    GTEST_SKIP() << renderer_name(GetParam()) << ": " << e.what();
-  }
+  std::string why;
+  const std::unique_ptr<Renderer> renderer = renderer_or_null(s, why);
+  if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << ": " << why;
   const Image image = renderer->render(strained_sheet(), s, {});
   m_evidence.add("strain", image);
   const test::Pixel left = test::project(s, {-0.9, 0.0, 0.5});
@@ -103,12 +110,9 @@ TEST_P(StrainShading, LitShadingIgnoresTheStrain) {
   RenderSettings s = test::view_from_above(160, 120);
   s.renderer = GetParam();
   s.raytrace.samples_per_pixel = 1;
-  std::unique_ptr<Renderer> renderer;
-  try {
-    renderer = make_renderer(s);
-  } catch (const std::exception& e) {
-    GTEST_SKIP() << renderer_name(GetParam()) << ": " << e.what();
-  }
+  std::string why;
+  const std::unique_ptr<Renderer> renderer = renderer_or_null(s, why);
+  if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << ": " << why;
   RenderMesh without = strained_sheet();
   without.strain.clear();
   EXPECT_TRUE(test::same_bytes(renderer->render(strained_sheet(), s, {}),
@@ -117,7 +121,7 @@ TEST_P(StrainShading, LitShadingIgnoresTheStrain) {
 
 INSTANTIATE_TEST_SUITE_P(BothRenderers, StrainShading,
                          ::testing::Values(RendererKind::raster, RendererKind::raytrace),
-                         [](const auto& info) { return std::string(renderer_name(info.param)); });
+                         [](const auto& p) { return std::string(renderer_name(p.param)); });
 
 }  // namespace
 }  // namespace weft::render
