@@ -527,6 +527,7 @@ void read_raytrace(ObjectReader r, render::RayTraceSettings& t) {
   t.sheen = r.number("sheen", t.sheen, Range::closed(0.0, 1.0));
   t.sheen_roughness = r.number("sheen_roughness", t.sheen_roughness, Range::gt(0.0).le(1.0));
   t.seed = static_cast<std::uint32_t>(r.integer("seed", t.seed, Range::closed(0, 4294967295)));
+  t.denoise = r.boolean("denoise", t.denoise);
   r.finish();
 }
 

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <map>
 #include <regex>
 
 #include "render/render_settings.h"
@@ -78,6 +79,12 @@ void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
   command.get_option("--renderer")->check(CLI::IsMember(render::renderer_choices()));
   add_override_option(command, "--samples", "render.raytrace.samples", overrides,
                       "Ray tracer samples per pixel (overrides render.raytrace.samples)", "INT");
+  add_override_option(command, "--denoise", "render.raytrace.denoise", overrides,
+                      "on (the default) or off: the ray tracer's edge-aware denoiser (overrides "
+                      "render.raytrace.denoise)", "on|off");
+  command.get_option("--denoise")->transform(
+      CLI::Transformer(std::map<std::string, std::string>{{"on", "true"}, {"off", "false"}})
+          .description(""));
   add_background_option(command, overrides);
 }
 
