@@ -52,16 +52,6 @@ RenderMesh strained_sheet() {
   return mesh;
 }
 
-// The renderer the settings name, or null with the reason when it cannot start here.
-std::unique_ptr<Renderer> renderer_or_null(const RenderSettings& s, std::string& why) {
-  try {
-    return make_renderer(s);
-  } catch (const std::exception& e) {
-    why = e.what();
-    return nullptr;
-  }
-}
-
 class StrainShading : public ::testing::TestWithParam<RendererKind> {
  protected:
   void TearDown() override { m_evidence.save_if_failed(); }
@@ -75,7 +65,7 @@ TEST_P(StrainShading, HalvesTakeTheEndsOfTheMapAndTheLegendIsDrawn) {
   s.strain_full_scale = 0.05;
   s.raytrace.samples_per_pixel = 4;
   std::string why;
-  const std::unique_ptr<Renderer> renderer = renderer_or_null(s, why);
+  const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
   if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << ": " << why;
   const Image image = renderer->render(strained_sheet(), s, {});
   m_evidence.add("strain", image);
@@ -111,7 +101,7 @@ TEST_P(StrainShading, LitShadingIgnoresTheStrain) {
   s.renderer = GetParam();
   s.raytrace.samples_per_pixel = 1;
   std::string why;
-  const std::unique_ptr<Renderer> renderer = renderer_or_null(s, why);
+  const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
   if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << ": " << why;
   RenderMesh without = strained_sheet();
   without.strain.clear();
