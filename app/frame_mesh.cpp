@@ -3,7 +3,28 @@
 #include <limits>
 #include <vector>
 
+#include "sim/constraints/inextensibility.h"
+#include "sim/constraints/projection.h"
+
 namespace weft::app {
+
+std::vector<double> vertex_strains(const sim::ClothMesh& mesh, const sim::Matrix3X& x) {
+  const auto n = static_cast<std::size_t>(x.rows());
+  const Eigen::VectorXd free = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(n));
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> count(n, 0);
+  for (const sim::EdgeConstraint& e :
+       sim::make_edge_constraints(mesh, sim::ConstrainedEdges::warp_weft, free)) {
+    const double strain = sim::edge_strain(x.row(e.a), x.row(e.b), e.rest_m);
+    for (const sim::Index v : {e.a, e.b}) {
+      sum[static_cast<std::size_t>(v)] += strain;
+      ++count[static_cast<std::size_t>(v)];
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    if (count[v] > 0) sum[v] /= count[v];
+  return sum;
+}
 
 render::RenderMesh to_render_mesh(const sim::ClothMesh& mesh, const sim::Matrix3X& x) {
   render::RenderMesh out;
@@ -15,11 +36,14 @@ render::RenderMesh to_render_mesh(const sim::ClothMesh& mesh, const sim::Matrix3
   std::vector<std::uint32_t> slot(n, unused);
   out.positions.reserve(n);
   out.uvs.reserve(n);
+  out.strain.reserve(n);
+  const std::vector<double> strain = vertex_strains(mesh, x);
   for (std::size_t k = 0; k < n; ++k) {
     if (!mesh.vertex_used[k]) continue;
     slot[k] = static_cast<std::uint32_t>(out.positions.size());
     out.positions.push_back(x.row(static_cast<Eigen::Index>(k)).transpose().cast<float>());
     out.uvs.push_back(mesh.material_coords[k].cast<float>());
+    out.strain.push_back(static_cast<float>(strain[k]));
   }
   for (const auto& t : mesh.triangles())
     out.triangles.push_back({slot[static_cast<std::size_t>(t[0])], slot[static_cast<std::size_t>(t[1])],

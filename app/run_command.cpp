@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "app/frame_mesh.h"
+#include "app/frame_png.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
@@ -140,7 +141,11 @@ class FrameWriter {
                   row.steps.unconverged_steps ? ", projection missed its tolerance" : "");
     m_progress.update(frame.index, detail);
   }
-  void finish() { m_progress.finish(); }
+  void finish() {
+    m_progress.finish();
+    for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
+      std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
+  }
   const std::vector<FrameStats>& rows() const { return m_rows; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
@@ -151,18 +156,13 @@ class FrameWriter {
       m_obstacles = obstacle_render_objects(m_scene.sim.obstacles, m_scene.sim.obstacle_motions,
                                             m_simulator.state().time_s, m_scene.render);
     const render::RenderMesh cloth = to_render_mesh(m_simulator.mesh(), m_simulator.state().x);
-    const render::Image image = m_renderer.render(cloth, m_scene.render, m_obstacles);
-    if (m_scene.write_alpha)
-      render::write_png(image,
-                        m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
-                                               render::Renderer::MaskOf::surfaces),
-                        m_dir / frame_name(index));
-    else
-      render::write_png(image, m_dir / frame_name(index));
+    render_frame_png(m_renderer, cloth, m_scene.render, m_obstacles, m_scene.write_alpha,
+                     m_dir / frame_name(index));
     if (m_scene.write_mask)
       render::write_png(m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
                                                render::Renderer::MaskOf::cloth),
                         m_dir / mask_name(index));
+    if (!m_options.export_cache.empty()) m_cache.add(cloth, m_simulator.state().time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format));
   }
@@ -178,6 +178,7 @@ class FrameWriter {
   std::vector<std::array<sim::Index, 2>> m_edges;
   Progress m_progress;
   std::vector<FrameStats> m_rows;
+  PointCache m_cache;  // --export-cache: the frames so far
 };
 
 // Says where the run stopped and what it kept; writes the report of the frames written.
@@ -264,6 +265,12 @@ Command register_run(CLI::App& app, const std::string& command_line) {
          "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; normals, UVs = "
          "material coordinates in metres)")
       ->check(CLI::IsMember({"obj", "ply", "gltf"}));
+  cmd->add_option_function<std::string>(
+      "--export-cache",
+      [o](const std::string& text) { o->export_cache = parse_cache_formats(text, "--export-cache"); },
+      "Also write cloth.obj (frame 1's topology) and every frame as cloth.pc2 / cloth.mdd point "
+      "caches and/or an animated cloth.gltf (morph targets): pc2, mdd, gltf or a list, e.g. "
+      "pc2,gltf (y up; docs/export.md)");
   cmd->add_flag_callback(
       "--mask", [o] { o->overrides.push_back({"output.mask", "true", "--mask"}); },
       "Also write mask_0001.png, ...: the cloth's mask from the renderer's geometry (white = "

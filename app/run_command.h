@@ -9,6 +9,7 @@
 #include "app/command.h"
 #include "app/scene_options.h"
 #include "app/mesh_export.h"
+#include "app/point_cache.h"
 
 namespace weft::app {
 
@@ -20,6 +21,7 @@ struct RunOptions {
   std::vector<Setting> overrides;
   std::optional<int> threads;                  // --threads (command.h)
   std::optional<MeshFormat> export_meshes;     // also write mesh_0001.<ext>, ... (mesh_export.h)
+  std::vector<CacheFormat> export_cache;       // also write cloth.obj + cloth.pc2/.mdd/.gltf (point_cache.h)
   bool explain = false;                        // print the simulated terms and phase times
   bool report = false;  // also write report.html (frames, plots of strain/energy/time; run_report.h)
   std::string command_line;                    // recorded in run.txt

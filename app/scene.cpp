@@ -527,6 +527,7 @@ void read_raytrace(ObjectReader r, render::RayTraceSettings& t) {
   t.sheen = r.number("sheen", t.sheen, Range::closed(0.0, 1.0));
   t.sheen_roughness = r.number("sheen_roughness", t.sheen_roughness, Range::gt(0.0).le(1.0));
   t.seed = static_cast<std::uint32_t>(r.integer("seed", t.seed, Range::closed(0, 4294967295)));
+  t.denoise = r.boolean("denoise", t.denoise);
   r.finish();
 }
 
@@ -573,6 +574,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   }
 
   s.shading = r.enumeration("shading", render::shading_names, {s.shading});
+  s.strain_full_scale = r.number("strain_scale", s.strain_full_scale, Range::gt(0.0).le(10.0));
   s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
   if (s.msaa_samples & (s.msaa_samples - 1))
     r.fail("msaa", "expected 1, 2, 4 or 8 samples, got " + std::to_string(s.msaa_samples));

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <map>
 #include <regex>
 
 #include "render/render_settings.h"
@@ -68,7 +69,9 @@ void add_size_option(CLI::App& command, std::vector<Setting>& overrides,
 
 void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
   add_override_option(command, "--shading", "render.shading", overrides,
-                      "lit, or normals: the normal as colour (overrides render.shading)");
+                      "lit; normals: the normal as colour; strain: the cloth in false colour by its "
+                      "strain, with a legend (±5 %; --set render.strain_scale=0.01 for ±1 %) "
+                      "(overrides render.shading)");
   command.get_option("--shading")->check(CLI::IsMember(base::enum_name_list(render::shading_names)));
   add_override_option(command, "--renderer", "render.renderer", overrides,
                       "raster (OSMesa, fast previews) or raytrace (Embree: soft shadows, ambient "
@@ -76,6 +79,35 @@ void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
   command.get_option("--renderer")->check(CLI::IsMember(render::renderer_choices()));
   add_override_option(command, "--samples", "render.raytrace.samples", overrides,
                       "Ray tracer samples per pixel (overrides render.raytrace.samples)", "INT");
+  add_override_option(command, "--denoise", "render.raytrace.denoise", overrides,
+                      "on (the default) or off: the ray tracer's edge-aware denoiser (overrides "
+                      "render.raytrace.denoise)", "on|off");
+  command.get_option("--denoise")->transform(
+      CLI::Transformer(std::map<std::string, std::string>{{"on", "true"}, {"off", "false"}})
+          .description(""));
+  add_background_option(command, overrides);
+}
+
+void add_background_option(CLI::App& command, std::vector<Setting>& overrides) {
+  command
+      .add_option_function<std::string>(
+          "--background",
+          [&overrides](const std::string& text) {
+            static const std::regex colour(R"(\s*([^,\s]+)\s*,\s*([^,\s]+)\s*,\s*([^,\s]+)\s*)");
+            std::smatch m;
+            if (text == "transparent")
+              overrides.push_back({"output.alpha", "true", "--background " + text});
+            else if (std::regex_match(text, m, colour))
+              overrides.push_back({"render.colors.background",
+                                   "[" + m[1].str() + "," + m[2].str() + "," + m[3].str() + "]",
+                                   "--background " + text});
+            else
+              throw SceneError("--background: expected 'transparent' or a colour R,G,B (each "
+                               "0..1, e.g. 1,1,1), got '" + text + "'");
+          },
+          "transparent: RGBA frames, alpha 0 where no surface is seen (≡ --set output.alpha=true); "
+          "or R,G,B in 0..1: the background colour (overrides render.colors.background)")
+      ->type_name("transparent|R,G,B");
 }
 
 void add_threads_option(CLI::App& command, std::optional<int>& threads) {

@@ -37,8 +37,12 @@ void add_override_option(CLI::App& command, const std::string& option, const std
 // --size WIDTHxHEIGHT ≡ --set render.size=[WIDTH,HEIGHT].
 void add_size_option(CLI::App& command, std::vector<Setting>& overrides, const std::string& help);
 
-// --shading, --renderer and --samples: the render overrides of run and turntable.
+// --shading, --renderer, --samples and --background: the render overrides of run and turntable.
 void add_render_options(CLI::App& command, std::vector<Setting>& overrides);
+
+// --background transparent (≡ --set output.alpha=true: RGBA frames) or R,G,B
+// (≡ --set render.colors.background=[R,G,B]).
+void add_background_option(CLI::App& command, std::vector<Setting>& overrides);
 
 // --threads N: threads of the ray tracer and of self-collision's candidate search (0: all
 // hardware threads; never changes a bit of the output). Checked to be in 0..4096.

@@ -17,6 +17,7 @@
 #include "app/contact_sheet.h"
 #include "app/ffmpeg_video.h"
 #include "app/frame_mesh.h"
+#include "app/frame_png.h"
 #include "app/frame_stream.h"
 #include "app/mesh_file.h"
 #include "app/obstacle_meshes.h"
@@ -38,6 +39,7 @@ struct Subject {
   std::string name;  // for the default output folder
   std::string text;  // the scene file's text ("" for a mesh)
   render::RenderSettings settings;
+  bool alpha = false;  // output.alpha: RGBA frames
   render::RenderMesh mesh;
   std::vector<render::RenderObject> objects;
   std::unique_ptr<render::Renderer> renderer;  // made from `settings`
@@ -103,6 +105,7 @@ Subject scene_subject(const TurntableOptions& o) {
   s.name = scene.name;
   s.text = scene.text;
   s.settings = scene.render;
+  s.alpha = scene.write_alpha;
   s.mesh = to_render_mesh(simulator->mesh(), simulator->state().x);
   s.objects = obstacle_render_objects(scene.sim.obstacles, scene.sim.obstacle_motions,
                                       simulator->state().time_s, scene.render);
@@ -121,6 +124,7 @@ Subject mesh_subject(const TurntableOptions& o) {
   Scene defaults = load_scene_with(std::nullopt, o.overrides);  // the default render settings
   apply_threads(defaults, o.threads);
   s.settings = defaults.render;
+  s.alpha = defaults.write_alpha;
   for (Eigen::Index v = 0; v < file.vertices.rows(); ++v)
     s.mesh.positions.push_back(file.vertices.row(v).transpose().cast<float>());
   for (const auto& t : file.triangles)
@@ -213,9 +217,9 @@ int run_turntable(const TurntableOptions& options) {
   for (int i = 0; i < n; ++i) {
     render::RenderSettings settings = subject.settings;
     settings.camera = orbit_camera(base, center, i, n, options.orbit);
-    const render::Image image = renderer.render(subject.mesh, settings, subject.objects);
-    if (i == 0) start_output(dir, {{"turntable", "png"}}, records);
-    render::write_png(image, dir / frame_name(i + 1));
+    const render::Image image = render_frame_png(
+        renderer, subject.mesh, settings, subject.objects, subject.alpha, dir / frame_name(i + 1),
+        [&] { if (i == 0) start_output(dir, {{"turntable", "png"}}, records); });
     thumbnails.push_back(thumbnail(image, thumb_width));
     labels.push_back(angle_label(orbit_azimuth_deg(i, n)));
     progress.update(i + 1, "azimuth " + labels.back());

@@ -10,7 +10,10 @@
 // Mrays per CPU second (process CPU time, all threads) is the per-core rate even when other
 // work shares the cores; Mrays/s/core divides the wall-clock rate by the thread count.
 //
-// Run: build/bench/raytrace_bench [--repeats 3] [--threads N] [--only raster]
+// - with --only denoise, the ray tracer's denoiser (issue 20 item 9): SSIM against a 1024-spp
+//   reference and time of 4, 16 and 64 spp with and without it (denoise_sweep).
+//
+// Run: build/bench/raytrace_bench [--repeats 3] [--threads N] [--only raster|denoise] [--size WxH]
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +28,7 @@
 #include "base/constants.h"
 #include "base/thread_pool.h"
 #include "base/timer.h"
+#include "render/image_diff.h"
 #include "render/primitives.h"
 #include "render/raster.h"
 #include "render/raytrace/ray_tracer.h"
@@ -87,11 +91,49 @@ double seconds(F&& f) {
   return watch.seconds();
 }
 
+// --only denoise: issue 20 item 9's table. The sphere drape at --size (default 400x300) with the
+// default ray tracer settings (soft shadows, one AO ray per sample) at 1024 samples per pixel,
+// plain, is the reference; each row is one render against it: samples, denoiser, SSIM and PSNR
+// against the reference (weft diff's measures, render/image_diff.h), seconds (median of
+// --repeats).
+void denoise_sweep(const RenderMesh& cloth, const std::vector<RenderObject>& sphere, int width,
+                   int height, int threads, int repeats) {
+  RayTracer tracer;
+  RenderSettings s = scene_settings(width, height);
+  s.raytrace.threads = threads;
+  const auto render = [&](int spp, bool denoise, double& median_s) {
+    s.raytrace.samples_per_pixel = spp;
+    s.raytrace.denoise = denoise;
+    Image image;
+    std::vector<double> times;
+    for (int k = 0; k < repeats; ++k) times.push_back(seconds([&] { image = tracer.render(cloth, s, sphere); }));
+    median_s = median(times);
+    return image;
+  };
+  double reference_s = 0.0;
+  tracer.render(cloth, s, sphere);  // warm-up: builds the BVHs
+  const int saved_repeats = repeats;
+  repeats = 1;
+  const Image reference = render(1024, false, reference_s);
+  repeats = saved_repeats;
+  std::printf("\ndenoiser, sphere drape %dx%d, %d threads; reference: 1024 spp plain (%.1f s)\n",
+              width, height, threads, reference_s);
+  std::printf("%5s %8s %8s %9s %9s\n", "spp", "denoise", "SSIM", "PSNR dB", "s/frame");
+  for (const auto& [spp, denoise] : std::vector<std::pair<int, bool>>{
+           {4, false}, {4, true}, {16, false}, {16, true}, {64, false}, {64, true}}) {
+    double t = 0.0;
+    const ImageDifference d = compare_images(reference, render(spp, denoise, t));
+    std::printf("%5d %8s %8.4f %9.2f %9.3f\n", spp, denoise ? "on" : "off", d.ssim, d.psnr_db, t);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int repeats = 3;
   bool raster_only = false;  // --only raster: skip the ray tracer
+  bool denoise_only = false;  // --only denoise: the denoiser's table alone
+  int width = 400, height = 300;  // --size, of the denoiser's table
   int threads = static_cast<int>(weft::base::hardware_threads());
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--repeats"))
@@ -100,8 +142,14 @@ int main(int argc, char** argv) {
       threads = std::max(1, std::atoi(argv[i + 1]));
     else if (!std::strcmp(argv[i], "--only") && !std::strcmp(argv[i + 1], "raster"))
       raster_only = true;
+    else if (!std::strcmp(argv[i], "--only") && !std::strcmp(argv[i + 1], "denoise"))
+      denoise_only = true;
+    else if (!std::strcmp(argv[i], "--size") && std::sscanf(argv[i + 1], "%dx%d", &width, &height) == 2)
+      continue;
     else {
-      std::fprintf(stderr, "usage: raytrace_bench [--repeats N] [--threads N] [--only raster]\n");
+      std::fprintf(stderr,
+                   "usage: raytrace_bench [--repeats N] [--threads N] [--only raster|denoise] "
+                   "[--size WxH]\n");
       return 1;
     }
   }
@@ -111,6 +159,10 @@ int main(int argc, char** argv) {
   std::printf("sphere drape: %zu cloth triangles, %zu sphere triangles; %d threads, median of %d\n",
               cloth.triangles.size(), sphere[0].mesh.triangles.size(), threads, repeats);
 
+  if (denoise_only) {
+    denoise_sweep(cloth, sphere, width, height, threads, repeats);
+    return 0;
+  }
   if (!raster_only) {
     RayTracer tracer;
     std::printf("\n%s, 640x480\n", tracer.description().c_str());

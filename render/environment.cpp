@@ -19,13 +19,13 @@
 
 namespace weft::render {
 
-namespace {
-
-constexpr double pi = base::kPi;
-
 double luminance(const Eigen::Vector3f& c) {
   return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
 }
+
+namespace {
+
+constexpr double pi = base::kPi;
 
 // Map point (u, v) of direction d (unit), u, v ∈ [0, 1].
 Eigen::Vector2f map_point(const Eigen::Vector3f& d) {

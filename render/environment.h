@@ -26,6 +26,11 @@
 
 namespace weft::render {
 
+// Luminance of a linear RGB colour (Rec. 709 weights): the map's sampling density and the
+// ray tracer's denoiser (render/denoise.h) weigh colours by it.
+double luminance(const Eigen::Vector3f& linear_rgb);
+
+
 // An equirectangular map (see above) with its importance-sampling tables: texel (x, y) is
 // drawn with probability ∝ luminance × sin θ at its centre (Rec. 709 luminance), by a marginal
 // CDF over rows and one conditional CDF per row, then uniformly in (u, v) within the texel.

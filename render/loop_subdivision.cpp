@@ -109,13 +109,15 @@ Neighbours gather_neighbours(const RenderMesh& mesh, const std::vector<Edge>& ed
 }
 
 // Step 3: the old vertices moved by the vertex masks, then one point per edge; UVs carried
-// (old vertices) and averaged (edge points) when the mesh has them.
+// (old vertices) and averaged (edge points) when the mesh has them; strains likewise.
 void place_vertices(const RenderMesh& mesh, const EdgeTable& table, const Neighbours& n,
                     RenderMesh& out) {
   const std::size_t vertex_count = mesh.positions.size();
   const bool has_uvs = !mesh.uvs.empty();
   out.positions.resize(vertex_count + table.edges.size());
   if (has_uvs) out.uvs.resize(out.positions.size());
+  const bool has_strain = mesh.strain.size() == vertex_count;
+  if (has_strain) out.strain.resize(out.positions.size());
   for (std::size_t v = 0; v < vertex_count; ++v) {
     const Eigen::Vector3d p = mesh.positions[v].cast<double>();
     Eigen::Vector3d moved = p;
@@ -129,6 +131,7 @@ void place_vertices(const RenderMesh& mesh, const EdgeTable& table, const Neighb
     }  // else a corner: kept
     out.positions[v] = moved.cast<float>();
     if (has_uvs) out.uvs[v] = mesh.uvs[v];
+    if (has_strain) out.strain[v] = mesh.strain[v];
   }
   for (std::size_t k = 0; k < table.edges.size(); ++k) {
     const Edge& e = table.edges[k];
@@ -141,6 +144,7 @@ void place_vertices(const RenderMesh& mesh, const EdgeTable& table, const Neighb
     }
     out.positions[vertex_count + k] = point.cast<float>();
     if (has_uvs) out.uvs[vertex_count + k] = 0.5f * (mesh.uvs[e.a] + mesh.uvs[e.b]);
+    if (has_strain) out.strain[vertex_count + k] = 0.5f * (mesh.strain[e.a] + mesh.strain[e.b]);
   }
 }
 

@@ -24,6 +24,7 @@
 #include "render/gl_functions.h"
 #include "render/raster_gl.h"
 #include "render/raster_passes.h"
+#include "render/strain_colour.h"
 
 namespace weft::render {
 
@@ -245,7 +246,8 @@ void RasterRenderer::Impl::draw_main_pass(const RenderSettings& s, const FrameMe
       s.cloth_surface.texture.image && m.cloth->uvs.size() == m.cloth->positions.size();
   m_surface.begin(s, view_projection, textured, environment);
   if (m.cloth_count > 0)
-    m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, s.back_color, textured);
+    m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, s.back_color, textured,
+                   s.shading == Shading::strain);
   for (const ObjectRange& r : m.ranges) {
     if (r.index_count > 0) m_surface.draw(m_objects, r.first_index, r.index_count, r.color, r.color);
   }
@@ -261,7 +263,10 @@ Image RasterRenderer::Impl::render(const RenderMesh& cloth_input, const RenderSe
 
   const int samples = s.msaa_samples <= 1 ? 0 : std::min(s.msaa_samples, int{m_max_samples});
   m_targets.ensure(s.width, s.height, samples);
-  if (m.cloth_count > 0) m_cloth.upload(*m.cloth);
+  if (m.cloth_count > 0)
+    m_cloth.upload(*m.cloth, s.shading == Shading::strain
+                                 ? strain_colours(*m.cloth, static_cast<float>(s.strain_full_scale))
+                                 : std::vector<Eigen::Vector3f>{});
   if (m.object_count > 0) m_objects.upload(m.objects);
 
   Eigen::Matrix4f light_matrix = Eigen::Matrix4f::Identity();

@@ -115,6 +115,7 @@ MeshBuffers::MeshBuffers(const GlFunctions& gl) : m_gl(gl) {
   m_gl.GenBuffers(1, &m_positions);
   m_gl.GenBuffers(1, &m_normals);
   m_gl.GenBuffers(1, &m_uvs);
+  m_gl.GenBuffers(1, &m_colours);
   m_gl.GenBuffers(1, &m_indices);
   // Attribute 0: position, attribute 1: normal; 3 floats each, tightly packed.
   m_gl.BindVertexArray(m_vao);
@@ -127,18 +128,21 @@ MeshBuffers::MeshBuffers(const GlFunctions& gl) : m_gl(gl) {
   m_gl.BindBuffer(GL_ARRAY_BUFFER, m_uvs);
   m_gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
   m_gl.EnableVertexAttribArray(2);
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, m_colours);
+  m_gl.VertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  m_gl.EnableVertexAttribArray(3);
   m_gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indices);  // recorded in the VAO
   m_gl.BindVertexArray(0);
   m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 MeshBuffers::~MeshBuffers() {
-  const GLuint buffers[] = {m_positions, m_normals, m_uvs, m_indices};
-  m_gl.DeleteBuffers(4, buffers);
+  const GLuint buffers[] = {m_positions, m_normals, m_uvs, m_colours, m_indices};
+  m_gl.DeleteBuffers(5, buffers);
   m_gl.DeleteVertexArrays(1, &m_vao);
 }
 
-void MeshBuffers::upload(const RenderMesh& mesh) {
+void MeshBuffers::upload(const RenderMesh& mesh, const std::vector<Eigen::Vector3f>& colours) {
   const auto bytes = [](std::size_t count, std::size_t size) {
     return static_cast<GLsizeiptr>(count * size);
   };
@@ -155,6 +159,13 @@ void MeshBuffers::upload(const RenderMesh& mesh) {
   m_gl.BindBuffer(GL_ARRAY_BUFFER, m_uvs);
   m_gl.BufferData(GL_ARRAY_BUFFER, bytes(uvs.size(), sizeof(Eigen::Vector2f)), uvs.data(),
                   GL_STREAM_DRAW);
+  const std::vector<Eigen::Vector3f> no_colours(
+      colours.size() == mesh.positions.size() ? 0 : mesh.positions.size(),
+      Eigen::Vector3f::Zero());
+  const std::vector<Eigen::Vector3f>& vertex_colours = no_colours.empty() ? colours : no_colours;
+  m_gl.BindBuffer(GL_ARRAY_BUFFER, m_colours);
+  m_gl.BufferData(GL_ARRAY_BUFFER, bytes(vertex_colours.size(), sizeof(Eigen::Vector3f)),
+                  vertex_colours.data(), GL_STREAM_DRAW);
   m_gl.BindBuffer(GL_ARRAY_BUFFER, 0);
   m_gl.BindVertexArray(m_vao);  // the element buffer binding belongs to the VAO
   m_gl.BufferData(GL_ELEMENT_ARRAY_BUFFER,

@@ -45,7 +45,8 @@ class GlProgram {
 };
 
 // One mesh on the GPU: a vertex array with attribute 0 position, 1 normal (3 floats each) and
-// 2 UV (material coordinates, 2 floats; zero for meshes without UVs), and its element buffer.
+// 2 UV (material coordinates, 2 floats; zero for meshes without UVs), 3 colour (3 floats; the
+// strain false colour, zero when not given), and its element buffer.
 class MeshBuffers {
  public:
   explicit MeshBuffers(const GlFunctions& gl);
@@ -53,14 +54,15 @@ class MeshBuffers {
   MeshBuffers(const MeshBuffers&) = delete;
   MeshBuffers& operator=(const MeshBuffers&) = delete;
 
-  // Replaces the buffers' contents by the mesh's (normals required, one per position).
-  void upload(const RenderMesh& mesh);
+  // Replaces the buffers' contents by the mesh's (normals required, one per position) and
+  // `colours` (one per position, or none).
+  void upload(const RenderMesh& mesh, const std::vector<Eigen::Vector3f>& colours = {});
   // Draws index_count indices from first_index (3 per triangle) with the program in use.
   void draw(std::size_t first_index, GLsizei index_count) const;
 
  private:
   const GlFunctions& m_gl;
-  GLuint m_vao = 0, m_positions = 0, m_normals = 0, m_uvs = 0, m_indices = 0;
+  GLuint m_vao = 0, m_positions = 0, m_normals = 0, m_uvs = 0, m_colours = 0, m_indices = 0;
 };
 
 // The multisampled colour + depth framebuffer the main pass draws into and the single-sample

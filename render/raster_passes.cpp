@@ -307,8 +307,10 @@ void SurfacePass::bind_texture(const ClothTexture& texture) {
 }
 
 void SurfacePass::draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-                       const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured) {
+                       const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured,
+                       bool vertex_coloured) {
   m_program.set("u_use_texture", textured ? 1 : 0);
+  m_program.set("u_use_vertex_colour", vertex_coloured ? 1 : 0);
   m_program.set("u_front_color", front);
   m_program.set("u_back_color", back);
   b.draw(first_index, index_count);

@@ -132,7 +132,8 @@ class SurfacePass {
   void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured,
              const EnvironmentShading& environment);
   void draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-            const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured = false);
+            const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured = false,
+            bool vertex_coloured = false);  // the vertex colours on both sides
 
  private:
   void bind_texture(const ClothTexture& texture);

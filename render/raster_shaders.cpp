@@ -11,14 +11,17 @@ const char* const cloth_vertex_shader = R"glsl(
 layout(location = 0) in vec3 a_position;  // world, metres
 layout(location = 1) in vec3 a_normal;    // world, unit (front side)
 layout(location = 2) in vec2 a_uv;        // material coordinates (warp, weft), metres
+layout(location = 3) in vec3 a_colour;    // strain false colour (render/strain_colour.h)
 uniform mat4 u_view_projection;           // world -> clip
 out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_uv;
+out vec3 v_colour;
 void main() {
   v_world = a_position;
   v_normal = a_normal;
   v_uv = a_uv;
+  v_colour = a_colour;
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }
 )glsl";
@@ -28,6 +31,7 @@ const char* const cloth_fragment_shader = R"glsl(
 in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
+in vec3 v_colour;
 uniform vec3 u_eye;               // world, metres
 uniform vec3 u_light_dir;         // world, unit, towards the key light
 uniform float u_light_intensity;  // diffuse key light
@@ -36,6 +40,7 @@ uniform vec3 u_front_color;
 uniform vec3 u_back_color;
 uniform int u_shading;            // 0 lit, 1 normals
 uniform int u_use_texture;        // 1: the front colour comes from u_texture (render/texture.h)
+uniform int u_use_vertex_colour;  // 1: both sides take v_colour (the strain false colour)
 uniform sampler2D u_texture;      // rows uploaded bottom first: t = 0 is the image's bottom
 uniform vec2 u_texture_repeat;    // metres of material per repeat along warp and weft
 uniform int u_use_environment;    // 1: image-based light (render/environment.h) replaces ambient
@@ -61,6 +66,7 @@ void main() {
   if (!gl_FrontFacing && len > 1e-6) n = -n;  // back face: its normal points the other way
   vec3 base = gl_FrontFacing ? u_front_color : u_back_color;
   if (gl_FrontFacing && u_use_texture == 1) base = texture(u_texture, v_uv / u_texture_repeat).rgb;
+  if (u_use_vertex_colour == 1) base = v_colour;
 
   if (u_shading == 1) {
     o_color = vec4(0.5 * n + 0.5, 1.0);

@@ -65,6 +65,7 @@ const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
   storage.positions = mesh.positions;
   storage.triangles = mesh.triangles;
   storage.uvs = mesh.uvs;
+  storage.strain = mesh.strain;
   compute_vertex_normals(storage);
   return storage;
 }

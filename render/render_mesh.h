@@ -14,6 +14,7 @@ struct RenderMesh {
   std::vector<Eigen::Vector3f> positions;  // #V, metres
   std::vector<Eigen::Vector3f> normals;    // #V unit vertex normals (compute_vertex_normals)
   std::vector<Eigen::Vector2f> uvs;        // #V material coordinates (warp, weft), may be empty
+  std::vector<float> strain;  // #V length/rest − 1 about each vertex (Shading::strain), may be empty
   std::vector<std::array<std::uint32_t, 3>> triangles;  // #F, counter-clockwise seen from the front
 };
 

@@ -17,6 +17,8 @@ void validate(const RenderSettings& s, int max_size) {
     fail("width×height must be within 1.." + std::to_string(max_size) + ", got " +
          std::to_string(s.width) + "x" + std::to_string(s.height));
   }
+  if (!(s.strain_full_scale > 0.0) || !std::isfinite(s.strain_full_scale))
+    fail("strain_full_scale must be finite and > 0");
   if (s.msaa_samples < 0) fail("msaa_samples must be >= 0, got " + std::to_string(s.msaa_samples));
   if (!s.light_direction.allFinite() || !(s.light_direction.norm() > 0.0)) {
     fail("light_direction must be a finite non-zero vector");

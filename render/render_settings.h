@@ -21,7 +21,9 @@
 
 namespace weft::render {
 
-enum class Shading { lit, normals };  // normals: |n| as colour (seed 003's debug view)
+// normals: |n| as colour (seed 003's debug view); strain: the cloth lit in the false colour of
+// RenderMesh::strain (render/strain_colour.h) on both sides, with a legend.
+enum class Shading { lit, normals, strain };
 
 // Which renderer draws the frames (render/renderer.h): the OpenGL rasterizer or the Embree
 // ray tracer.
@@ -47,6 +49,7 @@ struct RenderSettings {
   // Colour app/ gives obstacles (RenderObject::color); the renderer itself does not read it.
   Eigen::Vector3f obstacle_color{0.70f, 0.74f, 0.80f};
   Shading shading = Shading::lit;
+  double strain_full_scale = 0.05;  // Shading::strain: the strain of the map's ends (±5 %)
   int msaa_samples = 4;
   RendererKind renderer = RendererKind::raster;
   // The rasterizer's GL context. render/ reads no environment: app/ applies WEFT_GL here.
@@ -75,8 +78,8 @@ struct RenderObject {
 
 // The names of the enumerations above, one base::EnumNames table each (the scene reader, the
 // command line and the error messages all read these), in the order errors list them.
-inline constexpr base::EnumNames<Shading, 2> shading_names{
-    {{Shading::lit, "lit"}, {Shading::normals, "normals"}}};
+inline constexpr base::EnumNames<Shading, 3> shading_names{
+    {{Shading::lit, "lit"}, {Shading::normals, "normals"}, {Shading::strain, "strain"}}};
 inline constexpr base::EnumNames<RendererKind, 2> renderer_names{
     {{RendererKind::raster, "raster"}, {RendererKind::raytrace, "raytrace"}}};
 inline constexpr base::EnumNames<GlBackend, 3> gl_backend_names{

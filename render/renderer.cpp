@@ -8,6 +8,7 @@
 #include "base/check.h"
 #include "render/cloth_surface.h"
 #include "render/raster.h"
+#include "render/strain_colour.h"
 
 #ifdef WEFT_WITH_EMBREE_RT
 #include "render/raytrace/ray_tracer.h"
@@ -18,7 +19,7 @@ namespace weft::render {
 namespace {
 
 // Either back-end behind the interface, the cloth's rendering aids (subdivision, thickness;
-// render/cloth_surface.h) applied first.
+// render/cloth_surface.h) applied first and the strain legend drawn last.
 template <class Backend>
 class WithClothSurface final : public Renderer {
  public:
@@ -27,8 +28,10 @@ class WithClothSurface final : public Renderer {
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects) override {
     RenderMesh storage;
-    return m_backend.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage), settings,
-                            objects);
+    Image image = m_backend.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage),
+                                   settings, objects);
+    if (settings.shading == Shading::strain) draw_strain_legend(image, settings.strain_full_scale);
+    return image;
   }
   Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
                    const std::vector<RenderObject>& objects, MaskOf which) override {

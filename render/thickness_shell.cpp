@@ -44,6 +44,10 @@ RenderMesh make_thickness_shell(const RenderMesh& input, double thickness_m) {
     shell.uvs = mesh.uvs;
     shell.uvs.insert(shell.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
   }
+  if (mesh.strain.size() == n) {
+    shell.strain = mesh.strain;
+    shell.strain.insert(shell.strain.end(), mesh.strain.begin(), mesh.strain.end());
+  }
 
   // Directed edges by their undirected key: how many triangles hold each, and the direction
   // of the first (the one a boundary edge has).

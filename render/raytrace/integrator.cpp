@@ -104,6 +104,10 @@ bool intersect(const FrameView& view, const Eigen::Vector3f& origin,
     const Eigen::Vector2f uv = w * mesh.uvs[t[0]] + u * mesh.uvs[t[1]] + v * mesh.uvs[t[2]];
     hit.reflectance = reflectance_from_color(sample_cloth_texture(*surface.texture, uv));
   }
+  if (const std::vector<Eigen::Vector3f>* colours = surface.vertex_colours) {
+    hit.reflectance = reflectance_from_color(w * (*colours)[t[0]] + u * (*colours)[t[1]] +
+                                             v * (*colours)[t[2]]);
+  }
   return true;
 }
 
@@ -285,15 +289,25 @@ Eigen::Vector3f camera_direction(const FrameView& view, float px, float py) {
          (2.0f * py / static_cast<float>(view.height) - 1.0f) * view.up;
 }
 
+// What a camera sample met first, for the denoiser's guides.
+struct FirstHit {
+  bool hit = false;
+  Eigen::Vector3f normal, albedo;
+  float depth_m = 0.0f;
+};
+
 // Linear radiance of one camera sample through image point (px, py).
 Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& rng,
-                              RayCounts& counts) {
+                              RayCounts& counts, FirstHit& first) {
   const Eigen::Vector3f direction = camera_direction(view, px, py);
   ++counts.camera;
   Hit hit;
   if (!intersect(view, view.eye, direction, view.near_m, view.far_m, hit))
     return background(view, direction);
   Eigen::Vector3f to_viewer = -direction.normalized();
+  first.hit = true;
+  first.normal = hit.normal;
+  first.depth_m = hit.distance_m;
 
   if (view.shading == Shading::normals) {  // the colour 0.5 n + 0.5, as the rasterizer
     return reflectance_from_color(0.5f * hit.normal + Eigen::Vector3f::Constant(0.5f));
@@ -304,6 +318,7 @@ Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& 
     ground_pattern(view, hit, -to_viewer, line_factor, background_weight);
     hit.reflectance *= line_factor;
   }
+  first.albedo = hit.reflectance;
 
   const Eigen::Vector3f radiance = view.environment
                                       ? environment_path(view, hit, to_viewer, rng, counts)
@@ -314,7 +329,8 @@ Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& 
 
 }  // namespace
 
-Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts) {
+Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts,
+                             PixelGuide* guide) {
   const std::uint64_t pixel_index =
       static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(view.width) +
       static_cast<std::uint64_t>(x);
@@ -323,15 +339,44 @@ Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& cou
   const Eigen::Vector2f rotation(pixel_rng.next_float(), pixel_rng.next_float());
 
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  PixelGuide g;
+  double l_sum = 0.0, l_squares = 0.0;  // the samples' illumination luminance (denoise.h)
   for (int k = 0; k < view.samples_per_pixel; ++k) {
     const auto sample = static_cast<std::uint32_t>(k);
     const Eigen::Vector2f offset =
         view.samples_per_pixel == 1 ? Eigen::Vector2f(0.5f, 0.5f) : pixel_offset(sample, rotation);
     Pcg32 rng = sample_generator(pixel_index, sample, view.seed);
-    sum += render_sample(view, static_cast<float>(x) + offset.x(),
-                         static_cast<float>(y) + offset.y(), rng, counts);
+    FirstHit first;
+    const Eigen::Vector3f radiance = render_sample(view, static_cast<float>(x) + offset.x(),
+                                                   static_cast<float>(y) + offset.y(), rng, counts,
+                                                   first);
+    sum += radiance;
+    if (!guide) continue;
+    double l = luminance(radiance);
+    if (first.hit) {
+      g.normal += first.normal;
+      g.albedo += first.albedo;
+      g.depth_m += first.depth_m;
+      g.coverage += 1.0f;
+      l /= std::max(luminance(first.albedo), 1e-3);
+    }
+    l_sum += l;
+    l_squares += l * l;
   }
-  return sum / static_cast<float>(view.samples_per_pixel);
+  const auto n = static_cast<float>(view.samples_per_pixel);
+  if (guide) {
+    if (g.coverage > 0.0f) {
+      g.normal /= g.coverage;
+      g.albedo /= g.coverage;
+      g.depth_m /= g.coverage;
+    }
+    g.coverage /= n;
+    // Variance of the mean: the samples' unbiased variance over their count.
+    if (view.samples_per_pixel > 1)
+      g.variance = static_cast<float>(std::max(0.0, (l_squares - l_sum * l_sum / n) / (n - 1.0)) / n);
+    *guide = g;
+  }
+  return sum / n;
 }
 
 const SurfaceShading* visible_surface(const FrameView& view, int x, int y) {

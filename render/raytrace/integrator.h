@@ -28,6 +28,9 @@ struct SurfaceShading {
   // Replaces `front` by the texture's colour at the hit's material coordinates (mesh->uvs,
   // interpolated) when set and the mesh has one UV per vertex (render/texture.h).
   const ClothTexture* texture = nullptr;
+  // Replaces `front` and `back` (and the texture) by the vertex colours, interpolated, when
+  // set (one per vertex of mesh: the strain false colour, render/strain_colour.h).
+  const std::vector<Eigen::Vector3f>* vertex_colours = nullptr;
 };
 
 // One frame's scene and settings in the units and form the inner loop wants.
@@ -67,8 +70,19 @@ struct FrameView {
   float epsilon_m = 1e-5f;  // secondary rays start this far off the surface
 };
 
-// Mean linear radiance (RGB) of pixel (x, y) over its samples; adds the rays it traced.
-Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts);
+// What the denoiser (render/denoise.h) needs of a pixel, from its camera samples: the means of
+// the first hits' shading normal, reflectance (with the ground's grid lines) and distance over
+// the samples that hit, the fraction that hit, and the variance of the mean of the samples'
+// illumination luminance (radiance luminance / reflectance luminance; 0 with one sample).
+struct PixelGuide {
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero(), albedo = Eigen::Vector3f::Zero();
+  float depth_m = 0.0f, coverage = 0.0f, variance = 0.0f;
+};
+
+// Mean linear radiance (RGB) of pixel (x, y) over its samples; adds the rays it traced. Fills
+// `guide` when given (the radiance is the same bits either way).
+Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts,
+                             PixelGuide* guide = nullptr);
 
 // The surface the camera ray through the centre of pixel (x, y) meets first; nullptr when it
 // meets none, or the ground where its rim has faded at least half into the background (the

@@ -20,10 +20,12 @@
 
 #include "base/constants.h"
 #include "base/thread_pool.h"
+#include "render/denoise.h"
 #include "render/primitives.h"
 #include "render/raytrace/embree_scene.h"
 #include "render/raytrace/integrator.h"
 #include "render/raytrace/shading.h"
+#include "render/strain_colour.h"
 
 namespace weft::render {
 
@@ -73,6 +75,7 @@ struct FrameMeshes {
   std::vector<RenderMesh> object_storage;
   std::vector<const RenderMesh*> objects;
   RenderMesh ground;  // empty without a ground
+  std::vector<Eigen::Vector3f> cloth_colours;  // Shading::strain: the cloth's false colours
 };
 
 // Step 1 (validate_raytrace and validate(RenderSettings) are checked before).
@@ -87,6 +90,8 @@ void prepare_meshes(const RenderMesh& cloth, const RenderSettings& s,
     if (!objects[k].color.allFinite()) throw std::invalid_argument(name + ": colour is not finite");
     m.objects.push_back(&with_normals(objects[k].mesh, m.object_storage[k]));
   }
+  if (s.shading == Shading::strain)
+    m.cloth_colours = strain_colours(*m.cloth, static_cast<float>(s.strain_full_scale));
   if (s.ground) {
     m.ground =
         make_square_patch(Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m),
@@ -139,9 +144,22 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.seed = s.raytrace.seed;
 }
 
+void resize_denoise_input(DenoiseInput& in, int width, int height) {
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  in.width = width;
+  in.height = height;
+  in.radiance.resize(n);
+  in.normal.resize(n);
+  in.albedo.resize(n);
+  in.depth_m.resize(n);
+  in.coverage.resize(n);
+  in.variance.resize(n);
+}
+
 // Step 4: the pool's threads take the 16×16 tiles in order, one task per tile, and write their
-// pixels' bytes into `image`; returns the rays traced, counted per tile and summed in tile order.
-// The exception of the lowest failing tile is rethrown.
+// pixels' bytes into `image` — through the denoiser (render/denoise.h) when the settings ask,
+// the tiles then filling its input first; returns the rays traced, counted per tile and summed
+// in tile order. The exception of the lowest failing tile is rethrown.
 // `pool` is made (again) when it does not have the threads the settings ask for.
 RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Image& image,
                       std::unique_ptr<base::ThreadPool>& pool) {
@@ -154,18 +172,37 @@ RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Imag
   const int threads = thread_count(r, tiles);
   if (!pool || pool->size() != static_cast<std::size_t>(threads))
     pool = std::make_unique<base::ThreadPool>(threads);
+  // Noise-free shading (normals) and single samples have nothing to denoise.
+  const bool denoised = r.denoise && view.samples_per_pixel > 1 && view.shading != Shading::normals;
+  DenoiseInput in;
+  if (denoised) resize_denoise_input(in, width, height);
   pool->run(counts.size(), [&](std::size_t k) {
     const int tile = static_cast<int>(k);
     const int x0 = (tile % tiles_x) * tile_side, y0 = (tile / tiles_x) * tile_side;
     const int x1 = std::min(x0 + tile_side, width), y1 = std::min(y0 + tile_side, height);
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
+        const std::size_t p = static_cast<std::size_t>(y) * width + x;
+        if (denoised) {
+          rt::PixelGuide g;
+          in.radiance[p] = rt::render_pixel(view, x, y, counts[k], &g);
+          in.normal[p] = g.normal;
+          in.albedo[p] = g.albedo;
+          in.depth_m[p] = g.depth_m;
+          in.coverage[p] = g.coverage;
+          in.variance[p] = g.variance;
+          continue;
+        }
         const Eigen::Vector3f radiance = rt::render_pixel(view, x, y, counts[k]);
-        std::uint8_t* out = bytes + 3 * (static_cast<std::size_t>(y) * width + x);
-        for (int c = 0; c < 3; ++c) out[c] = rt::encode_channel(radiance[c]);
+        for (int c = 0; c < 3; ++c) bytes[3 * p + c] = rt::encode_channel(radiance[c]);
       }
     }
   });
+  if (denoised) {
+    const std::vector<Eigen::Vector3f> radiance = denoise(in, DenoiseSettings{}, pool.get());
+    for (std::size_t p = 0; p < radiance.size(); ++p)
+      for (int c = 0; c < 3; ++c) bytes[3 * p + c] = rt::encode_channel(radiance[p][c]);
+  }
 
   RayCounts total;
   for (const RayCounts& c : counts) {
@@ -225,7 +262,8 @@ rt::FrameView RayTracer::Impl::frame_view(const FrameMeshes& m, const RenderSett
   add_surface(cloth_geometry,
               {m.cloth, rt::reflectance_from_color(s.front_color),
                rt::reflectance_from_color(s.back_color), true, false,
-               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr});
+               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr,
+               m.cloth_colours.empty() ? nullptr : &m.cloth_colours});
   const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
   add_surface(ground_geometry, {&m.ground, ground_reflectance, ground_reflectance, false, true});
   for (std::size_t k = 0; k < objects.size(); ++k) {

@@ -21,6 +21,9 @@ struct RayTraceSettings {
   // 0 (off) .. 1 and the roughness of its "Charlie" distribution, (0, 1].
   double sheen = 0.5;
   double sheen_roughness = 0.5;
+  // Edge-aware à-trous denoising guided by normal, albedo and depth (render/denoise.h); off:
+  // the plain mean of the samples.
+  bool denoise = true;
   int threads = 0;         // render threads; 0: all hardware threads. Never changes a bit.
   std::uint32_t seed = 0;  // mixed into every pixel's random generator
 };

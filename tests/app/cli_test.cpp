@@ -131,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"BadFramesOption", "--frames 0", tiny_scene(),
                  "output.frames: expected an integer in [1, 100000], got 0"},
         BadInput{"BadShadingOption", "--shading glossy", tiny_scene(),
-                 "--shading: glossy not in {lit,normals}"}),
+                 "--shading: glossy not in {lit,normals,strain}"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 // --explain lists only what the scene needs — the tiny scene has no constraints and no

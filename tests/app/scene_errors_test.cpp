@@ -230,7 +230,7 @@ TEST(SceneErrors, WrongEnumListsTheChoices) {
   Json s = valid_scene();
   s["render"]["shading"] = "flat";
   EXPECT_EQ(error_of(s),
-            "scene.json: render.shading: expected one of 'lit', 'normals', got the string 'flat'");
+            "scene.json: render.shading: expected one of 'lit', 'normals', 'strain', got the string 'flat'");
   s = valid_scene();
   s["simulation"]["integrator"] = "rk9";
   EXPECT_EQ(error_of(s),

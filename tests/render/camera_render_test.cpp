@@ -65,15 +65,6 @@ RenderSettings flat_settings(RendererKind kind, const Camera& camera) {
   return s;
 }
 
-// The renderer, or nullptr (and a message) when it cannot start here.
-std::unique_ptr<Renderer> try_renderer(const RenderSettings& s, std::string& why) {
-  try {
-    return make_renderer(s);
-  } catch (const std::exception& e) {
-    why = e.what();
-    return nullptr;
-  }
-}
 
 // Coverage-weighted centroid of the pixels within `radius` px of `around`: the raster's bytes
 // are linear in coverage (flat white, multisample resolve), the ray tracer's are encoded as
@@ -121,7 +112,7 @@ TEST_F(CameraRender, MarkersLandWhereOpenCVProjectsThem) {
   for (const RendererKind kind : {RendererKind::raster, RendererKind::raytrace}) {
     const RenderSettings s = flat_settings(kind, camera);
     std::string why;
-    const std::unique_ptr<Renderer> renderer = try_renderer(s, why);
+    const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
     if (!renderer) {
       std::cout << "skipped " << renderer_name(kind) << ": " << why << "\n";
       continue;
@@ -179,7 +170,7 @@ TEST_F(CameraRender, MaskOfAFlatClothIsItsProjectedRectangle) {
     s.ground = true;  // under the cloth: neither in the cloth mask nor hiding it
     s.ground_z_m = -0.01;
     std::string why;
-    const std::unique_ptr<Renderer> renderer = try_renderer(s, why);
+    const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
     if (!renderer) {
       std::cout << "skipped " << renderer_name(kind) << ": " << why << "\n";
       continue;
@@ -220,7 +211,7 @@ TEST_F(CameraRender, RasterAndRayTracedClothMasksAgree) {
     RenderSettings s = flat_settings(kind, camera);
     s.ground = true;
     std::string why;
-    const std::unique_ptr<Renderer> renderer = try_renderer(s, why);
+    const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
     if (!renderer) GTEST_SKIP() << renderer_name(kind) << ": " << why;
     masks.push_back(renderer->render_mask(cloth, s, sphere, Renderer::MaskOf::cloth));
   }
@@ -243,7 +234,7 @@ TEST_F(CameraRender, MaskIsTheSameUnderABrightEnvironmentMap) {
   for (const RendererKind kind : {RendererKind::raster, RendererKind::raytrace}) {
     RenderSettings s = flat_settings(kind, camera);
     std::string why;
-    const std::unique_ptr<Renderer> renderer = try_renderer(s, why);
+    const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
     if (!renderer) {
       std::cout << "skipped " << renderer_name(kind) << ": " << why << "\n";
       continue;

@@ -21,6 +21,7 @@
 #include "render/image.h"
 #include "render/raster.h"
 #include "render/render_mesh.h"
+#include "render/renderer.h"
 
 namespace weft::render::test {
 
@@ -124,6 +125,17 @@ inline Eigen::Matrix3d opencv_look_at(const Eigen::Vector3d& eye, const Eigen::V
 inline std::unique_ptr<RasterRenderer> osmesa_raster_or_null(std::string& why) {
   try {
     return std::make_unique<RasterRenderer>(make_osmesa_context(64, 64));
+  } catch (const std::exception& e) {
+    why = e.what();
+    return nullptr;
+  }
+}
+
+// The renderer the settings name (render/renderer.h), or null (with the reason in `why`) when
+// it cannot start here: the caller skips.
+inline std::unique_ptr<Renderer> try_renderer(const RenderSettings& s, std::string& why) {
+  try {
+    return make_renderer(s);
   } catch (const std::exception& e) {
     why = e.what();
     return nullptr;

@@ -1,0 +1,104 @@
+// `--background transparent|R,G,B` on weft run and weft turntable (issue 20 item 8): RGBA
+// frames whose alpha is the renderer's surface mask, a background colour, and a clear error.
+
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "render/image.h"
+#include "tests/app/cli_test_support.h"
+
+namespace weft::app {
+namespace {
+
+class BackgroundCli : public test::CliDirectoryTest {
+ protected:
+  BackgroundCli() : CliDirectoryTest("background_cli") {}
+  std::string path(const std::string& name) const { return (m_dir / name).string(); }
+};
+
+// The PNG's IHDR colour type: 2 RGB, 6 RGBA.
+int colour_type(const std::string& png_path) {
+  std::ifstream png(png_path, std::ios::binary);
+  char header[26] = {};
+  png.read(header, sizeof header);
+  return header[25];
+}
+
+struct Rgba {
+  int width = 0, height = 0;
+  std::unique_ptr<std::uint8_t, void (*)(void*)> pixels{nullptr, stbi_image_free};
+  std::uint8_t alpha(int x, int y) const { return pixels.get()[4 * (y * width + x) + 3]; }
+};
+
+Rgba read_rgba(const std::string& png_path) {
+  Rgba image;
+  int channels = 0;
+  image.pixels.reset(stbi_load(png_path.c_str(), &image.width, &image.height, &channels, 4));
+  return image;
+}
+
+// Without a ground the opaque pixels are exactly the cloth's mask (--mask), and the background
+// is transparent.
+TEST_F(BackgroundCli, TransparentRunWritesTheSurfaceMaskAsAlpha) {
+  const auto scene = write_scene("tiny.json", test::tiny_scene());
+  const auto r = test::run_weft("run " + scene.string() +
+                                " --frames 2 --background transparent --mask --set "
+                                "render.ground=false --out " + path("run"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(colour_type(path("run/frame_0002.png")), 6);
+  const Rgba frame = read_rgba(path("run/frame_0002.png"));
+  ASSERT_TRUE(frame.pixels) << stbi_failure_reason();
+  const render::Image mask = render::read_image(m_dir / "run" / "mask_0002.png");
+  ASSERT_EQ(frame.width, mask.width());
+  int opaque = 0, mismatched = 0;
+  for (int y = 0; y < frame.height; ++y) {
+    for (int x = 0; x < frame.width; ++x) {
+      const std::uint8_t a = frame.alpha(x, y);
+      EXPECT_TRUE(a == 0 || a == 255) << "binary alpha at " << x << "," << y;
+      opaque += a == 255;
+      mismatched += (a == 255) != (mask.at(x, y).r == 255);
+    }
+  }
+  EXPECT_GT(opaque, 100) << "the cloth is opaque";
+  EXPECT_LT(opaque, frame.width * frame.height / 2) << "the background is transparent";
+  EXPECT_EQ(mismatched, 0);
+  EXPECT_EQ(frame.alpha(0, 0), 0);
+  // The scene copy says so: output.alpha is set.
+  std::ifstream copy(path("run/scene.json"));
+  const std::string text((std::istreambuf_iterator<char>(copy)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"alpha\""), std::string::npos) << text;
+}
+
+TEST_F(BackgroundCli, TransparentTurntableAndColouredBackground) {
+  const auto scene = write_scene("tiny.json", test::tiny_scene());
+  const auto t = test::run_weft("turntable " + scene.string() + " --frames 2 --sim-frames 1 "
+                                "--background transparent --out " + path("turn"));
+  ASSERT_EQ(t.exit_code, 0) << t.output;
+  ASSERT_EQ(colour_type(path("turn/turntable_0001.png")), 6);
+  const Rgba turn = read_rgba(path("turn/turntable_0001.png"));
+  ASSERT_TRUE(turn.pixels);
+  EXPECT_EQ(turn.alpha(0, 0), 0) << "sky above the ground: transparent";
+  EXPECT_EQ(turn.alpha(turn.width / 2, turn.height - 1), 255) << "the ground under the camera";
+
+  const auto black = test::run_weft("run " + scene.string() + " --frames 1 --background 0,0,0 "
+                                    "--set render.ground=false --out " + path("black"));
+  ASSERT_EQ(black.exit_code, 0) << black.output;
+  EXPECT_EQ(colour_type(path("black/frame_0001.png")), 2);
+  const render::Image frame = render::read_image(m_dir / "black" / "frame_0001.png");
+  EXPECT_EQ(frame.at(0, 0).r + frame.at(0, 0).g + frame.at(0, 0).b, 0);
+
+  for (const std::string bad : {"blue", "2,0,0"}) {
+    const auto r = test::run_weft("run " + scene.string() + " --frames 1 --background " + bad +
+                                  " --out " + path("bad"));
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("--background"), std::string::npos) << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace weft::app
