@@ -108,6 +108,27 @@ void print_phase_shares(const sim::PhaseTimers& timers) {
   std::printf("weft: time per phase: %s\n", text.c_str());
 }
 
+// Thrown by FrameWriter after writing a frame in which a self-colliding cloth passes through
+// itself, when the scene makes that an error (simulation.self_collision.crossings).
+struct CrossingStop {
+  int frame;
+  int crossings;
+};
+
+// "9–12, 15, 20–48": ascending frame numbers as ranges.
+std::string frame_ranges(const std::vector<int>& frames) {
+  std::string text;
+  for (std::size_t i = 0; i < frames.size();) {
+    std::size_t j = i;
+    while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+    if (!text.empty()) text += ", ";
+    text += std::to_string(frames[i]);
+    if (j > i) text += "–" + std::to_string(frames[j]);
+    i = j + 1;
+  }
+  return text;
+}
+
 // Renders, writes and records each frame of the stream: frame_NNNN.png, the exported mesh,
 // its row of stats.csv, and the progress line.
 class FrameWriter {
@@ -140,12 +161,19 @@ class FrameWriter {
                   100.0 * row.diagnostics.max_strain,
                   row.steps.unconverged_steps ? ", projection missed its tolerance" : "");
     m_progress.update(frame.index, detail);
+    if (m_scene.sim.self_collision.enabled && row.self_intersections > 0) {
+      m_crossing_frames.push_back(frame.index);
+      if (m_scene.crossings == Scene::CrossingPolicy::error)
+        throw CrossingStop{frame.index, row.self_intersections};
+    }
   }
   void finish() {
     m_progress.finish();
     for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
       std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
   }
+  // The frames in which a self-colliding cloth passes through itself, in order.
+  const std::vector<int>& crossing_frames() const { return m_crossing_frames; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
@@ -179,6 +207,7 @@ class FrameWriter {
   Progress m_progress;
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
+  std::vector<int> m_crossing_frames;
 };
 
 // Says where the run stopped and what it kept; writes the report of the frames written.
@@ -212,6 +241,15 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
         "weft: warning: the constraint projection missed its tolerance in %ld of %ld steps "
         "(see unconverged_steps in stats.csv)\n",
         unconverged, steps);
+  if (const std::vector<int>& crossed = writer.crossing_frames(); !crossed.empty()) {
+    int most = 0;
+    for (const FrameStats& row : writer.rows()) most = std::max(most, row.self_intersections);
+    std::fprintf(stderr,
+                 "weft: warning: the cloth passes through itself despite self-collision in %zu of "
+                 "%zu frames (%s; up to %d edge–triangle crossings: self_intersections in "
+                 "stats.csv)\n",
+                 crossed.size(), writer.rows().size(), frame_ranges(crossed).c_str(), most);
+  }
   if (options.explain) print_phase_shares(simulator.timers());
   std::printf("weft: wrote %d frames to %s (simulation %s, rendering %s, total %s)\n", scene.frames,
               dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
@@ -235,8 +273,18 @@ int run_scene(const RunOptions& options) {
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   print_header(scene, *simulator, *renderer, options.explain);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
-  const FrameStreamEnd end =
-      stream_frames(scene, *simulator, [&](const Frame& frame) { writer.write(frame); });
+  FrameStreamEnd end;
+  try {
+    end = stream_frames(scene, *simulator, [&](const Frame& frame) { writer.write(frame); });
+  } catch (const CrossingStop& stop) {
+    writer.finish();
+    std::fprintf(stderr,
+                 "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
+                 "crossings; simulation.self_collision.crossings is \"error\")\n"
+                 "weft: kept frames 1..%d and stats.csv in %s\n",
+                 stop.frame, stop.crossings, stop.frame, dir.c_str());
+    return exit_diverged;
+  }
   writer.finish();
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
   print_summary(scene, options, dir, *simulator, writer);

@@ -382,19 +382,26 @@ sim::AeroSettings read_aerodynamics(ObjectReader r) {
 
 // "simulation.self_collision": the cloth against itself (sim::SelfCollisionSettings);
 // present means enabled unless "enabled": false.
-sim::SelfCollisionSettings read_self_collision(ObjectReader r) {
+sim::SelfCollisionSettings read_self_collision(ObjectReader r, Scene::CrossingPolicy& crossings) {
   sim::SelfCollisionSettings c;
   c.enabled = r.boolean("enabled", true);
+  using Policy = Scene::CrossingPolicy;
+  const std::vector<std::pair<std::string, Policy>> policies{{"warn", Policy::warn},
+                                                             {"error", Policy::error}};
+  crossings = r.enumeration("crossings", policies, {crossings});
   c.thickness_m = r.quantity("thickness", Quantity::length, c.thickness_m, Range::gt(0.0));
   c.marble_radius_m =
       r.quantity("marble_radius", Quantity::length, c.marble_radius_m, Range::ge(0.0));
   c.iterations = static_cast<int>(r.integer("iterations", c.iterations, Range::closed(1, 100)));
+  c.neighbourhood_edges =
+      r.number("neighbourhood", c.neighbourhood_edges, Range::closed(0.0, 4.0));
   r.finish();
   return c;
 }
 
 // "simulation": integrator settings (sim::SimSettings).
-void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics) {
+void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
+                     Scene::CrossingPolicy& crossings) {
   dynamics = r.boolean("dynamics", dynamics);
   s.model = r.enumeration("model", sim::cloth_model_names, {s.model});
   s.integrator = r.enumeration("integrator", sim::integrator_names, {s.integrator});
@@ -418,7 +425,8 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics) {
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
   s.collision_friction = r.number("collision_friction", s.collision_friction, Range::ge(0.0));
   if (r.has("aerodynamics")) s.aero = read_aerodynamics(r.object("aerodynamics"));
-  if (r.has("self_collision")) s.self_collision = read_self_collision(r.object("self_collision"));
+  if (r.has("self_collision"))
+    s.self_collision = read_self_collision(r.object("self_collision"), crossings);
   r.finish();
 }
 
@@ -610,7 +618,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     scene.sim.obstacles.push_back(read_obstacle(obstacle, motion, scene.warnings));
     scene.sim.obstacle_motions.push_back(std::move(motion));
   }
-  read_simulation(top.object("simulation"), scene.sim, scene.dynamics);
+  read_simulation(top.object("simulation"), scene.sim, scene.dynamics, scene.crossings);
   if (scene.tension_field)
     check_tension_field_scene(*scene.tension_field, scene.grid, scene.material,
                               scene.sim.gravity_m_s2, source);

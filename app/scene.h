@@ -46,6 +46,11 @@ struct Scene {
   // output.mask: also write mask_0001.png, the cloth's mask (render::Renderer::render_mask);
   // output.alpha: write the frames as RGBA, the background transparent.
   bool write_mask = false, write_alpha = false;
+  // simulation.self_collision.crossings: what `weft run` does when a frame of a self-colliding
+  // cloth passes through itself (edge–triangle crossings, stats.csv's self_intersections):
+  // warn at the end naming the frames, or stop there with the divergence exit code.
+  enum class CrossingPolicy { warn, error };
+  CrossingPolicy crossings = CrossingPolicy::warn;
 
   render::RenderSettings render;
 

@@ -127,6 +127,9 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   if (!(settings.marble_radius_m >= 0.0) || !std::isfinite(settings.marble_radius_m))
     throw std::invalid_argument("self_collision.marble_radius must be finite and >= 0, got " +
                                 std::to_string(settings.marble_radius_m) + " m");
+  if (!(settings.neighbourhood_edges >= 0.0 && settings.neighbourhood_edges <= 4.0))
+    throw std::invalid_argument("self_collision.neighbourhood must be in 0..4 edges, got " +
+                                std::to_string(settings.neighbourhood_edges));
   if (settings.iterations < 1)
     throw std::invalid_argument("self_collision.iterations must be >= 1, got " +
                                 std::to_string(settings.iterations));
@@ -142,8 +145,9 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   for (const auto& t : m_triangles) m_vertices.insert(m_vertices.end(), t.begin(), t.end());
   std::sort(m_vertices.begin(), m_vertices.end());
   m_vertices.erase(std::unique(m_vertices.begin(), m_vertices.end()), m_vertices.end());
-  // Neighbours: pairs closer at rest than the contact distance plus the mean rest edge are
-  // never in contact, so a flat sheet has no candidates. Margin: half the mean rest edge, and
+  // Neighbours: pairs closer at rest than the contact distance plus neighbourhood_edges mean
+  // rest edges are never in contact, so (with the default, one edge) a flat sheet has no
+  // candidates. Margin: half the mean rest edge, and
   // no less than the contact distance, plus the active band, a sixteenth of the contact
   // distance. A wider margin rebuilds less often but leaves normal-cone culling less room
   // (0.3 to 0.5 edges all cost the same at 64²); a wider band selects less often but keeps
@@ -153,7 +157,7 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   for (const auto& e : m_edges) edge_sum_m += (row(m_rest, e[0]) - row(m_rest, e[1])).norm();
   const double mean_edge_m = m_edges.empty() ? 0.0 : edge_sum_m / static_cast<double>(m_edges.size());
   const double contact_m = std::max(settings.thickness_m, 2.0 * m_marble_radius_m);
-  m_neighbourhood_m = mean_edge_m;
+  m_neighbourhood_m = settings.neighbourhood_edges * mean_edge_m;
   m_band_m = contact_m / 16.0;
   m_margin_m = std::max(contact_m, 0.5 * mean_edge_m) + m_band_m;
   m_watch_m = contact_m + watch_margins * m_margin_m;
@@ -162,7 +166,8 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   // apart, since every pair that can be in contact is at least the smaller contact distance
   // plus the mean rest edge apart at rest (the exclusion below), and stay out of contact
   // until the next rebuild like any pair left out.
-  m_culling.exclusion_m = std::min(settings.thickness_m, 2.0 * m_marble_radius_m) + mean_edge_m;
+  m_culling.exclusion_m =
+      std::min(settings.thickness_m, 2.0 * m_marble_radius_m) + m_neighbourhood_m;
 }
 
 // Distances between features do not change when the whole cloth translates, so what a list

@@ -8,9 +8,10 @@
 //    vertex; two vertices closer than twice the radius are pushed apart.
 //
 // Neighbours are never in contact: pairs closer in the (flat) rest state than the contact
-// distance plus the mean rest edge length (exclusion_radius_m), as seed 003 excludes marbles
-// joined by a spring — ours join vertices up to two edges apart. So a flat sheet has no
-// contacts, and the cloth can pass through itself only in a fold sharper than one edge.
+// distance plus neighbourhood_edges (by default 1) mean rest edge lengths (exclusion_radius_m),
+// as seed 003 excludes marbles joined by a spring — ours join vertices up to two edges apart.
+// So a flat sheet has no contacts, and the cloth can pass through itself only in a fold
+// sharper than that many edges.
 //
 // Each contact is a one-sided distance constraint C(x) ≥ 0, projected as in position-based
 // dynamics (Müller et al. 2007, "Position based dynamics"; the mass-weighted correction of
@@ -60,6 +61,13 @@ struct SelfCollisionSettings {
   double thickness_m = 2e-3;     // vertex–triangle and edge–edge contact distance, > 0
   double marble_radius_m = 0.0;  // vertex–vertex: 0 gives thickness_m / 2
   int iterations = 4;            // Gauss–Seidel sweeps over the contacts per call, ≥ 1
+  // Pairs closer at rest than the contact distance plus this many mean rest edges are never in
+  // contact, 0..4. 1 (seed 003's neighbours) leaves a flat sheet without candidates but lets
+  // a fold sharper than about one edge pass through itself; 0 excludes only pairs about as
+  // close as the contact distance (sharing a vertex), which holds sharp folds for a larger
+  // candidate list (issue 23: the 64² mass-spring sphere drape ends 48 frames with 0
+  // crossings instead of 4–20; bench/self_collision_bench's drop costs 1.6× as much CPU).
+  double neighbourhood_edges = 1.0;
   int threads = 0;  // threads that build the candidate list, 0..4096; 0: all hardware
                     // threads. Never changes a bit of the result.
 };

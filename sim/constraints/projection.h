@@ -60,7 +60,7 @@ struct [[nodiscard]] ProjectionResult {
   double max_strain = 0.0;  // after the projection
   double solve_s = 0.0;     // wall time in factorizations and solves
   int factorizations = 0;   // numeric factorizations of J M⁻¹ Jᵀ (fast projection)
-  int reuse_iterations = 8; // conjugate-gradient iterations on a reused factorization
+  int reuse_iterations = 0;  // conjugate-gradient iterations on a reused factorization
 };
 
 class ConstraintProjector {
