@@ -65,7 +65,7 @@ std::string mesh_name(int frame, MeshFormat format) {
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
   const int removed = remove_numbered_files(dir, "frame", "png") +
                       remove_numbered_files(dir, "mask", "png") +
-                      remove_numbered_files(dir, "mesh", "(obj|ply|gltf|bin)");
+                      remove_numbered_files(dir, "mesh", "(obj|mtl|ply|gltf|bin)");
   if (removed)
     std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed,
                  dir.c_str());
