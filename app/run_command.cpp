@@ -52,6 +52,22 @@ std::string mask_name(int frame) {
   return name;
 }
 
+// The cloth's texture beside glTF meshes (--export-meshes gltf), which name it.
+constexpr const char* texture_file_name = "mesh_texture.png";
+
+// How --export-meshes writes the cloth: the --up axis, the scene's front colour and texture.
+MeshExportOptions mesh_export_options(const Scene& scene, const RunOptions& options) {
+  MeshExportOptions o;
+  o.up = options.up;
+  o.base_color = scene.render.front_color;
+  const render::ClothTexture& texture = scene.render.cloth_surface.texture;
+  if (texture.image && options.export_meshes == MeshFormat::gltf) {
+    o.texture_uri = texture_file_name;
+    o.texture_repeat_m = texture.repeat_m;
+  }
+  return o;
+}
+
 // mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
 std::string mesh_name(int frame, MeshFormat format) {
   char name[32];
@@ -69,6 +85,9 @@ void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& o
   if (removed)
     std::fprintf(stderr, "weft: replaced %d frames of an earlier run in %s\n", removed,
                  dir.c_str());
+  std::filesystem::remove(dir / texture_file_name);
+  if (!mesh_export_options(scene, options).texture_uri.empty())
+    render::write_png(*scene.render.cloth_surface.texture.image, dir / texture_file_name);
   write_text(dir / "scene.json", scene.text);
   write_text(dir / "run.txt", "weft " + std::string(version()) + "\ncommand: " +
                                   options.command_line + "\nscene: " + scene.source + "\n");
@@ -171,7 +190,8 @@ class FrameWriter {
                                                render::Renderer::MaskOf::cloth),
                         m_dir / mask_name(index));
     if (const auto format = m_options.export_meshes)
-      export_mesh(cloth, *format, m_dir / mesh_name(index, *format));
+      export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
+                  mesh_export_options(m_scene, m_options));
   }
 
   const Scene& m_scene;
@@ -269,9 +289,13 @@ Command register_run(CLI::App& app, const std::string& command_line) {
          [o](const std::string& text) {
            o->export_meshes = parse_mesh_format(text, "--export-meshes");
          },
-         "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; normals, UVs = "
-         "material coordinates in metres)")
+         "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; y-up, normals, UVs "
+         "= material coordinates in metres, the cloth's colour; a glTF also its texture)")
       ->check(CLI::IsMember({"obj", "ply", "gltf"}));
+  cmd->add_option_function<std::string>(
+      "--up", [o](const std::string& text) { o->up = parse_up_axis(text, "--up"); },
+      "Up axis of the exported OBJ/PLY: y (default; Blender's OBJ import, as glTF) or z (weft's "
+      "frame)")->check(CLI::IsMember({"y", "z"}));
   cmd->add_flag_callback(
       "--mask", [o] { o->overrides.push_back({"output.mask", "true", "--mask"}); },
       "Also write mask_0001.png, ...: the cloth's mask from the renderer's geometry (white = "

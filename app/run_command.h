@@ -20,6 +20,7 @@ struct RunOptions {
   std::vector<Setting> overrides;
   std::optional<int> threads;                  // --threads (command.h)
   std::optional<MeshFormat> export_meshes;     // also write mesh_0001.<ext>, ... (mesh_export.h)
+  UpAxis up = UpAxis::y;                       // --up: the exported OBJ/PLY's up axis
   bool explain = false;                        // print the simulated terms and phase times
   bool report = false;  // also write report.html (frames, plots of strain/energy/time; run_report.h)
   std::string command_line;                    // recorded in run.txt
