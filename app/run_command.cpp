@@ -6,6 +6,7 @@
 #include <memory>
 #include <regex>
 
+#include "app/auto_camera.h"
 #include "app/frame_mesh.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
@@ -257,6 +258,9 @@ int run_scene(const RunOptions& options) {
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
+  if (frame_cloth_if_no_camera(scene))
+    std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
+                         "over the run (simulated once for it)\n");
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   fs::create_directories(dir);
