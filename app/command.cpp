@@ -3,6 +3,7 @@
 #include "app/command.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -34,13 +35,58 @@ std::string empty_value_error(const CLI::App& command) {
   return "";
 }
 
+namespace {
+
+// Levenshtein distance, for suggesting the command a typo meant.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown command 'rnu' (did you mean 'run'?)" when the first argument names no command, else "".
+std::string unknown_command_error(const std::vector<Command>& commands, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string given = argv[1];
+  std::string best;
+  std::size_t best_distance = 3;  // suggest only close names
+  for (const Command& c : commands) {
+    if (c.cli->get_name() == given) return "";
+    const std::size_t d = edit_distance(given, c.cli->get_name());
+    if (d < best_distance) best_distance = d, best = c.cli->get_name();
+  }
+  return "unknown command '" + given + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)");
+}
+
+// "weft run --help" for the command that was parsed, else "weft --help".
+std::string help_hint(const std::vector<Command>& commands) {
+  for (const Command& c : commands)
+    if (c.cli->parsed()) return "weft " + c.cli->get_name() + " --help";
+  return "weft --help";
+}
+
+}  // namespace
+
 int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
   try {
+    if (const std::string unknown = unknown_command_error(commands, argc, argv); !unknown.empty()) {
+      std::fprintf(stderr, "weft: error: %s; see weft --help\n", unknown.c_str());
+      return exit_bad_input;
+    }
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
       if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-      std::fprintf(stderr, "weft: error: %s (see weft --help)\n", e.what());
+      std::fprintf(stderr, "weft: error: %s (see %s)\n", e.what(), help_hint(commands).c_str());
       for (const Command& c : commands)
         if (c.cli->parsed()) return c.parse_error_code;
       return exit_bad_input;
@@ -48,7 +94,7 @@ int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char
     for (const Command& c : commands) {
       if (!c.cli->parsed()) continue;
       if (const std::string error = empty_value_error(*c.cli); !error.empty()) {
-        std::fprintf(stderr, "weft: error: %s (see weft --help)\n", error.c_str());
+        std::fprintf(stderr, "weft: error: %s (see %s)\n", error.c_str(), help_hint(commands).c_str());
         return c.parse_error_code;
       }
       return c.run();

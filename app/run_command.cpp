@@ -102,6 +102,14 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
       scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
       1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
       renderer.description().c_str());
+  const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
+                             scene.sim.integrator != sim::Integrator::dynamic_relaxation;
+  if (explicit_step && simulator.time_step() > simulator.critical_time_step())
+    std::fprintf(stderr,
+                 "weft: warning: the time step %.3g ms exceeds the predicted critical step %.3g ms "
+                 "of the explicit integrator: the run will probably diverge (lower "
+                 "simulation.time_step or use implicit_euler)\n",
+                 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step());
   if (scene.tension_field) {
     const sim::TensionFieldResult folds = sim::solve_tension_field(tension_field_inputs(
         *scene.tension_field, scene.grid, scene.material, scene.sim.gravity_m_s2));
@@ -240,7 +248,8 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
         "(see unconverged_steps in stats.csv)\n",
         unconverged, steps);
   if (options.explain) print_phase_shares(simulator.timers());
-  std::printf("weft: wrote %d frames to %s (simulation %s, rendering %s, total %s)\n", scene.frames,
+  std::fprintf(stderr, "weft: wrote %d frame%s to %s (simulation %s, rendering %s, total %s)\n",
+              scene.frames, scene.frames == 1 ? "" : "s",
               dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
               format_duration(render_ms / 1e3).c_str(), format_duration(writer.elapsed_s()).c_str());
   if (options.report)
