@@ -3,7 +3,6 @@
 #include "app/command.h"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,33 +36,16 @@ std::string empty_value_error(const CLI::App& command) {
 
 namespace {
 
-// Levenshtein distance, for suggesting the command a typo meant.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 // "unknown command 'rnu' (did you mean 'run'?)" when the first argument names no command, else "".
 std::string unknown_command_error(const std::vector<Command>& commands, int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return "";
   const std::string given = argv[1];
-  std::string best;
-  std::size_t best_distance = 3;  // suggest only close names
+  std::vector<std::string> names;
   for (const Command& c : commands) {
     if (c.cli->get_name() == given) return "";
-    const std::size_t d = edit_distance(given, c.cli->get_name());
-    if (d < best_distance) best_distance = d, best = c.cli->get_name();
+    names.push_back(c.cli->get_name());
   }
+  const std::string best = closest(given, names);
   return "unknown command '" + given + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)");
 }
 
