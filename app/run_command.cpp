@@ -8,6 +8,7 @@
 
 #include "app/auto_camera.h"
 #include "app/frame_mesh.h"
+#include "app/json_reader.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
@@ -164,7 +165,7 @@ class FrameWriter {
     row.self_intersections =
         sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
     const auto start = std::chrono::steady_clock::now();
-    render_frame(frame.index);
+    if (m_options.selection.selects(frame.index, m_scene.frames)) render_frame(frame.index);
     row.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     m_stats.write(row);
@@ -248,8 +249,10 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
         "(see unconverged_steps in stats.csv)\n",
         unconverged, steps);
   if (options.explain) print_phase_shares(simulator.timers());
+  int written = 0;
+  for (int k = 1; k <= scene.frames; ++k) written += options.selection.selects(k, scene.frames);
   std::fprintf(stderr, "weft: wrote %d frame%s to %s (simulation %s, rendering %s, total %s)\n",
-              scene.frames, scene.frames == 1 ? "" : "s",
+              written, written == 1 ? "" : "s",
               dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
               format_duration(render_ms / 1e3).c_str(), format_duration(writer.elapsed_s()).c_str());
   if (options.report)
@@ -263,6 +266,11 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
 
 int run_scene(const RunOptions& options) {
   Scene scene = load_scene_with(options.scene, options.overrides);
+  const FrameSelection& f = options.selection;
+  if (!f.last_only && (f.start > scene.frames || f.end.value_or(scene.frames) < f.start))
+    throw SceneError("--start/--end: expected 1 <= start <= end <= " +
+                     std::to_string(scene.frames) + " (the scene's frames), got start " +
+                     std::to_string(f.start) + ", end " + std::to_string(f.end.value_or(scene.frames)));
   apply_threads(scene, options.threads);
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
@@ -297,6 +305,21 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
   add_render_options(*cmd, o->overrides);
   add_threads_option(*cmd, o->threads);
+  FrameSelection& f = o->selection;
+  CLI::Option* start = check_range(
+      cmd->add_option("--start", f.start, "First frame to render and write (default 1)"),
+      Range::closed(1, 100000));
+  CLI::Option* end = check_range(
+      cmd->add_option("--end", f.end, "Last frame to render and write (default: the last)"),
+      Range::closed(1, 100000));
+  CLI::Option* every = check_range(
+      cmd->add_option("--every", f.every, "Render and write every Nth frame from --start"),
+      Range::closed(1, 100000));
+  cmd->add_flag("--last", f.last_only,
+                "Render and write only the final frame (every frame is still simulated)")
+      ->excludes(start)
+      ->excludes(end)
+      ->excludes(every);
   cmd->add_option_function<std::string>(
          "--export-meshes",
          [o](const std::string& text) {
@@ -321,6 +344,9 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_flag("--report", o->report,
                 "Also write report.html: contact sheet, last frame, plots of strain, energy and "
                 "time per frame (inline SVG)");
+  // The report shows every frame (its contact sheet, the last frame).
+  for (const char* name : {"--start", "--end", "--every", "--last"})
+    cmd->get_option("--report")->excludes(cmd->get_option(name));
   return {cmd, [o] { return run_scene(*o); }};
 }
 
