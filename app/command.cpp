@@ -34,13 +34,41 @@ std::string empty_value_error(const CLI::App& command) {
   return "";
 }
 
+namespace {
+
+// "unknown command 'rnu' (did you mean 'run'?)" when the first argument names no command, else "".
+std::string unknown_command_error(const std::vector<Command>& commands, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string given = argv[1];
+  std::vector<std::string> names;
+  for (const Command& c : commands) {
+    if (c.cli->get_name() == given) return "";
+    names.push_back(c.cli->get_name());
+  }
+  const std::string best = closest(given, names);
+  return "unknown command '" + given + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)");
+}
+
+// "weft run --help" for the command that was parsed, else "weft --help".
+std::string help_hint(const std::vector<Command>& commands) {
+  for (const Command& c : commands)
+    if (c.cli->parsed()) return "weft " + c.cli->get_name() + " --help";
+  return "weft --help";
+}
+
+}  // namespace
+
 int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
   try {
+    if (const std::string unknown = unknown_command_error(commands, argc, argv); !unknown.empty()) {
+      std::fprintf(stderr, "weft: error: %s; see weft --help\n", unknown.c_str());
+      return exit_bad_input;
+    }
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
       if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-      std::fprintf(stderr, "weft: error: %s (see weft --help)\n", e.what());
+      std::fprintf(stderr, "weft: error: %s (see %s)\n", e.what(), help_hint(commands).c_str());
       for (const Command& c : commands)
         if (c.cli->parsed()) return c.parse_error_code;
       return exit_bad_input;
@@ -48,7 +76,7 @@ int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char
     for (const Command& c : commands) {
       if (!c.cli->parsed()) continue;
       if (const std::string error = empty_value_error(*c.cli); !error.empty()) {
-        std::fprintf(stderr, "weft: error: %s (see weft --help)\n", error.c_str());
+        std::fprintf(stderr, "weft: error: %s (see %s)\n", error.c_str(), help_hint(commands).c_str());
         return c.parse_error_code;
       }
       return c.run();

@@ -1,7 +1,8 @@
 #pragma once
 // `weft diff A B`: compares two images (render/image_diff.h) — per-channel mean, RMS and largest
 // difference, PSNR, SSIM, the fraction of pixels over a threshold — against explicit warn and
-// fail thresholds, and can write a heatmap of the differences. Exit codes: 0 pass, 1 warn,
+// fail thresholds — by default the regression suite's (render::default_min_psnr_db, …) — and can
+// write a heatmap of the differences. Exit codes: 0 pass, 1 warn,
 // 2 fail, 3 size mismatch, 4 unreadable file, 5 bad arguments.
 
 #include <filesystem>
@@ -53,8 +54,12 @@ struct DiffOptions {
   std::optional<std::filesystem::path> heatmap;  // --heatmap D.png
   bool json = false;
   std::vector<std::string> warn, fail;  // threshold lists (--warn, --fail; repeatable)
-  int pixel_threshold = 8;              // --pixel-threshold
+  bool report_only = false;  // --report-only: no default fail thresholds, always pass
+  int pixel_threshold = render::default_pixel_threshold;  // --pixel-threshold
 };
+
+// The fail thresholds without --fail: PSNR below 50 dB, over 0.05 % of pixels over the threshold.
+std::string default_fail_thresholds();
 
 // Prints the comparison (text or one JSON object on stdout), writes the heatmap if asked, and
 // returns the exit code above; errors go to stderr.

@@ -9,7 +9,8 @@ namespace weft::app {
 double frame_time_s(const Scene& scene, int frame) { return frame / scene.fps; }
 
 FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
-                             const std::function<void(const Frame&)>& on_frame) {
+                             const std::function<void(const Frame&)>& on_frame,
+                             const std::function<bool()>& stop) {
   FrameStreamEnd end;
   for (int k = 1; k <= scene.frames; ++k) {
     const auto start = std::chrono::steady_clock::now();
@@ -26,6 +27,7 @@ FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
     const double time_s = scene.dynamics ? simulator.state().time_s : frame_time_s(scene, k);
     if (on_frame) on_frame(Frame{k, time_s, sim_s, simulator});
     end.frames = k;
+    if (stop && stop()) break;
   }
   return end;
 }

@@ -34,10 +34,12 @@ struct FrameStreamEnd {
 };
 
 // Simulates frames 1..scene.frames on `simulator` (made by make_simulator(scene), at its start)
-// and calls on_frame for each. A divergence stops the stream and is returned; what on_frame
-// throws propagates.
+// and calls on_frame for each; `stop`, if given, is asked after each frame and ends the stream
+// early when it says so (weft measure --until-settled). A divergence stops the stream and is
+// returned; what on_frame throws propagates.
 [[nodiscard]] FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
-                                           const std::function<void(const Frame&)>& on_frame);
+                                           const std::function<void(const Frame&)>& on_frame,
+                                           const std::function<bool()>& stop = {});
 
 // The time of frame k of the scene, seconds: k / fps.
 double frame_time_s(const Scene& scene, int frame);

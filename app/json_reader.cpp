@@ -126,6 +126,8 @@ std::string array_of(std::size_t count, const std::string& elements) {
   return "an array of " + std::to_string(count) + " " + elements;
 }
 
+}  // namespace
+
 // Levenshtein distance, for "did you mean" hints.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -155,6 +157,8 @@ std::string closest(const std::string& key, const std::vector<std::string>& cand
   }
   return best;
 }
+
+namespace {
 
 std::string join(const std::vector<std::string>& items, const std::string& quote = "") {
   std::string out;

@@ -21,6 +21,12 @@
 
 namespace weft::app {
 
+// Levenshtein distance between two names.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+// The candidate closest to `key` within two edits (not `key` itself), or empty: the "did you
+// mean" of an unknown key or command.
+std::string closest(const std::string& key, const std::vector<std::string>& candidates);
+
 // Keeps the file's key order, so that "the first unknown key" is the first in the file.
 using Json = nlohmann::ordered_json;
 

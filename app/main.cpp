@@ -9,7 +9,8 @@
 int main(int argc, char** argv) {
   using namespace weft::app;
   CLI::App app{"weft: offline cloth simulation and visualization.\n"
-               "Simulates a scene file and writes a PNG sequence, stats.csv and a copy of the scene."};
+               "Simulates a scene file and writes a PNG sequence, stats.csv and a copy of the scene.",
+               "weft"};
   app.set_version_flag("--version", std::string("weft ") + version());
   app.require_subcommand(1);
   const std::string line = joined_command_line(argc, argv);

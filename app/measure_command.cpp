@@ -16,6 +16,8 @@
 #include "app/json_reader.h"
 #include "app/output_files.h"
 #include "app/progress.h"
+#include "app/units.h"
+#include "app/version.h"
 #include "base/format.h"
 #include "sim/collision/self_intersection.h"
 #include "analysis/measure/settle.h"
@@ -136,8 +138,17 @@ std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::Cl
   return support;
 }
 
+bool settled_for(const std::vector<MeasureRow>& rows, double threshold, double hold_s) {
+  if (rows.empty() || rows.back().max_speed_m_s >= threshold) return false;
+  double below_since_s = rows.front().time_s;
+  for (const MeasureRow& r : rows)
+    if (r.max_speed_m_s >= threshold) below_since_s = r.time_s;
+  return rows.back().time_s - below_since_s >= hold_s;
+}
+
 SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bool require_drape,
-                               const std::function<void(const MeasureRow&)>& on_frame) {
+                               const std::function<void(const MeasureRow&)>& on_frame,
+                               bool stop_when_settled) {
   SceneMeasurement m;
   const sim::ClothMesh& mesh = simulator.mesh();
   m.support = scene_support(scene, mesh, require_drape);
@@ -162,7 +173,10 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
   };
   record(0, simulator.state().time_s);
   const FrameStreamEnd end = stream_frames(
-      scene, simulator, [&](const Frame& frame) { record(frame.index, frame.time_s); });
+      scene, simulator, [&](const Frame& frame) { record(frame.index, frame.time_s); },
+      [&] {
+        return stop_when_settled && settled_for(m.rows, m.settle_threshold_m_s, settled_hold_s);
+      });
   if (end.divergence) throw end.divergence->error;
   if (hangs_as_curtain(scene)) m.curtain = sim::count_curtain_folds(mesh, simulator.state().x);
   std::vector<double> time_s, speed_m_s;
@@ -204,6 +218,8 @@ std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulato
 int run_measure(const MeasureOptions& options) {
   Scene scene = load_scene_with(options.scene, options.overrides);
   apply_threads(scene, options.threads);
+  if (options.until_settled_max_s)
+    scene.frames = static_cast<int>(std::ceil(*options.until_settled_max_s * scene.fps - 1e-9));
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::optional<sim::DrapeSupport> support =
@@ -236,7 +252,7 @@ int run_measure(const MeasureOptions& options) {
         detail += format(", DC %.3f", *row.drape_coefficient) + ", " +
                   std::to_string(*row.folds) + " folds";
       progress.update(row.frame, detail);
-    });
+    }, options.until_settled_max_s.has_value());
   } catch (const sim::DivergenceError& e) {
     progress.finish();
     std::fprintf(stderr, "weft: error: %s\n", e.what());
@@ -265,7 +281,7 @@ void add_photo_options(CLI::App& cmd, MeasurePhotoOptions& p, std::string& cente
       "--photo", p.photo,
       "Top-view photo or silhouette of a Cusick drape to measure instead of a scene "
       "(docs/measure.md); needs --disc-mm, --specimen-mm and --mm-per-px or --disc-px");
-  for (const char* name : {"scene", "--set", "--frames", "--threads", "--drape"})
+  for (const char* name : {"scene", "--set", "--frames", "--threads", "--drape", "--until-settled"})
     photo->excludes(cmd.get_option(name));
   const auto needs_photo = [&](CLI::Option* o) { o->needs(photo); };
   needs_photo(cmd.add_option("--mask-photo", p.mask,
@@ -285,6 +301,23 @@ void add_photo_options(CLI::App& cmd, MeasurePhotoOptions& p, std::string& cente
   needs_photo(cmd.add_option("--center-px", center,
                              "Disc centre in the photo, X,Y pixels (default: the silhouette's "
                              "centroid)"));
+}
+
+// --until-settled's MAX: a time in (0, 600] s; a bare number is seconds.
+double until_settled_limit(const std::string& text) {
+  double t = 0.0;
+  try {
+    t = text.empty() ? 30.0 : parse_quantity(text.find_first_not_of("0123456789.eE+-") ==
+                                                     std::string::npos
+                                                 ? text + " s"
+                                                 : text,
+                                             Quantity::time);
+  } catch (const UnitError& e) {
+    throw SceneError("--until-settled: " + std::string(e.what()));
+  }
+  if (!(t > 0.0 && t <= 600.0))
+    throw SceneError("--until-settled: expected a time in (0, 600] s, got '" + text + "'");
+  return t;
 }
 
 std::optional<sim::Vec2> parse_center(const std::string& text) {
@@ -315,6 +348,16 @@ Command register_measure(CLI::App& app, const std::string& command_line) {
   add_override_option(*cmd, "--frames", "output.frames", o->overrides,
                       "Frames to simulate (overrides output.frames)", "INT");
   add_threads_option(*cmd, o->threads);
+  cmd->add_option_function<std::string>(
+         "--until-settled",
+         [o](const std::string& text) {
+           o->until_settled_max_s = until_settled_limit(text);
+         },
+         "Simulate until the max speed has stayed below 1 cm/s for 1 s, at most MAX of simulated "
+         "time (default 30 s; a time such as '20 s'), instead of output.frames")
+      ->expected(0, 1)
+      ->default_str("30 s")
+      ->excludes(cmd->get_option("--frames"));
   cmd->add_flag("--drape", o->require_drape,
                 "Require the drape measures: an error if no obstacle supports the cloth centre");
   add_photo_options(*cmd, *p, *center);

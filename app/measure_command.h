@@ -25,6 +25,9 @@ struct MeasureOptions {
   std::vector<Setting> overrides;              // --set, --frames (scene patches, command.h)
   std::optional<int> threads;                  // --threads (command.h)
   bool require_drape = false;  // --drape: a scene without a support is an error
+  // --until-settled [MAX]: simulate until settled (settled_for), at most MAX s of simulated
+  // time instead of output.frames.
+  std::optional<double> until_settled_max_s;
   std::string command_line;    // recorded in measure.txt
 };
 
@@ -62,11 +65,21 @@ sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh);
 std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
                                                bool require_drape);
 
+// How long the max speed must have stayed below the settle threshold for --until-settled to
+// stop: 1 s of simulated time (a slow swing crosses 1 cm/s at its turning points, briefly).
+inline constexpr double settled_hold_s = 1.0;
+
+// Whether the rows' max speed has stayed below `threshold` for the last `hold_s` seconds.
+bool settled_for(const std::vector<MeasureRow>& rows, double threshold, double hold_s);
+
 // Simulates every frame of the scene on `simulator` (made by make_simulator(scene)) through the
-// frame stream (frame_stream.h) and measures it; on_frame, if given, sees each row as it is made. Throws sim::DivergenceError (the rows so
-// far are lost; on_frame has seen them), SceneError as scene_support.
+// frame stream (frame_stream.h) and measures it; on_frame, if given, sees each row as it is
+// made. With stop_when_settled the stream ends at the first frame where settled_for(rows,
+// threshold, settled_hold_s). Throws sim::DivergenceError (the rows so far are lost; on_frame
+// has seen them), SceneError as scene_support.
 SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bool require_drape,
-                               const std::function<void(const MeasureRow&)>& on_frame = {});
+                               const std::function<void(const MeasureRow&)>& on_frame = {},
+                               bool stop_when_settled = false);
 
 // "drape coefficient 0.62, 9 folds over the cylinder obstacles[0]" for the simulator's current
 // positions, or none when the scene has no support. For `weft run`'s last line.

@@ -12,11 +12,6 @@ namespace {
 
 constexpr double coincidence_tolerance = 1e-9;  // unit normal components and metres
 
-bool is_rendered_ground(const sim::PlaneObstacle& plane, const render::RenderSettings& s) {
-  return s.ground && plane.normal.z() >= 1.0 - coincidence_tolerance &&
-         std::fabs(plane.normal.dot(plane.point_m) - s.ground_z_m) <= coincidence_tolerance;
-}
-
 // A mesh obstacle's triangles in the world, each with its own three corners (see the header).
 render::RenderMesh make_obstacle_mesh(const sim::MeshObstacle& mesh) {
   const sim::Matrix3X& vertices = mesh.solid->vertices_m();
@@ -49,6 +44,11 @@ render::RenderMesh make_obstacle_mesh(const sim::MeshObstacle& mesh) {
 }
 
 }  // namespace
+
+bool is_rendered_ground(const sim::PlaneObstacle& plane, const render::RenderSettings& s) {
+  return s.ground && plane.normal.z() >= 1.0 - coincidence_tolerance &&
+         std::fabs(plane.normal.dot(plane.point_m) - s.ground_z_m) <= coincidence_tolerance;
+}
 
 std::vector<render::RenderObject> obstacle_render_objects(
     const std::vector<sim::Obstacle>& obstacles, const std::vector<sim::ObstacleMotion>& motions,

@@ -12,6 +12,10 @@ namespace weft::app {
 // Half the side of the square drawn for a plane obstacle that is not the rendered ground, m.
 inline constexpr double plane_patch_half_size_m = 2.0;
 
+// Whether the plane is the rendered ground (settings.ground on, normal +z, at ground_z_m,
+// within 1e-9), which the ground already shows.
+bool is_rendered_ground(const sim::PlaneObstacle& plane, const render::RenderSettings& settings);
+
 // One RenderObject per obstacle to draw, in settings.obstacle_color:
 // - a sphere: a sphere mesh at its true radius (the cloth rests collision_thickness outside it);
 // - a box, cylinder or capsule: its closed mesh at its true size (render/primitives.h);

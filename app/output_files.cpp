@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <cctype>
 #include <regex>
 #include <stdexcept>
 
@@ -39,6 +40,12 @@ void write_text(const fs::path& path, const std::string& text) {
 bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code error;
   return fs::equivalent(a, b, error) && !error;
+}
+
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 int remove_numbered_files(const fs::path& dir, const std::string& prefix,

@@ -46,6 +46,9 @@ std::string run_record(const std::string& command_line,
 // output that would overwrite an input. A path that does not exist is the same as no other.
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
+// The path's extension in lower case, with its dot: ".png" for "A.PNG", "" for none.
+std::string lower_extension(const std::filesystem::path& path);
+
 // Removes the files in `dir` named <prefix>_<4 or more digits>.<extension> (extension a
 // regular expression such as "png" or "(obj|ply|gltf|bin)"); returns how many.
 int remove_numbered_files(const std::filesystem::path& dir, const std::string& prefix,

@@ -6,8 +6,10 @@
 #include <memory>
 #include <regex>
 
+#include "app/auto_camera.h"
 #include "app/frame_mesh.h"
 #include "app/frame_png.h"
+#include "app/json_reader.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
@@ -52,6 +54,22 @@ std::string mask_name(int frame) {
   return name;
 }
 
+// The cloth's texture beside glTF meshes (--export-meshes gltf), which name it.
+constexpr const char* texture_file_name = "mesh_texture.png";
+
+// How --export-meshes writes the cloth: the --up axis, the scene's front colour and texture.
+MeshExportOptions mesh_export_options(const Scene& scene, const RunOptions& options) {
+  MeshExportOptions o;
+  o.up = options.up;
+  o.base_color = scene.render.front_color;
+  const render::ClothTexture& texture = scene.render.cloth_surface.texture;
+  if (texture.image && options.export_meshes == MeshFormat::gltf) {
+    o.texture_uri = texture_file_name;
+    o.texture_repeat_m = texture.repeat_m;
+  }
+  return o;
+}
+
 // mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
 std::string mesh_name(int frame, MeshFormat format) {
   char name[32];
@@ -66,6 +84,9 @@ void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& o
   start_output(dir, {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"}},
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
+  std::filesystem::remove(dir / texture_file_name);
+  if (!mesh_export_options(scene, options).texture_uri.empty())
+    render::write_png(*scene.render.cloth_surface.texture.image, dir / texture_file_name);
 }
 
 void print_header(const Scene& scene, const sim::Simulator& simulator,
@@ -76,6 +97,14 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
       scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
       1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
       renderer.description().c_str());
+  const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
+                             scene.sim.integrator != sim::Integrator::dynamic_relaxation;
+  if (explicit_step && simulator.time_step() > simulator.critical_time_step())
+    std::fprintf(stderr,
+                 "weft: warning: the time step %.3g ms exceeds the predicted critical step %.3g ms "
+                 "of the explicit integrator: the run will probably diverge (lower "
+                 "simulation.time_step or use implicit_euler)\n",
+                 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step());
   if (scene.tension_field) {
     const sim::TensionFieldResult folds = sim::solve_tension_field(tension_field_inputs(
         *scene.tension_field, scene.grid, scene.material, scene.sim.gravity_m_s2));
@@ -151,7 +180,7 @@ class FrameWriter {
     row.self_intersections =
         sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
     const auto start = std::chrono::steady_clock::now();
-    render_frame(frame.index);
+    if (m_options.selection.selects(frame.index, m_scene.frames)) render_frame(frame.index);
     row.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     m_stats.write(row);
@@ -192,7 +221,8 @@ class FrameWriter {
                         m_dir / mask_name(index));
     if (!m_options.export_cache.empty()) m_cache.add(cloth, m_simulator.state().time_s);
     if (const auto format = m_options.export_meshes)
-      export_mesh(cloth, *format, m_dir / mesh_name(index, *format));
+      export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
+                  mesh_export_options(m_scene, m_options));
   }
 
   const Scene& m_scene;
@@ -251,7 +281,10 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
                  crossed.size(), writer.rows().size(), frame_ranges(crossed).c_str(), most);
   }
   if (options.explain) print_phase_shares(simulator.timers());
-  std::printf("weft: wrote %d frames to %s (simulation %s, rendering %s, total %s)\n", scene.frames,
+  int written = 0;
+  for (int k = 1; k <= scene.frames; ++k) written += options.selection.selects(k, scene.frames);
+  std::fprintf(stderr, "weft: wrote %d frame%s to %s (simulation %s, rendering %s, total %s)\n",
+              written, written == 1 ? "" : "s",
               dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
               format_duration(render_ms / 1e3).c_str(), format_duration(writer.elapsed_s()).c_str());
   if (options.report)
@@ -265,10 +298,18 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
 
 int run_scene(const RunOptions& options) {
   Scene scene = load_scene_with(options.scene, options.overrides);
+  const FrameSelection& f = options.selection;
+  if (!f.last_only && (f.start > scene.frames || f.end.value_or(scene.frames) < f.start))
+    throw SceneError("--start/--end: expected 1 <= start <= end <= " +
+                     std::to_string(scene.frames) + " (the scene's frames), got start " +
+                     std::to_string(f.start) + ", end " + std::to_string(f.end.value_or(scene.frames)));
   apply_threads(scene, options.threads);
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
+  if (frame_cloth_if_no_camera(scene))
+    std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
+                         "over the run (simulated once for it)\n");
 
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   print_header(scene, *simulator, *renderer, options.explain);
@@ -305,13 +346,28 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
   add_render_options(*cmd, o->overrides);
   add_threads_option(*cmd, o->threads);
+  FrameSelection& f = o->selection;
+  CLI::Option* start = check_range(
+      cmd->add_option("--start", f.start, "First frame to render and write (default 1)"),
+      Range::closed(1, 100000));
+  CLI::Option* end = check_range(
+      cmd->add_option("--end", f.end, "Last frame to render and write (default: the last)"),
+      Range::closed(1, 100000));
+  CLI::Option* every = check_range(
+      cmd->add_option("--every", f.every, "Render and write every Nth frame from --start"),
+      Range::closed(1, 100000));
+  cmd->add_flag("--last", f.last_only,
+                "Render and write only the final frame (every frame is still simulated)")
+      ->excludes(start)
+      ->excludes(end)
+      ->excludes(every);
   cmd->add_option_function<std::string>(
          "--export-meshes",
          [o](const std::string& text) {
            o->export_meshes = parse_mesh_format(text, "--export-meshes");
          },
-         "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; normals, UVs = "
-         "material coordinates in metres)")
+         "Also write each frame's cloth as mesh_0001.obj/.ply/.gltf (assimp; y-up, normals, UVs "
+         "= material coordinates in metres, the cloth's colour; a glTF also its texture)")
       ->check(CLI::IsMember({"obj", "ply", "gltf"}));
   cmd->add_option_function<std::string>(
       "--export-cache",
@@ -319,6 +375,10 @@ Command register_run(CLI::App& app, const std::string& command_line) {
       "Also write cloth.obj (frame 1's topology) and every frame as cloth.pc2 / cloth.mdd point "
       "caches and/or an animated cloth.gltf (morph targets): pc2, mdd, gltf or a list, e.g. "
       "pc2,gltf (y up; docs/export.md)");
+  cmd->add_option_function<std::string>(
+      "--up", [o](const std::string& text) { o->up = parse_up_axis(text, "--up"); },
+      "Up axis of the exported OBJ/PLY: y (default; Blender's OBJ import, as glTF) or z (weft's "
+      "frame)")->check(CLI::IsMember({"y", "z"}));
   cmd->add_flag_callback(
       "--mask", [o] { o->overrides.push_back({"output.mask", "true", "--mask"}); },
       "Also write mask_0001.png, ...: the cloth's mask from the renderer's geometry (white = "
@@ -331,6 +391,9 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_flag("--report", o->report,
                 "Also write report.html: contact sheet, last frame, plots of strain, energy and "
                 "time per frame (inline SVG)");
+  // The report shows every frame (its contact sheet, the last frame).
+  for (const char* name : {"--start", "--end", "--every", "--last"})
+    cmd->get_option("--report")->excludes(cmd->get_option(name));
   return {cmd, [o] { return run_scene(*o); }};
 }
 

@@ -13,6 +13,19 @@
 
 namespace weft::app {
 
+// Which frames weft run renders and writes (every frame is simulated and has its stats.csv row):
+// --start, --end, --every N, --last.
+struct FrameSelection {
+  int start = 1;
+  std::optional<int> end;  // none: the last frame
+  int every = 1;
+  bool last_only = false;  // --last: only the final frame
+  bool selects(int frame, int frames) const {
+    if (last_only) return frame == frames;
+    return frame >= start && frame <= end.value_or(frames) && (frame - start) % every == 0;
+  }
+};
+
 struct RunOptions {
   std::optional<std::filesystem::path> scene;  // empty: the built-in default scene
   std::optional<std::filesystem::path> out;    // default: out/<scene name>
@@ -22,6 +35,8 @@ struct RunOptions {
   std::optional<int> threads;                  // --threads (command.h)
   std::optional<MeshFormat> export_meshes;     // also write mesh_0001.<ext>, ... (mesh_export.h)
   std::vector<CacheFormat> export_cache;       // also write cloth.obj + cloth.pc2/.mdd/.gltf (point_cache.h)
+  UpAxis up = UpAxis::y;                       // --up: the exported OBJ/PLY's up axis
+  FrameSelection selection;                    // the frames rendered and written
   bool explain = false;                        // print the simulated terms and phase times
   bool report = false;  // also write report.html (frames, plots of strain/energy/time; run_report.h)
   std::string command_line;                    // recorded in run.txt

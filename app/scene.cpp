@@ -17,6 +17,7 @@
 #include "app/cloth_surface_scene.h"
 #include "app/environment_scene.h"
 #include "app/json_reader.h"
+#include "app/obstacle_meshes.h"
 #include "app/mesh_file.h"
 #include "app/units.h"
 #include "base/constants.h"
@@ -540,7 +541,10 @@ void read_raytrace(ObjectReader r, render::RayTraceSettings& t) {
 }
 
 // "render": image size, camera, light, colours, ground, shading (render::RenderSettings).
-void read_render(ObjectReader r, render::RenderSettings& s) {
+// Also sets scene.camera_given and scene.ground_collider.
+void read_render(ObjectReader r, Scene& scene) {
+  render::RenderSettings& s = scene.render;
+  scene.camera_given = r.has("camera");
   const auto size =
       r.integers("size", 2, std::vector<std::int64_t>{s.width, s.height}, Range::closed(16, 8192));
   s.width = static_cast<int>(size[0]);
@@ -574,6 +578,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
     s.ground = r.boolean("ground", required);
   } else {
     ObjectReader ground = r.object("ground");
+    scene.ground_collider = ground.boolean("collider", scene.ground_collider);
     s.ground_z_m = ground.quantity("z", Quantity::length, s.ground_z_m);
     s.ground_half_size_m =
         ground.quantity("half_size", Quantity::length, s.ground_half_size_m, Range::gt(0.0));
@@ -593,6 +598,7 @@ void read_render(ObjectReader r, render::RenderSettings& s) {
   read_environment(r, s.environment);       // image-based lighting
   r.finish();
 }
+
 
 }  // namespace
 
@@ -623,7 +629,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     check_tension_field_scene(*scene.tension_field, scene.grid, scene.material,
                               scene.sim.gravity_m_s2, source);
   read_output(top.object("output"), scene);
-  read_render(top.object("render"), scene.render);
+  read_render(top.object("render"), scene);
   top.finish();
   return scene;
 }
@@ -661,13 +667,27 @@ Scene default_scene() {
   return scene;
 }
 
+sim::SimSettings simulated_settings(const Scene& scene) {
+  sim::SimSettings settings = scene.sim;
+  if (!scene.render.ground || !scene.ground_collider) return settings;
+  for (const sim::Obstacle& obstacle : settings.obstacles)
+    if (const auto* plane = std::get_if<sim::PlaneObstacle>(&obstacle);
+        plane && is_rendered_ground(*plane, scene.render))
+      return settings;  // the scene has the ground's plane already
+  sim::PlaneObstacle ground;
+  ground.point_m = {0.0, 0.0, scene.render.ground_z_m};
+  settings.obstacles.push_back(ground);
+  if (!settings.obstacle_motions.empty()) settings.obstacle_motions.emplace_back();
+  return settings;
+}
+
 std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
   sim::ClothMesh mesh = sim::make_grid(scene.grid);
   std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
   std::unique_ptr<sim::Simulator> simulator;
   try {
     simulator = std::make_unique<sim::Simulator>(std::move(mesh), scene.material, std::move(pinned),
-                                                 scene.sim);
+                                                 simulated_settings(scene));
   } catch (const sim::MaterialError& e) {
     throw SceneError(scene.source + ": cloth.material: " + e.what());
   } catch (const std::invalid_argument& e) {  // other settings the simulator cannot take

@@ -53,6 +53,11 @@ struct Scene {
   CrossingPolicy crossings = CrossingPolicy::warn;
 
   render::RenderSettings render;
+  // render.camera given; without it weft run frames the cloth over the run (app/auto_camera.h).
+  bool camera_given = true;
+  // render.ground.collider: the drawn ground is also a plane obstacle (simulated_settings adds
+  // it unless the scene has that plane), so the cloth cannot fall through the floor it is seen on.
+  bool ground_collider = true;
 
   // What the scene allows but a person probably did not mean ("FILE: KEY: what"): a vertex
   // pinned twice, every vertex pinned, a capsule whose ends are one point. The commands print
@@ -72,8 +77,12 @@ inline constexpr std::size_t max_obstacles = 1000;
 Scene parse_scene(const std::string& text, const std::string& source);
 // Reads a scene file. Throws SceneError (a missing or unreadable file included).
 Scene load_scene(const std::filesystem::path& path);
-// The scene's simulator: grid, pins and their paths, material and settings. A material the
-// model rejects throws SceneError naming cloth.material.
+// The simulator's settings: scene.sim with, when the ground is drawn and a collider
+// (Scene::ground_collider), the ground's plane among the obstacles.
+sim::SimSettings simulated_settings(const Scene& scene);
+
+// The scene's simulator: grid, pins and their paths, material and settings (simulated_settings).
+// A material the model rejects throws SceneError naming cloth.material.
 std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene);
 
 // The built-in default scene (the text of assets/scenes/default.json, compiled in).

@@ -45,14 +45,9 @@ struct Subject {
   std::unique_ptr<render::Renderer> renderer;  // made from `settings`
 };
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 bool is_mesh_file(const fs::path& path) {
   static const char* const extensions[] = {".obj", ".ply", ".stl", ".gltf", ".glb", ".fbx"};
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lower_extension(path);
   return std::find(std::begin(extensions), std::end(extensions), ext) != std::end(extensions);
 }
 
@@ -75,7 +70,7 @@ void check_options(const TurntableOptions& o) {
                      std::to_string(o.orbit.distance_scale));
   if (!fs::exists(o.input))
     throw SceneError(o.input.string() + ": no such file (expected a scene .json or a mesh file)");
-  if (lower(o.input.extension().string()) != ".json" && !is_mesh_file(o.input))
+  if (lower_extension(o.input) != ".json" && !is_mesh_file(o.input))
     throw SceneError(o.input.string() +
                      ": expected a scene (.json) or a mesh file (.obj, .ply, .stl, .gltf, .glb, "
                      ".fbx)");
@@ -184,7 +179,7 @@ render::Camera framing_camera(const Eigen::Vector3d& lo, const Eigen::Vector3d& 
 
 int run_turntable(const TurntableOptions& options) {
   check_options(options);
-  const bool is_scene = lower(options.input.extension().string()) == ".json";
+  const bool is_scene = lower_extension(options.input) == ".json";
   Subject subject;
   try {
     subject = is_scene ? scene_subject(options) : mesh_subject(options);

@@ -107,21 +107,9 @@ void Image::set(int x, int y, Rgb8 c) {
 
 namespace {
 
-// Encodes width × height pixels of `channels` bytes each (rows top first) and writes them.
-void write_png_bytes(int width, int height, int channels, const std::uint8_t* data,
-                     const std::filesystem::path& path) {
-  if (width <= 0 || height <= 0) {
-    throw std::runtime_error("write_png: cannot write an empty " + std::to_string(width) + "x" +
-                             std::to_string(height) + " image to " + quoted(path));
-  }
-  // Encode in memory first, so an encoder failure leaves no file at all.
-  std::string encoded;
-  const int ok = stbi_write_png_to_func(append_bytes, &encoded, width, height, channels, data,
-                                        width * channels);
-  if (ok == 0 || encoded.empty()) {
-    throw std::runtime_error("write_png: PNG encoding failed for " + quoted(path));
-  }
-  // Write beside the target and rename, so an interrupted run never leaves a half PNG.
+// Writes encoded image bytes beside the target and renames them over it, so an interrupted run
+// never leaves a half image.
+void write_encoded(const std::string& encoded, const std::filesystem::path& path) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   try {
@@ -139,6 +127,23 @@ void write_png_bytes(int width, int height, int channels, const std::uint8_t* da
     throw std::runtime_error("write_png: cannot rename " + quoted(tmp) + " to " + quoted(path) +
                              ": " + ec.message());
   }
+}
+
+// Encodes width × height pixels of `channels` bytes each (rows top first) and writes them.
+void write_png_bytes(int width, int height, int channels, const std::uint8_t* data,
+                     const std::filesystem::path& path) {
+  if (width <= 0 || height <= 0) {
+    throw std::runtime_error("write_png: cannot write an empty " + std::to_string(width) + "x" +
+                             std::to_string(height) + " image to " + quoted(path));
+  }
+  // Encode in memory first, so an encoder failure leaves no file at all.
+  std::string encoded;
+  const int ok = stbi_write_png_to_func(append_bytes, &encoded, width, height, channels, data,
+                                        width * channels);
+  if (ok == 0 || encoded.empty()) {
+    throw std::runtime_error("write_png: PNG encoding failed for " + quoted(path));
+  }
+  write_encoded(encoded, path);
 }
 
 }  // namespace
@@ -168,6 +173,17 @@ void write_png(const Mask& mask, const std::filesystem::path& path) {
   write_png_bytes(mask.width, mask.height, 1, grey.data(), path);
 }
 
+void write_jpg(const Image& image, const std::filesystem::path& path, int quality) {
+  if (image.width() <= 0 || image.height() <= 0)
+    throw std::runtime_error("write_jpg: cannot write an empty image to " + quoted(path));
+  std::string encoded;
+  if (!stbi_write_jpg_to_func(append_bytes, &encoded, image.width(), image.height(), 3,
+                              image.data(), quality) ||
+      encoded.empty())
+    throw std::runtime_error("write_jpg: JPEG encoding failed for " + quoted(path));
+  write_encoded(encoded, path);
+}
+
 std::string stb_read_failure(const std::filesystem::path& path) {
   const char* reason = stbi_failure_reason();
   std::string why = reason ? reason : "unknown reason";
@@ -187,6 +203,21 @@ Image read_image(const std::filesystem::path& path) {
   std::memcpy(image.data(), pixels.get(),
               static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
   return image;
+}
+
+std::vector<std::uint8_t> read_alpha(const std::filesystem::path& path) {
+  int width = 0, height = 0, channels_in_file = 0;
+  if (!stbi_info(path.c_str(), &width, &height, &channels_in_file))
+    throw std::runtime_error("read_alpha: cannot read " + quoted(path) + ": " + stb_read_failure(path));
+  if (channels_in_file != 2 && channels_in_file != 4) return {};  // grey or RGB: no alpha
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load(path.c_str(), &width, &height, &channels_in_file, 4), stbi_image_free);
+  if (!pixels)
+    throw std::runtime_error("read_alpha: cannot read " + quoted(path) + ": " + stb_read_failure(path));
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<std::uint8_t> alpha(n);
+  for (std::size_t i = 0; i < n; ++i) alpha[i] = pixels.get()[4 * i + 3];
+  return alpha;
 }
 
 }  // namespace weft::render

@@ -40,8 +40,14 @@ void write_png(const Image& image, const std::filesystem::path& path);
 void write_png(const Image& image, const Mask& opaque, const std::filesystem::path& path);
 // A grey PNG of the mask: 255 where set, 0 elsewhere (mask_from_image reads it back).
 void write_png(const Mask& mask, const std::filesystem::path& path);
+// Writes a baseline JPEG of the given quality (1…100); throws std::runtime_error naming the path.
+void write_jpg(const Image& image, const std::filesystem::path& path, int quality = 95);
 // Reads a PNG/JPG as RGB; throws std::runtime_error naming the path and stb's reason.
 Image read_image(const std::filesystem::path& path);
+
+// The alpha channel of a PNG (one byte per pixel, rows top row first), or an empty vector when
+// the file has none (grey, RGB, JPG). Throws as read_image.
+std::vector<std::uint8_t> read_alpha(const std::filesystem::path& path);
 
 // Why stb_image just failed to read `path`: its failure reason, or that there is no such file.
 std::string stb_read_failure(const std::filesystem::path& path);

@@ -125,21 +125,38 @@ double ssim(const std::vector<double>& a, const std::vector<double>& b, int widt
 }
 
 ImageDifference compare_images(const Image& a, const Image& b, int pixel_threshold) {
+  return compare_images(a, b, pixel_threshold, {}, {});
+}
+
+ImageDifference compare_images(const Image& a, const Image& b, int pixel_threshold,
+                               const std::vector<std::uint8_t>& alpha_a,
+                               const std::vector<std::uint8_t>& alpha_b) {
   check_sizes(a, b);
+  const std::size_t pixels = static_cast<std::size_t>(a.width()) * static_cast<std::size_t>(a.height());
+  for (const auto* alpha : {&alpha_a, &alpha_b})
+    if (!alpha->empty() && alpha->size() != pixels)
+      throw std::invalid_argument("image comparison: an alpha channel of " +
+                                  std::to_string(alpha->size()) + " values for " +
+                                  std::to_string(pixels) + " pixels");
   ImageDifference d;
   d.width = a.width();
   d.height = a.height();
   d.pixel_threshold = pixel_threshold;
-  std::array<double, 3> sum_abs{}, sum_sq{};
+  d.has_alpha = !alpha_a.empty() || !alpha_b.empty();
+  const int channels = d.has_alpha ? 4 : 3;
+  // Channel c of pixel p; a missing alpha channel is opaque.
+  const auto value = [&](const Image& image, const std::vector<std::uint8_t>& alpha,
+                         std::size_t p, int c) -> int {
+    if (c < 3) return image.data()[3 * p + static_cast<std::size_t>(c)];
+    return alpha.empty() ? 255 : alpha[p];
+  };
+  std::array<double, 4> sum_abs{}, sum_sq{};
   long over = 0;
-  const std::size_t pixels = static_cast<std::size_t>(a.width()) * static_cast<std::size_t>(a.height());
   const double count = static_cast<double>(pixels);
-  const std::uint8_t* pa = a.data();
-  const std::uint8_t* pb = b.data();
   for (std::size_t p = 0; p < pixels; ++p) {
     int worst = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int e = std::abs(int(pa[3 * p + c]) - int(pb[3 * p + c]));
+    for (int c = 0; c < channels; ++c) {
+      const int e = std::abs(value(a, alpha_a, p, c) - value(b, alpha_b, p, c));
       sum_abs[static_cast<std::size_t>(c)] += e;
       sum_sq[static_cast<std::size_t>(c)] += double(e) * e;
       auto& ch = d.channels[static_cast<std::size_t>(c)];
@@ -149,7 +166,7 @@ ImageDifference compare_images(const Image& a, const Image& b, int pixel_thresho
     over += worst > pixel_threshold;
   }
   double total_abs = 0.0, total_sq = 0.0;
-  for (int c = 0; c < 3; ++c) {
+  for (int c = 0; c < channels; ++c) {
     auto& ch = d.channels[static_cast<std::size_t>(c)];
     ch.mean_abs = sum_abs[static_cast<std::size_t>(c)] / count;
     ch.rms = std::sqrt(sum_sq[static_cast<std::size_t>(c)] / count);
@@ -157,8 +174,8 @@ ImageDifference compare_images(const Image& a, const Image& b, int pixel_thresho
     total_abs += sum_abs[static_cast<std::size_t>(c)];
     total_sq += sum_sq[static_cast<std::size_t>(c)];
   }
-  d.mean_abs = total_abs / (3.0 * count);
-  const double mse = total_sq / (3.0 * count);
+  d.mean_abs = total_abs / (channels * count);
+  const double mse = total_sq / (channels * count);
   d.rms = std::sqrt(mse);
   d.psnr_db = mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse)
                         : std::numeric_limits<double>::infinity();

@@ -11,6 +11,7 @@
 // smaller than the window in either direction is compared as one window of equal weights.
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,8 @@ struct ChannelDifference {
 
 struct ImageDifference {
   int width = 0, height = 0;
-  std::array<ChannelDifference, 3> channels;  // R, G, B
+  std::array<ChannelDifference, 4> channels;  // R, G, B and, when has_alpha, A
+  bool has_alpha = false;  // alpha compared too (then mean, rms, max, psnr, over cover 4 channels)
   double mean_abs = 0.0;  // over every channel of every pixel
   double rms = 0.0;
   int max_abs = 0;
@@ -36,8 +38,20 @@ struct ImageDifference {
   double fraction_over = 0.0;     // of the pixels, in [0, 1]
 };
 
+// The regression suite's tolerance (tests/regression/golden.h) and `weft diff`'s default: an
+// image fails when its PSNR is below 50 dB or more than 0.05 % of its pixels differ by more
+// than 16 in some channel.
+inline constexpr double default_min_psnr_db = 50.0;
+inline constexpr double default_max_over = 0.0005;
+inline constexpr int default_pixel_threshold = 16;
+
 // Throws std::invalid_argument when the sizes differ (naming both) or an image is empty.
 ImageDifference compare_images(const Image& a, const Image& b, int pixel_threshold = 8);
+// The same with alpha channels (one byte per pixel; empty = opaque, e.g. an RGB file): when
+// either is given, alpha is a fourth channel of every metric but SSIM (luminance only).
+ImageDifference compare_images(const Image& a, const Image& b, int pixel_threshold,
+                               const std::vector<std::uint8_t>& alpha_a,
+                               const std::vector<std::uint8_t>& alpha_b);
 
 // Mean SSIM of two luminance images (width × height, row-major, values 0…255) as above.
 double ssim(const std::vector<double>& a, const std::vector<double>& b, int width, int height);

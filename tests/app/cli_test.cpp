@@ -135,7 +135,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 // --explain lists only what the scene needs — the tiny scene has no constraints and no
-// obstacles; with them and self-collision, the projection and collision phases appear with their
+// obstacles but the ground; with them and self-collision, the projection and collision phases appear with their
 // sizes (and stats.csv gets its self-contact column) — and
 // ends with each phase's share of the time.
 TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
@@ -145,7 +145,8 @@ TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
   EXPECT_CONTAINS(r.output, "integrate: symplectic_euler, h = ");
   EXPECT_CONTAINS(r.output, "144 warp/weft springs, 128 shear springs");  // 9×9: 2·9·8, 2·8·8
   EXPECT_CONTAINS(r.output, "project: off (no constraints)");
-  EXPECT_CONTAINS(r.output, "collide: off (no obstacles, no self-collision)");
+  // No obstacles in the file, but the drawn ground is a collider (render.ground.collider).
+  EXPECT_CONTAINS(r.output, "collide: 1 obstacles (0 meshes, 0 moving)");
   EXPECT_CONTAINS(r.output, "pins: 2 fixed, 0 moving vertices");
   EXPECT_CONTAINS(r.output, "weft: time per phase: forces ");
 

@@ -3,7 +3,9 @@
 // file, 5 bad arguments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -40,7 +42,7 @@ class DiffCli : public ::testing::Test {
 TEST_F(DiffCli, ThresholdsDecideTheExitCode) {
   const std::string ab = "diff " + path("a.png") + " " + path("b.png");
   EXPECT_EQ(run_weft("diff " + path("a.png") + " " + path("a.png") + " --fail 'psnr<99'").exit_code, 0);
-  EXPECT_EQ(run_weft(ab).exit_code, 0) << "no thresholds: pass";
+  EXPECT_EQ(run_weft(ab + " --report-only").exit_code, 0) << "--report-only: pass";
   const auto warn = run_weft(ab + " --warn 'over>0.01' --fail 'over>0.5'");
   EXPECT_EQ(warn.exit_code, 1) << warn.output;
   EXPECT_NE(warn.output.find("over 0.0416667 > 0.01 (warn)"), std::string::npos) << warn.output;
@@ -51,7 +53,7 @@ TEST_F(DiffCli, ThresholdsDecideTheExitCode) {
 
 TEST_F(DiffCli, JsonAndHeatmap) {
   const auto r = run_weft("diff " + path("a.png") + " " + path("b.png") + " --json --heatmap " +
-                          path("heat.png"));
+                          path("heat.png") + " --report-only");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // stdout holds the JSON object; stderr's "wrote …" line is mixed into the output.
   const std::size_t open = r.output.find('{'), close = r.output.rfind('}');
@@ -79,3 +81,59 @@ TEST_F(DiffCli, BadInputHasItsOwnExitCode) {
 }
 
 }  // namespace
+
+// Issue 20 item 1: without thresholds diff fails as the regression suite does (PSNR < 50 dB or
+// more than 0.05 % of pixels over 16), and passes what that suite passes.
+TEST_F(DiffCli, DefaultThresholdsAreTheRegressionSuites) {
+  const auto real = run_weft("diff " + path("a.png") + " " + path("b.png"));
+  EXPECT_EQ(real.exit_code, 2) << real.output;  // 64 of 1536 pixels differ by 80
+  EXPECT_CONTAINS(real.output, "crossed: over 0.0416667 > 0.0005 (fail)");
+  EXPECT_CONTAINS(real.output, "result: fail");
+  // One pixel of 1536 differing by 17 (0.065 % > 0.05 %) fails; by 16 it passes (PSNR 61 dB).
+  Image one = weft::render::read_image(m_dir / "a.png");
+  one.set(0, 0, {137, 80, 40});
+  weft::render::write_png(one, m_dir / "one17.png");
+  one.set(0, 0, {136, 80, 40});
+  weft::render::write_png(one, m_dir / "one16.png");
+  EXPECT_EQ(run_weft("diff " + path("a.png") + " " + path("one17.png")).exit_code, 2);
+  const auto near = run_weft("diff " + path("a.png") + " " + path("one16.png"));
+  EXPECT_EQ(near.exit_code, 0) << near.output;
+  // --fail replaces the defaults; --report-only cannot be combined with it.
+  EXPECT_EQ(run_weft("diff " + path("a.png") + " " + path("b.png") + " --fail 'psnr<10'").exit_code, 0);
+  EXPECT_EQ(run_weft("diff " + path("a.png") + " " + path("b.png") + " --fail 'psnr<10' --report-only")
+                .exit_code, 5);
+  EXPECT_CONTAINS(run_weft("diff --help").output, "PSNR below 50 dB");
+}
+
+// An RGBA image against the RGB image of the same colours differs where it is transparent.
+TEST_F(DiffCli, AlphaIsCompared) {
+  const Image a = weft::render::read_image(m_dir / "a.png");
+  weft::render::Mask opaque(a.width(), a.height());
+  std::fill(opaque.in.begin(), opaque.in.end(), std::uint8_t{1});
+  weft::render::write_png(a, opaque, m_dir / "a_opaque.png");
+  for (int i = 0; i < 48 * 4; ++i) opaque.in[static_cast<std::size_t>(i)] = 0;  // 4 rows
+  weft::render::write_png(a, opaque, m_dir / "a_holes.png");
+  EXPECT_EQ(run_weft("diff " + path("a.png") + " " + path("a_opaque.png")).exit_code, 0);
+  const auto r = run_weft("diff " + path("a.png") + " " + path("a_holes.png") + " --json");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  EXPECT_EQ(j["channels"]["a"]["max"], 255);
+  EXPECT_EQ(j["channels"]["r"]["max"], 0);
+  EXPECT_NEAR(j["over"].get<double>(), 4.0 / 32.0, 1e-12);
+}
+
+// --heatmap writes what its name says: JPEG bytes under .jpg, and refuses other extensions.
+TEST_F(DiffCli, HeatmapFormatFollowsTheName) {
+  const std::string ab = "diff " + path("a.png") + " " + path("b.png") + " --report-only --heatmap ";
+  ASSERT_EQ(run_weft(ab + path("heat.jpg")).exit_code, 0);
+  std::ifstream jpg(m_dir / "heat.jpg", std::ios::binary);
+  unsigned char magic[2] = {};
+  jpg.read(reinterpret_cast<char*>(magic), 2);
+  EXPECT_EQ(magic[0], 0xFF);
+  EXPECT_EQ(magic[1], 0xD8);
+  EXPECT_EQ(weft::render::read_image(m_dir / "heat.jpg").width(), 48);
+  const auto tiff = run_weft(ab + path("heat.tiff"));
+  EXPECT_EQ(tiff.exit_code, 5) << tiff.output;
+  EXPECT_CONTAINS(tiff.output, "expected a .png, .jpg or .jpeg file name");
+  EXPECT_FALSE(fs::exists(m_dir / "heat.tiff"));
+}

@@ -183,3 +183,33 @@ TEST_F(MeasureCli, TopViewPhotoErrors) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_CONTAINS(r.output, "--center-px: expected X,Y");
 }
+
+// Issue 20 item 4: --until-settled simulates past output.frames until the max speed has stayed
+// below 1 cm/s for 1 s, and stops there; a limit too short says "not settled".
+TEST_F(MeasureCli, UntilSettledStopsOnceSettled) {
+  const fs::path scene = write_scene(small_scene(true));  // damped hang, output.frames 12
+  const CommandResult r =
+      run_weft("measure " + scene.string() + " --until-settled '20 s' --out " + m_dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("not settled"), std::string::npos) << r.output;
+  const auto rows = read_csv(m_dir / "measure.csv");
+  ASSERT_GT(rows.size(), 14u) << "ran past output.frames";
+  const double end_s = std::stod(rows.back()[1]);
+  EXPECT_LT(end_s, 20.0) << "stopped before the limit";
+  // The last second is below 1 cm/s, and the frame before the settled second was not.
+  std::size_t k = rows.size() - 1;
+  for (; k > 1 && std::stod(rows[k][3]) < 0.01; --k) {
+  }
+  EXPECT_NEAR(end_s - std::stod(rows[k][1]), 1.0, 1.0 / 24 + 1e-9);
+
+  const CommandResult short_limit =
+      run_weft("measure " + scene.string() + " --until-settled 0.25 --out " + m_dir.string());
+  ASSERT_EQ(short_limit.exit_code, 0) << short_limit.output;
+  EXPECT_CONTAINS(short_limit.output, "not settled by t = 0.25 s");
+
+  const CommandResult both = run_weft("measure " + scene.string() + " --until-settled --frames 3");
+  EXPECT_EQ(both.exit_code, 1) << both.output;
+  const CommandResult zero = run_weft("measure " + scene.string() + " --until-settled 0");
+  EXPECT_EQ(zero.exit_code, 1) << zero.output;
+  EXPECT_CONTAINS(zero.output, "--until-settled: expected a time in (0, 600] s");
+}

@@ -1,6 +1,6 @@
 // Cloth frames exported through assimp (app/mesh_export.h) and read back: every format keeps the
 // vertex positions (to float precision), the triangle count, the normals and the UVs = material
-// coordinates; the glTF is y-up.
+// coordinates; every format is y-up unless asked for weft's z-up (OBJ/PLY).
 #include "app/mesh_export.h"
 
 #include <assimp/postprocess.h>
@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using weft::app::MeshFormat;
+using weft::app::UpAxis;
 
 // A 5×4-vertex, 20 cm × 15 cm cloth bent into a wave, as weft run exports it.
 weft::render::RenderMesh wavy_cloth() {
@@ -43,20 +44,30 @@ fs::path output_dir() {
   return dir;
 }
 
-// Where a reader that applies the node transforms puts the cloth point p: the glTF is y-up,
-// (x, y, z) ↦ (x, z, −y); the others keep weft's z up.
-Eigen::Vector3d placed(MeshFormat format, const Eigen::Vector3f& p) {
+// The cloth point or direction p as the file's vertex data holds it: an OBJ/PLY turned y-up,
+// (x, y, z) ↦ (x, z, −y), unless asked for z-up; a glTF's in weft's coordinates.
+Eigen::Vector3f stored(MeshFormat format, UpAxis up, const Eigen::Vector3f& p) {
+  if (format != MeshFormat::gltf && up == UpAxis::y) return {p.x(), p.z(), -p.y()};
+  return p;
+}
+
+// Where a reader that applies the node transforms puts the cloth point p: y-up, the glTF's
+// root node turning its data, unless an OBJ/PLY was asked for z-up.
+Eigen::Vector3d placed(MeshFormat format, UpAxis up, const Eigen::Vector3f& p) {
   if (format == MeshFormat::gltf) return {p.x(), p.z(), -p.y()};
-  return p.cast<double>();
+  return stored(format, up, p).cast<double>();
 }
 
 Eigen::Vector3f vec(const aiVector3D& p) { return {p.x, p.y, p.z}; }
 
-void expect_round_trip(MeshFormat format) {
+void expect_round_trip(MeshFormat format, UpAxis up = UpAxis::y) {
   const weft::render::RenderMesh cloth = wavy_cloth();
-  const fs::path path = output_dir() / (std::string("wavy.") + weft::app::mesh_extension(format));
+  const fs::path path = output_dir() / (std::string(up == UpAxis::y ? "wavy." : "wavy_z.") +
+                                        weft::app::mesh_extension(format));
   fs::remove(path);
-  weft::app::export_mesh(cloth, format, path);
+  weft::app::MeshExportOptions options;
+  options.up = up;
+  weft::app::export_mesh(cloth, format, path, options);
   ASSERT_TRUE(fs::exists(path)) << path;
 
   // Through weft's own reader (node transforms applied, identical positions joined).
@@ -67,13 +78,13 @@ void expect_round_trip(MeshFormat format) {
   for (Eigen::Index k = 0; k < read.vertices.rows(); ++k) {
     double best = INFINITY;
     for (const Eigen::Vector3f& p : cloth.positions)
-      best = std::min(best, (read.vertices.row(k).transpose() - placed(format, p)).norm());
+      best = std::min(best, (read.vertices.row(k).transpose() - placed(format, up, p)).norm());
     EXPECT_LT(best, 1e-6) << path << " vertex " << k;
   }
 
-  // The mesh's own data through assimp, with the attributes (in weft's coordinates, whatever
-  // the node transform): match each vertex read to the cloth vertex at its position, then
-  // compare normal and UV.
+  // The mesh's own data through assimp, with the attributes (whatever the node transform):
+  // match each vertex read to the cloth vertex stored at its position, then compare normal
+  // and UV.
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path.string(), aiProcess_JoinIdenticalVertices);
   ASSERT_NE(scene, nullptr) << importer.GetErrorString();
@@ -88,12 +99,13 @@ void expect_round_trip(MeshFormat format) {
     std::size_t nearest = 0;
     float best = INFINITY;
     for (std::size_t v = 0; v < cloth.positions.size(); ++v) {
-      const float d = (cloth.positions[v] - p).norm();
+      const float d = (stored(format, up, cloth.positions[v]) - p).norm();
       if (d < best) best = d, nearest = v;
     }
     EXPECT_LT(best, 1e-6f) << path << " vertex " << k;
     const Eigen::Vector3f n = vec(mesh->mNormals[k]);
-    EXPECT_LT((n - cloth.normals[nearest]).norm(), 1e-5f) << path << " normal " << k;
+    EXPECT_LT((n - stored(format, up, cloth.normals[nearest])).norm(), 1e-5f)
+        << path << " normal " << k;
     const aiVector3D uv = mesh->mTextureCoords[0][k];
     EXPECT_NEAR(uv.x, cloth.uvs[nearest].x(), 1e-6f) << path << " u " << k;
     EXPECT_NEAR(uv.y, cloth.uvs[nearest].y(), 1e-6f) << path << " v " << k;
@@ -102,6 +114,10 @@ void expect_round_trip(MeshFormat format) {
 
 TEST(MeshExport, ObjRoundTrip) { expect_round_trip(MeshFormat::obj); }
 TEST(MeshExport, PlyRoundTrip) { expect_round_trip(MeshFormat::ply); }
+TEST(MeshExport, ObjAndPlyKeepWeftsZUpWhenAsked) {
+  expect_round_trip(MeshFormat::obj, UpAxis::z);
+  expect_round_trip(MeshFormat::ply, UpAxis::z);
+}
 TEST(MeshExport, GltfRoundTrip) { expect_round_trip(MeshFormat::gltf); }
 
 TEST(MeshExport, FormatNames) {

@@ -203,4 +203,20 @@ TEST_F(TurntableCli, RunExportsOneMeshPerFrame) {
   EXPECT_FALSE(fs::exists(m_dir / "bad"));
 }
 
+// Issue 20 item 5: a later run clears every file of the earlier run's meshes, the OBJs'
+// mesh_NNNN.mtl included.
+TEST_F(TurntableCli, ARerunLeavesNoStaleMaterialFiles) {
+  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path out = m_dir / "out";
+  const CommandResult r =
+      run_weft("run " + scene.string() + " --frames 2 --export-meshes obj --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out / "mesh_0002.mtl"));
+  const CommandResult again = run_weft("run " + scene.string() + " --frames 1 --out " + out.string());
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  for (const fs::directory_entry& entry : fs::directory_iterator(out))
+    EXPECT_NE(entry.path().filename().string().rfind("mesh_", 0), 0u) << entry.path();
+  EXPECT_TRUE(fs::exists(out / "frame_0001.png"));
+}
+
 }  // namespace

@@ -28,9 +28,9 @@ struct GoldenCase {
   // than pixel_threshold. The frames are deterministic, so an unchanged build gives the same
   // bytes (PSNR ∞); the margins allow for a different CPU's rounding in llvmpipe, and a cloth
   // 10 % heavier crosses them (regression_test.cpp).
-  double min_psnr_db = 50.0;
-  double max_over = 0.0005;
-  int pixel_threshold = 16;
+  double min_psnr_db = render::default_min_psnr_db;
+  double max_over = render::default_max_over;
+  int pixel_threshold = render::default_pixel_threshold;
 };
 
 // Simulates the case's scene on its coarse grid (cloth density × density_scale) through the

@@ -1,0 +1,59 @@
+// Issue 20 item 13 through the real `weft`: a mistyped command is named with a suggestion,
+// errors point at the command's own --help, `weft` alone prints usage with the program name,
+// the run summary goes to stderr with "frame" in the singular for one, and a time step above the
+// explicit integrator's critical step is warned of up front.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "tests/app/cli_test_support.h"
+
+namespace {
+
+using weft::app::test::CliDirectoryTest;
+using weft::app::test::run_weft;
+using weft::app::test::tiny_scene;
+
+class MessagesCli : public CliDirectoryTest {
+ protected:
+  MessagesCli() : CliDirectoryTest("messages_cli") {}
+};
+
+TEST_F(MessagesCli, ATypoNamesTheCommandAndSuggestsOne) {
+  const auto typo = run_weft("rnu scene.json");
+  EXPECT_EQ(typo.exit_code, 1) << typo.output;
+  EXPECT_CONTAINS(typo.output, "unknown command 'rnu' (did you mean 'run'?)");
+  const auto far = run_weft("xyzzy");
+  EXPECT_EQ(far.exit_code, 1) << far.output;
+  EXPECT_CONTAINS(far.output, "unknown command 'xyzzy'; see weft --help");
+  const auto option = run_weft("run --no-such-option");
+  EXPECT_EQ(option.exit_code, 1) << option.output;
+  EXPECT_CONTAINS(option.output, "(see weft run --help)");
+  const auto alone = run_weft("");
+  EXPECT_EQ(alone.exit_code, 1) << alone.output;
+  EXPECT_CONTAINS(alone.output, "Usage: weft ");
+}
+
+TEST_F(MessagesCli, TheRunSummaryGoesToStderrInTheRightNumber) {
+  const std::string scene = write_scene("tiny.json", tiny_scene()).string();
+  const std::string out = (m_dir / "out").string();
+  const auto both = run_weft("run " + scene + " --frames 1 --out " + out);
+  EXPECT_EQ(both.exit_code, 0) << both.output;
+  EXPECT_CONTAINS(both.output, "wrote 1 frame to ");
+  const auto stdout_only = run_weft("run " + scene + " --frames 1 --out " + out + " 2>/dev/null | cat");
+  EXPECT_EQ(stdout_only.output.find("wrote"), std::string::npos) << stdout_only.output;
+}
+
+TEST_F(MessagesCli, ATimeStepAboveTheCriticalOneIsWarnedOfUpFront) {
+  const std::string scene = write_scene("tiny.json", tiny_scene()).string();
+  const auto r = run_weft("run " + scene + " --frames 1 --set simulation.time_step=5ms --out " +
+                          (m_dir / "out").string());
+  EXPECT_CONTAINS(r.output, "exceeds the predicted critical step");
+  // The warning comes before the first frame's progress line.
+  EXPECT_LT(r.output.find("exceeds the predicted critical step"), r.output.find("frame 1/1"))
+      << r.output;
+  const auto fine = run_weft("run " + scene + " --frames 1 --out " + (m_dir / "out2").string());
+  EXPECT_EQ(fine.output.find("exceeds"), std::string::npos) << fine.output;
+}
+
+}  // namespace
