@@ -148,7 +148,9 @@ TEST_P(FastProjectionReuse, ConvergesQuadratically) {
     settings.reuse_iterations = GetParam();
     FastProjection p(constraints, w, settings, default_sparse_backend());
     const ProjectionResult r = p.project(x);
-    if (GetParam() > 0 && k >= 3) EXPECT_LT(r.factorizations, k) << "iteration " << k;
+    if (GetParam() > 0 && k >= 3) {
+      EXPECT_LT(r.factorizations, k) << "iteration " << k;
+    }
     strains.push_back(r.max_strain);
   }
   ASSERT_GT(strains[0], 1e-2);
