@@ -145,7 +145,10 @@ void write_png_bytes(int width, int height, int channels, const std::uint8_t* da
   png.version = PNG_IMAGE_VERSION;
   png.width = static_cast<png_uint_32>(width);
   png.height = static_cast<png_uint_32>(height);
-  png.format = channels == 4 ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
+  png.format = channels == 1   ? PNG_FORMAT_GRAY
+               : channels == 2 ? PNG_FORMAT_GA
+               : channels == 3 ? PNG_FORMAT_RGB
+                               : PNG_FORMAT_RGBA;
   const png_int_32 stride = width * channels;
   png_alloc_size_t size = 0;
   std::string encoded;
