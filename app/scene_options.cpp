@@ -15,6 +15,13 @@ Scene load_scene_with(const std::optional<std::filesystem::path>& path,
                       const std::vector<Setting>& overrides) {
   Scene scene = path ? load_scene(*path) : default_scene();
   if (!overrides.empty()) scene = patched_scene(scene, overrides);
+  // An option that only the ray tracer reads does nothing with the rasterizer: say so.
+  for (const Setting& s : overrides) {
+    if (!s.option.empty() && s.key.rfind("render.raytrace.", 0) == 0 &&
+        scene.render.renderer == render::RendererKind::raster)
+      scene.warnings.push_back(s.option + ": the raster renderer ignores it (" + s.key +
+                               " is the ray tracer's; add --renderer raytrace)");
+  }
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "weft: warning: %s\n", warning.c_str());
   return scene;

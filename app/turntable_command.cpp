@@ -256,7 +256,9 @@ Command register_turntable(CLI::App& app, const std::string& command_line) {
                   "(.obj, .ply, .stl, .gltf, .glb, .fbx)")
       ->required();
   check_range(cmd->add_option("--frames", o->frames,
-                              "Images around the orbit; frame i at azimuth 360*i/N (default 36)"),
+                              "Images N around the orbit (default 36): turntable_0001.png at "
+                              "azimuth 0 (the camera's own direction), image k at 360*(k-1)/N "
+                              "degrees"),
               Range::closed(1, max_turntable_frames));
   cmd->add_option("--out", o->out, "Output folder (default: out/<input name>_turntable)");
   add_set_option(*cmd, o->overrides);

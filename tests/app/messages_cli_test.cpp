@@ -1,7 +1,8 @@
 // Issue 20 item 13 through the real `weft`: a mistyped command is named with a suggestion,
 // errors point at the command's own --help, `weft` alone prints usage with the program name,
 // the run summary goes to stderr with "frame" in the singular for one, and a time step above the
-// explicit integrator's critical step is warned of up front.
+// explicit integrator's critical step is warned of up front, and so is a ray-tracer option given
+// to the rasterizer.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -40,6 +41,7 @@ TEST_F(MessagesCli, TheRunSummaryGoesToStderrInTheRightNumber) {
   const auto both = run_weft("run " + scene + " --frames 1 --out " + out);
   EXPECT_EQ(both.exit_code, 0) << both.output;
   EXPECT_CONTAINS(both.output, "wrote 1 frame to ");
+  EXPECT_CONTAINS(both.output, " — 1 frame at 24 fps");
   const auto stdout_only = run_weft("run " + scene + " --frames 1 --out " + out + " 2>/dev/null | cat");
   EXPECT_EQ(stdout_only.output.find("wrote"), std::string::npos) << stdout_only.output;
 }
@@ -54,6 +56,18 @@ TEST_F(MessagesCli, ATimeStepAboveTheCriticalOneIsWarnedOfUpFront) {
       << r.output;
   const auto fine = run_weft("run " + scene + " --frames 1 --out " + (m_dir / "out2").string());
   EXPECT_EQ(fine.output.find("exceeds"), std::string::npos) << fine.output;
+}
+
+TEST_F(MessagesCli, ARayTracerOptionWithTheRasterRendererIsWarnedOf) {
+  const std::string scene = write_scene("tiny.json", tiny_scene()).string();
+  const auto raster = run_weft("run " + scene + " --frames 1 --samples 64 --out " +
+                               (m_dir / "raster").string());
+  EXPECT_EQ(raster.exit_code, 0) << raster.output;
+  EXPECT_CONTAINS(raster.output, "warning: --samples 64: the raster renderer ignores it");
+  const auto traced = run_weft("run " + scene + " --frames 1 --samples 4 --renderer raytrace --out " +
+                               (m_dir / "raytrace").string());
+  EXPECT_EQ(traced.exit_code, 0) << traced.output;
+  EXPECT_EQ(traced.output.find("ignores"), std::string::npos) << traced.output;
 }
 
 }  // namespace

@@ -87,6 +87,12 @@ TEST_F(TurntableCli, SceneGivesFourFramesFromFourSidesAndAContactSheet) {
     EXPECT_EQ(frames.back().height(), 48);
   }
   EXPECT_FALSE(fs::exists(out / "turntable_0005.png"));
+  // Image k at azimuth 360 (k − 1) / N, as --help says (issue 20 item 13).
+  EXPECT_CONTAINS(r.output, "frame 1/4  azimuth 0 deg");
+  EXPECT_CONTAINS(r.output, "frame 4/4  azimuth 270 deg");
+  EXPECT_CONTAINS(run_weft("turntable --help").output,
+                  "turntable_0001.png at azimuth 0 (the camera's own direction), image k at "
+                  "360*(k-1)/N degrees");
   // Four different views (the cloth is seen from four sides, the light stays put).
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j)
