@@ -23,6 +23,7 @@
 #include "app/obstacle_meshes.h"
 #include "app/progress.h"
 #include "app/renderer_choice.h"
+#include "base/timer.h"
 #include "app/scene.h"
 #include "base/constants.h"
 #include "sim/simulator.h"
@@ -178,6 +179,7 @@ render::Camera framing_camera(const Eigen::Vector3d& lo, const Eigen::Vector3d& 
 }
 
 int run_turntable(const TurntableOptions& options) {
+  const base::Stopwatch total;  // the simulation of a scene, rendering and encoding
   check_options(options);
   const bool is_scene = lower_extension(options.input) == ".json";
   Subject subject;
@@ -234,13 +236,14 @@ int run_turntable(const TurntableOptions& options) {
     }
     if (status == exit_ok)
       std::printf("weft: wrote %d frames, contact_sheet.png, turntable.mp4 and turntable.gif to "
-                  "%s (%s)\n",
-                  n, dir.c_str(), format_duration(progress.elapsed_s()).c_str());
+                  "%s (%s in all, simulation included)\n",
+                  n, dir.c_str(), format_duration(total.seconds()).c_str());
   } else {
     std::printf("weft: ffmpeg not found: wrote PNGs and the contact sheet only; apt-get install "
                 "ffmpeg for mp4/gif\n");
-    std::printf("weft: wrote %d frames and contact_sheet.png to %s (%s)\n", n, dir.c_str(),
-                format_duration(progress.elapsed_s()).c_str());
+    std::printf("weft: wrote %d frames and contact_sheet.png to %s (%s in all, simulation "
+                "included)\n",
+                n, dir.c_str(), format_duration(total.seconds()).c_str());
   }
   return status;
 }
@@ -260,6 +263,9 @@ Command register_turntable(CLI::App& app, const std::string& command_line) {
                               "azimuth 0 (the camera's own direction), image k at 360*(k-1)/N "
                               "degrees"),
               Range::closed(1, max_turntable_frames));
+  check_range(cmd->add_option("--video-fps", o->video_fps,
+                              "Frame rate of turntable.mp4 and .gif (default 12: 36 images take 3 s)"),
+              Range::gt(0.0).le(240.0));
   cmd->add_option("--out", o->out, "Output folder (default: out/<input name>_turntable)");
   add_set_option(*cmd, o->overrides);
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");

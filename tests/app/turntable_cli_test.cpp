@@ -148,6 +148,17 @@ TEST_F(TurntableCli, FfmpegMakesTheMp4AndGifAndItsFailureIsReported) {
   EXPECT_CONTAINS(text, (out / "turntable_%04d.png").string());
   EXPECT_CONTAINS(text, "libx264");
   EXPECT_CONTAINS(text, "paletteuse");
+  EXPECT_CONTAINS(text, "-framerate 12 ");  // the default video rate
+  EXPECT_CONTAINS(ok.output, "in all, simulation included)");
+  // --video-fps sets it (issue 20 item 13); a rate outside (0, 240] is refused, naming it.
+  const CommandResult fast = run_weft(args + " --video-fps 30", path_env(0));
+  ASSERT_EQ(fast.exit_code, 0) << fast.output;
+  std::ifstream calls2(m_dir / "ffmpeg_calls.txt");
+  const std::string text2((std::istreambuf_iterator<char>(calls2)), std::istreambuf_iterator<char>());
+  EXPECT_CONTAINS(text2, "-framerate 30 ");
+  const CommandResult bad = run_weft(args + " --video-fps 0", path_env(0));
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_CONTAINS(bad.output, "--video-fps");
 
   const CommandResult failed = run_weft(args, path_env(3));
   EXPECT_EQ(failed.exit_code, 2) << failed.output;
