@@ -67,11 +67,13 @@ fs::path golden_path(const GoldenCase& c) {
   return fs::path(WEFT_SOURCE_DIR) / "tests" / "data" / "golden" / (c.name + ".png");
 }
 
-fs::path evidence_page(const GoldenCase& c) {
-  return fs::path(WEFT_BINARY_DIR) / "regression" / c.name / "index.html";
+fs::path evidence_page(const GoldenCase& c, const std::string& evidence_folder) {
+  return fs::path(WEFT_BINARY_DIR) / "regression" /
+         (evidence_folder.empty() ? c.name : evidence_folder) / "index.html";
 }
 
-::testing::AssertionResult matches_golden(const GoldenCase& c, const render::Image& actual) {
+::testing::AssertionResult matches_golden(const GoldenCase& c, const render::Image& actual,
+                                          const std::string& evidence_folder) {
   if (update_mode()) {
     render::write_png(actual, golden_path(c));
     return ::testing::AssertionSuccess() << "wrote " << golden_path(c);
@@ -81,7 +83,8 @@ fs::path evidence_page(const GoldenCase& c) {
            << "no golden image " << golden_path(c)
            << " (make it with: cmake --build build --target regress-update)";
   const render::Image expected = render::read_image(golden_path(c));
-  const fs::path dir = evidence_page(c).parent_path();
+  const fs::path page = evidence_page(c, evidence_folder);
+  const fs::path dir = page.parent_path();
   fs::remove_all(dir);
   if (expected.width() != actual.width() || expected.height() != actual.height()) {
     fs::create_directories(dir);
@@ -103,7 +106,7 @@ fs::path evidence_page(const GoldenCase& c) {
   render::write_png(render::difference_heatmap(actual, expected, c.pixel_threshold), dir / "diff.png");
   write_page(dir, c, d, "FAILED");
   return ::testing::AssertionFailure() << c.name << " differs from its golden image: "
-                                       << numbers.str() << "; see " << evidence_page(c);
+                                       << numbers.str() << "; see " << page;
 }
 
 }  // namespace weft::test

@@ -40,10 +40,13 @@ render::Image render_case(const GoldenCase& c, double density_scale = 1.0);
 std::filesystem::path golden_path(const GoldenCase& c);
 
 // Compares `actual` with the case's golden (or writes it, in update mode); on failure writes
-// the evidence and says where.
-::testing::AssertionResult matches_golden(const GoldenCase& c, const render::Image& actual);
+// the evidence and says where. `evidence_folder` (default: the case's name) must differ for a
+// test that compares a deliberately different image with the same golden: it must not clear
+// the folder of the case's own test, which ctest may run at the same time.
+::testing::AssertionResult matches_golden(const GoldenCase& c, const render::Image& actual,
+                                          const std::string& evidence_folder = "");
 
 // The evidence page of a case: BUILD/regression/<name>/index.html.
-std::filesystem::path evidence_page(const GoldenCase& c);
+std::filesystem::path evidence_page(const GoldenCase& c, const std::string& evidence_folder = "");
 
 }  // namespace weft::test

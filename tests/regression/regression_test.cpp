@@ -58,13 +58,15 @@ TEST(GoldenSuite, AClothTenPercentHeavierFailsWithItsEvidence) {
   const GoldenCase& c = cases().front();
   const auto heavier = rendered(c, 1.1);
   if (!heavier) GTEST_SKIP() << "raster renderer unavailable here";
-  const ::testing::AssertionResult r = matches_golden(c, *heavier);
+  // Its own evidence folder: Golden.MatchesItsGoldenImage/default_hang_raster may run meanwhile.
+  const std::string folder = c.name + "_ten_percent_heavier";
+  const ::testing::AssertionResult r = matches_golden(c, *heavier, folder);
   EXPECT_FALSE(r) << "a 10 % heavier cloth should not match the golden image";
   std::printf("10 %% heavier: %s\n", r.message());
-  const std::filesystem::path dir = evidence_page(c).parent_path();
+  const std::filesystem::path dir = evidence_page(c, folder).parent_path();
   for (const char* f : {"actual.png", "expected.png", "diff.png", "index.html"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
-  EXPECT_NE(std::string(r.message()).find(evidence_page(c).string()), std::string::npos)
+  EXPECT_NE(std::string(r.message()).find(evidence_page(c, folder).string()), std::string::npos)
       << r.message();
   std::filesystem::remove_all(dir);  // evidence of a deliberate failure, not of a regression
 }
