@@ -93,9 +93,10 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
                   const render::Renderer& renderer, bool explain) {
   std::fprintf(
       stderr,
-      "weft: %s — %d frame%s at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), %s\n",
-      scene.source.c_str(), scene.frames, scene.frames == 1 ? "" : "s", scene.fps, scene.grid.nu, scene.grid.nv,
-      1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
+      "weft: %s — %d frame%s at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), "
+      "%s\n",
+      scene.source.c_str(), scene.frames, scene.frames == 1 ? "" : "s", scene.fps, scene.grid.nu,
+      scene.grid.nv, 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
       renderer.description().c_str());
   const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
                              scene.sim.integrator != sim::Integrator::dynamic_relaxation;
@@ -322,7 +323,7 @@ int run_scene(const RunOptions& options) {
     std::fprintf(stderr,
                  "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
                  "crossings; simulation.self_collision.crossings is \"error\")\n"
-                 "weft: kept frames 1..%d and stats.csv in %s\n",
+                 "weft: kept what frames 1..%d wrote and stats.csv in %s\n",
                  stop.frame, stop.crossings, stop.frame, dir.c_str());
     return exit_diverged;
   }

@@ -67,7 +67,7 @@ TEST_F(SelfCollisionCli, CrossingsAsErrorsStopAtTheFirstCrossingFrameKeepingIt) 
   EXPECT_GT(frame, 1);
   EXPECT_LT(frame, 24);
   EXPECT_EQ(frames_in(m_dir / "out"), frame) << "frames 1.." << frame << " are kept, no later one";
-  EXPECT_CONTAINS(r.output, "kept frames 1.." + std::to_string(frame));
+  EXPECT_CONTAINS(r.output, "kept what frames 1.." + std::to_string(frame) + " wrote");
   // stats.csv: a header and one row per kept frame, the last with its crossings.
   std::ifstream csv(m_dir / "out" / "stats.csv");
   int lines = 0;

@@ -254,6 +254,17 @@ TEST(SelfCollision, BadSettingsThrowNamingTheKey) {
       EXPECT_NE(std::string(e.what()).find("self_collision.threads"), std::string::npos) << e.what();
     }
   }
+  for (const double edges : {-0.5, 4.5, std::nan("")}) {
+    bad = SelfCollisionSettings{};
+    bad.neighbourhood_edges = edges;
+    try {
+      SelfCollision(mesh, bad);
+      ADD_FAILURE() << "no exception for a neighbourhood of " << edges << " edges";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("self_collision.neighbourhood"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 // A 65² sheet rolled into a spiral with layers 2 mm apart, inside the 3 mm thickness: the
