@@ -16,6 +16,7 @@
 #include "app/run_command.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
+#include "app/units.h"
 
 namespace weft::app {
 
@@ -79,12 +80,12 @@ render::RenderSettings membrane_render_settings(const sim::FoldPattern& p, const
 }  // namespace
 
 std::string folds_flag(const std::string& field) {
-  if (field == "h") return "--h-cm";
-  if (field == "L") return "--L-cm";
-  if (field == "d") return "--d-cm";
-  if (field == "t") return "--t-mm";
-  if (field == "E") return "--E-MPa";
-  if (field == "w") return "--w-N-mm2";
+  if (field == "h") return "--h/--h-cm";
+  if (field == "L") return "--L/--L-cm";
+  if (field == "d") return "--d/--d-cm";
+  if (field == "t") return "--t/--t-mm";
+  if (field == "E") return "--E/--E-MPa";
+  if (field == "w") return "--w/--w-N-mm2";
   return "--" + field;  // --nu, --c, --Q, --tolerance
 }
 
@@ -142,7 +143,7 @@ int run_folds(const FoldsOptions& options) {
   // Inputs each in range can still combine beyond what doubles hold (h ≫ L): say so, not nan.
   if (!std::isfinite(result.boundary_length_m) || !std::isfinite(result.z_max_m) ||
       !std::isfinite(result.relative_error))
-    throw SceneError("--h-cm, --L-cm, --d-cm: these proportions (h/l = " +
+    throw SceneError("--h, --L, --d: these proportions (h/l = " +
                      std::to_string(in.height_m / in.span_m()) +
                      ") give a non-finite L' or z_max; the model needs h and l of similar sizes");
   const sim::FoldPattern pattern = sim::make_fold_pattern(in, result, options.interpolation);
@@ -196,20 +197,52 @@ int run_folds(const FoldsOptions& options) {
 
 namespace {
 
-// The flags as typed (cm, mm, MPa, N/mm²), converted to SI when the command runs.
+// An input of the model, given either as a quantity with its unit like a scene file's
+// (--t "0.25 mm", --E "2.5 GPa") or as a number in the paper's unit (--t-mm 0.25); held in SI.
+struct FoldsInput {
+  const char* field;     // "t": the flag --t and TensionFieldInputError::field
+  const char* unit_flag;  // "--t-mm": the paper-unit flag
+  double unit_factor;    // its unit in SI (1e-3 for mm)
+  Quantity kind;         // what --t accepts
+  Range range_si;        // bounds a person could mean, SI
+  const char* what;      // "Thickness t"
+  std::optional<double> si;
+};
+
+// The flags as typed, converted to SI when the command runs.
 struct FoldsFlags {
-  double h_cm = 0, L_cm = 0, d_cm = 0, t_mm = 0, E_MPa = 0, w_N_mm2 = 0;
+  // Bounds a person could mean (a cloth up to 100 m, a sheet up to 10 cm thick); the model
+  // itself checks how they combine (sim/folds/tension_field.h).
+  FoldsInput h{"h", "--h-cm", 1e-2, Quantity::length, Range::gt(0.0).le(100.0),
+               "Height h of the cloth", {}};
+  FoldsInput L{"L", "--L-cm", 1e-2, Quantity::length, Range::gt(0.0).le(100.0),
+               "Width L of the flat cloth", {}};
+  FoldsInput d{"d", "--d-cm", 1e-2, Quantity::length, Range::closed(0.0, 100.0),
+               "Support displacement d (the span is l = L - d)", {}};
+  FoldsInput t{"t", "--t-mm", 1e-3, Quantity::length, Range::gt(0.0).le(0.1), "Thickness t", {}};
+  FoldsInput E{"E", "--E-MPa", 1e6, Quantity::stress, Range::gt(0.0).le(1e12),
+               "Young's modulus E", {}};
+  FoldsInput w{"w", "--w-N-mm2", 1e6, Quantity::stress, Range::gt(0.0).le(1e6),
+               "Weight per area w", {}};
   std::optional<double> Q;
   std::string shape = "rectangle", interpolation = "cosine";
 };
 
+double required_si(const FoldsInput& in) {
+  if (!in.si)
+    throw SceneError(std::string("--") + in.field + " (or " + in.unit_flag + ") is required: " +
+                     in.what + ", e.g. --" + in.field + " \"" +
+                     (in.kind == Quantity::length ? "25 cm" : "2.5 MPa") + "\"");
+  return *in.si;
+}
+
 FoldsOptions folds_options(FoldsOptions o, const FoldsFlags& f) {
-  o.inputs.height_m = 1e-2 * f.h_cm;
-  o.inputs.width_m = 1e-2 * f.L_cm;
-  o.inputs.support_shift_m = 1e-2 * f.d_cm;
-  o.inputs.thickness_m = 1e-3 * f.t_mm;
-  o.inputs.youngs_modulus_Pa = 1e6 * f.E_MPa;
-  o.inputs.weight_N_m2 = 1e6 * f.w_N_mm2;  // N/mm² → N/m²
+  o.inputs.height_m = required_si(f.h);
+  o.inputs.width_m = required_si(f.L);
+  o.inputs.support_shift_m = required_si(f.d);
+  o.inputs.thickness_m = required_si(f.t);
+  o.inputs.youngs_modulus_Pa = required_si(f.E);
+  o.inputs.weight_N_m2 = required_si(f.w);
   if (f.Q) o.inputs.ratio = *f.Q;
   o.shape = f.shape == "cosine" ? sim::MembraneShape::cosine : sim::MembraneShape::rectangle;
   o.interpolation = f.interpolation == "linear" ? sim::FoldInterpolation::linear
@@ -217,25 +250,41 @@ FoldsOptions folds_options(FoldsOptions o, const FoldsFlags& f) {
   return o;
 }
 
-// The required flags of the inputs, in the paper's units.
+// --X "QUANTITY" and --X-UNIT NUMBER for one input; at most one of them.
+void add_input_flag(CLI::App& cmd, FoldsInput& in) {
+  const std::string flag = std::string("--") + in.field;
+  const std::string si_unit = si_unit_symbol(in.kind);
+  CLI::Option* quantity = cmd.add_option_function<std::string>(
+      flag,
+      [&in, flag, si_unit](const std::string& text) {
+        double value = 0.0;
+        try {
+          value = parse_quantity(text, in.kind);
+        } catch (const UnitError& e) {
+          throw SceneError(flag + ": " + e.what());
+        }
+        if (!in.range_si.contains(value))
+          throw SceneError(flag + ": expected a value " + in.range_si.text() + " " + si_unit +
+                           ", got '" + text + "'");
+        in.si = value;
+      },
+      std::string(in.what) + " with its unit, like a scene file's value (e.g. " +
+          (in.kind == Quantity::length ? "\"25 cm\"" : "\"2.5 MPa\"") + ")");
+  Range paper = in.range_si;
+  paper.min /= in.unit_factor;
+  paper.max /= in.unit_factor;
+  const std::string paper_unit = std::string(in.unit_flag).substr(std::string(in.field).size() + 3);
+  CLI::Option* number = check_range(
+      cmd.add_option_function<double>(
+          in.unit_flag, [&in](const double& v) { in.si = v * in.unit_factor; },
+          std::string(in.what) + ", in " + paper_unit + " (the paper's unit; or " + flag + ")"),
+      paper);
+  quantity->excludes(number);
+}
+
+// The inputs' flags.
 void add_input_flags(CLI::App& cmd, FoldsFlags& f, FoldsOptions& o) {
-  // Bounds a person could mean (a cloth up to 100 m, a sheet up to 10 cm thick); the model
-  // itself checks how they combine (sim/folds/tension_field.h).
-  const Range length_cm = Range::gt(0.0).le(1e4);
-  check_range(cmd.add_option("--h-cm", f.h_cm, "Height h of the cloth, cm"), length_cm)->required();
-  check_range(cmd.add_option("--L-cm", f.L_cm, "Width L of the flat cloth, cm"), length_cm)
-      ->required();
-  check_range(cmd.add_option("--d-cm", f.d_cm, "Support displacement d, cm: the span is l = L - d"),
-              Range::closed(0.0, 1e4))
-      ->required();
-  check_range(cmd.add_option("--t-mm", f.t_mm, "Thickness t, mm"), Range::gt(0.0).le(100.0))
-      ->required();
-  check_range(cmd.add_option("--E-MPa", f.E_MPa, "Young's modulus E, MPa"),
-              Range::gt(0.0).le(1e6))
-      ->required();
-  check_range(cmd.add_option("--w-N-mm2", f.w_N_mm2, "Weight per area w, N/mm^2 (e.g. 15e-7)"),
-              Range::gt(0.0).le(1.0))
-      ->required();
+  for (FoldsInput* in : {&f.h, &f.L, &f.d, &f.t, &f.E, &f.w}) add_input_flag(cmd, *in);
   check_range(cmd.add_option("--nu", o.inputs.poisson_ratio, "Poisson's ratio (default 0.3)"),
               Range::gt(-1.0).le(0.5));
   check_range(cmd.add_option("--c", o.inputs.load_constant,

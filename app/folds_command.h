@@ -29,7 +29,7 @@ struct FoldsOptions {
   std::string command_line;
 };
 
-// The command-line flag of an input quantity: "t" → "--t-mm", … (TensionFieldInputError::field).
+// The command-line flags of an input quantity: "t" → "--t/--t-mm", … (TensionFieldInputError::field).
 std::string folds_flag(const std::string& field);
 
 // The result as JSON: the inputs (SI), span_m, Q, Q_given, critical_stress_Pa, n, z_max_m,

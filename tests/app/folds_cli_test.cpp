@@ -3,8 +3,10 @@
 // missing photo, supports outside it — rejected with exit code 1 naming the flag.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -88,6 +90,46 @@ TEST(FoldsCli, BadInputNamesTheFlag) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_TRUE(has_text(r.output, "--supports"));
   EXPECT_FALSE(fs::exists(dir / "out"));  // nothing written
+}
+
+// Issue 20 item 13: the inputs take unit strings like a scene file's values (--t "0.25 mm",
+// any length or stress unit); the result is the paper-unit flags' to the last digit. Both forms
+// of one input, a missing input, a missing unit and a unit of the wrong kind are errors naming
+// the flag.
+TEST(FoldsCli, InputsTakeUnitStringsLikeSceneFiles) {
+  const CommandResult paper = run_weft("folds --h-cm 140" + kTable1 + " --json");
+  ASSERT_EQ(paper.exit_code, 0) << paper.output;
+  const CommandResult units = run_weft(
+      "folds --h '1.4 m' --L '140 cm' --d '100 mm' --t '0.25 mm' --E '0.165 GPa' "
+      "--w '1.5 Pa' --json");
+  ASSERT_EQ(units.exit_code, 0) << units.output;
+  const nlohmann::json a = nlohmann::json::parse(paper.output);
+  const nlohmann::json b = nlohmann::json::parse(units.output);
+  for (const char* key : {"height_m", "width_m", "support_shift_m", "thickness_m",
+                          "youngs_modulus_Pa", "weight_N_m2"})
+    EXPECT_NEAR(b["inputs"][key].get<double>(), a["inputs"][key].get<double>(),
+                1e-12 * std::abs(a["inputs"][key].get<double>())) << key;
+  EXPECT_EQ(b["n"], a["n"]);
+  EXPECT_NEAR(b["z_max_m"].get<double>(), a["z_max_m"].get<double>(), 1e-9);
+  // The two forms mix: one flag each.
+  const CommandResult mixed = run_weft("folds --h '140 cm'" + kTable1 + " --json");
+  ASSERT_EQ(mixed.exit_code, 0) << mixed.output;
+  EXPECT_EQ(nlohmann::json::parse(mixed.output)["n"], a["n"]);
+
+  const std::string rest = " --L-cm 140 --d-cm 10 --E-MPa 165 --w-N-mm2 15e-7";
+  struct Bad {
+    const char* t;                        // the thickness flags given
+    std::vector<const char*> messages;  // each in the output
+  };
+  for (const Bad& bad : {Bad{" --t '0.25 mm' --t-mm 0.25", {"--t", "excludes"}},
+                         Bad{"", {"--t (or --t-mm) is required"}},
+                         Bad{" --t 0.25", {"--t: expected a length", "the unit is missing"}},
+                         Bad{" --t '0.25 MPa'", {"--t: expected a length"}},
+                         Bad{" --t '2 m'", {"--t: expected a value in (0, 0.1] m, got '2 m'"}}}) {
+    const CommandResult r = run_weft(std::string("folds --h-cm 140") + bad.t + rest);
+    EXPECT_EQ(r.exit_code, 1) << bad.t << "\n" << r.output;
+    for (const char* message : bad.messages) EXPECT_TRUE(has_text(r.output, message)) << bad.t;
+  }
 }
 
 }  // namespace
