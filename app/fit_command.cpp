@@ -8,6 +8,7 @@
 #include "app/fit_report.h"
 #include "app/json_reader.h"
 #include "app/progress.h"
+#include "app/scene_options.h"
 
 namespace weft::app {
 
@@ -17,6 +18,8 @@ int run_fit_command(const FitOptions& options) {
   FitSpec spec = load_fit_spec(options.spec);
   if (options.max_evaluations) spec.optimizer.max_evaluations = *options.max_evaluations;
   if (options.profile_points) spec.profile.points = *options.profile_points;
+  spec.threads = options.threads;
+  apply_threads(spec.base, options.threads);  // the renderer is made from the base scene's
   FitProblem problem(spec);
   problem.scene_at(std::vector<double>(spec.parameters.size(), 1.0));  // rejects a bad key early
   std::vector<double> start;
@@ -76,6 +79,7 @@ Command register_fit(CLI::App& app, const std::string& command_line) {
   check_range(cmd->add_option("--profile-points", o->profile_points,
                               "Overrides profile.points (0: no profile)"),
               Range::closed(0, 1000));
+  add_threads_option(*cmd, o->threads);
   return {cmd, [o] { return run_fit_command(*o); }};
 }
 

@@ -16,6 +16,7 @@ struct FitOptions {
   std::optional<std::filesystem::path> out;  // default: out/<fit file stem>
   std::optional<int> max_evaluations;        // overrides optimizer.max_evaluations
   std::optional<int> profile_points;         // overrides profile.points (0: no profile)
+  std::optional<int> threads;                // --threads (command.h)
   std::string command_line;
 };
 

@@ -13,6 +13,7 @@
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
 #include "app/renderer_choice.h"
+#include "app/scene_options.h"
 #include "render/photo_compare/metrics.h"
 
 namespace weft::app {
@@ -126,7 +127,9 @@ Scene FitProblem::scene_at(const std::vector<double>& values) const {
     for (const std::string& key : m_spec.parameters[i].keys)
       settings.push_back({key, text, m_spec.source + ": parameters[" + std::to_string(i) + "]"});
   }
-  return patched_scene(m_spec.base, settings);
+  Scene scene = patched_scene(m_spec.base, settings);
+  apply_threads(scene, m_spec.threads);  // not part of the scene's text
+  return scene;
 }
 
 Evaluation FitProblem::evaluate(const std::vector<double>& values) {

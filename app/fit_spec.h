@@ -113,6 +113,8 @@ struct FitSpec {
   SettleSettings settle;
   OptimizerSettings optimizer;
   ProfileSettings profile;
+  // --threads (not in the file): applied to every evaluation's scene and to the renderer's.
+  std::optional<int> threads;
 };
 
 // The default sensitivity band of a target: measured 1e-4 (a 1 % rms misfit), point cloud

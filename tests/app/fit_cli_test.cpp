@@ -3,8 +3,10 @@
 // naming the file and key, with nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -78,6 +80,50 @@ TEST_F(FitCli, BadFitFilesNameTheFileAndKey) {
                "is 548×323 px but the scene renders 2193×1294");
   expect_error(write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])", drop, "nowhere.json"),
                "nowhere.json: cannot read scene file");
+}
+
+// Issue 20 item 6: --threads on weft fit reaches every evaluation's scene (here self-collision's
+// candidate search, which runs on the threads) and changes no bit of the fit: the log (but for
+// its wall-clock seconds) and the fitted scene are the same for 1 and 3 threads. A bad count is
+// refused naming the option, with nothing written.
+TEST_F(FitCli, ThreadsChangeNoBitOfTheFit) {
+  const fs::path fit = write_scene(
+      "fit.json", R"({"description": "test", "scene": ")" + kStrip + R"(",
+        "set": {"simulation.self_collision": {}},
+        "parameters": [{"name": "bend", "start": "0.05 N*m"}],
+        "target": {"measured": {"drop": "80 mm"}}, "profile": {"points": 0}})");
+  // fit.csv without its seconds column (the 8th).
+  const auto log_without_seconds = [](const fs::path& csv) {
+    std::ifstream in(csv);
+    std::string out;
+    for (std::string line; std::getline(in, line);) {
+      std::stringstream fields(line);
+      std::string field;
+      for (int column = 1; std::getline(fields, field, ','); ++column)
+        if (column != 8) out += field + ",";
+      out += "\n";
+    }
+    return out;
+  };
+  const auto file_text = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* threads : {"1", "3"}) {
+    const CommandResult r = run_weft("fit " + fit.string() + " --max-evaluations 3 --threads " +
+                                     threads + " --out " + (m_dir / threads).string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const std::string one = log_without_seconds(m_dir / "1" / "fit.csv");
+  EXPECT_GT(std::count(one.begin(), one.end(), '\n'), 3) << one;  // a header and 3 evaluations
+  EXPECT_EQ(one, log_without_seconds(m_dir / "3" / "fit.csv"));
+  EXPECT_EQ(file_text(m_dir / "1" / "fitted_scene.json"), file_text(m_dir / "3" / "fitted_scene.json"));
+
+  const CommandResult bad =
+      run_weft("fit " + fit.string() + " --threads -1 --out " + (m_dir / "bad").string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_CONTAINS(bad.output, "--threads");
+  EXPECT_FALSE(fs::exists(m_dir / "bad"));
 }
 
 }  // namespace
