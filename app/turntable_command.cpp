@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <regex>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@
 #include "app/json_reader.h"
 #include "app/output_files.h"
 #include "app/contact_sheet.h"
+#include "app/data_dir.h"
 #include "app/ffmpeg_video.h"
 #include "app/frame_mesh.h"
 #include "app/frame_png.h"
@@ -75,6 +77,20 @@ void check_options(const TurntableOptions& o) {
     throw SceneError(o.input.string() +
                      ": expected a scene (.json) or a mesh file (.obj, .ply, .stl, .gltf, .glb, "
                      ".fbx)");
+  if (o.up && lower_extension(o.input) == ".json")
+    throw SceneError("--up: only for a mesh file (a scene is in weft's own z-up frame), got " +
+                     o.input.string());
+  const std::string ext = lower_extension(o.input);
+  if (o.up == UpAxis::z && (ext == ".gltf" || ext == ".glb"))
+    throw SceneError("--up z: " + o.input.string() +
+                     " is a glTF, which is y-up by definition (leave --up out)");
+}
+
+// A mesh file's vertex in weft's z-up frame: a y-up file's (x, y, z) is weft's (x, −z, y), the
+// inverse of the turn the exporter writes (mesh_export.h).
+Eigen::Vector3f weft_frame(const Eigen::Vector3d& p, UpAxis up) {
+  const Eigen::Vector3d q = up == UpAxis::y ? Eigen::Vector3d(p.x(), -p.z(), p.y()) : p;
+  return q.cast<float>();
 }
 
 Subject scene_subject(const TurntableOptions& o) {
@@ -121,8 +137,9 @@ Subject mesh_subject(const TurntableOptions& o) {
   apply_threads(defaults, o.threads);
   s.settings = defaults.render;
   s.alpha = defaults.write_alpha;
+  const UpAxis up = o.up.value_or(UpAxis::y);
   for (Eigen::Index v = 0; v < file.vertices.rows(); ++v)
-    s.mesh.positions.push_back(file.vertices.row(v).transpose().cast<float>());
+    s.mesh.positions.push_back(weft_frame(file.vertices.row(v).transpose(), up));
   for (const auto& t : file.triangles)
     s.mesh.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
                                 static_cast<std::uint32_t>(t[2])});
@@ -132,8 +149,12 @@ Subject mesh_subject(const TurntableOptions& o) {
     throw SceneError(e.what());
   }
   render::compute_vertex_normals(s.mesh);
-  const Eigen::Vector3d lo = file.vertices.colwise().minCoeff().transpose();
-  const Eigen::Vector3d hi = file.vertices.colwise().maxCoeff().transpose();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const Eigen::Vector3f& p : s.mesh.positions) {
+    lo = lo.cwiseMin(p.cast<double>());
+    hi = hi.cwiseMax(p.cast<double>());
+  }
   const render::Camera& c = s.settings.camera;
   s.settings.camera = framing_camera(lo, hi, c.eye - c.target, c.fov_y_deg,
                                      static_cast<double>(s.settings.width) / s.settings.height);
@@ -178,8 +199,10 @@ render::Camera framing_camera(const Eigen::Vector3d& lo, const Eigen::Vector3d& 
   return camera;
 }
 
-int run_turntable(const TurntableOptions& options) {
+int run_turntable(const TurntableOptions& given) {
   const base::Stopwatch total;  // the simulation of a scene, rendering and encoding
+  TurntableOptions options = given;
+  options.input = find_scene(given.input);  // a bare name: one of weft's scenes
   check_options(options);
   const bool is_scene = lower_extension(options.input) == ".json";
   Subject subject;
@@ -202,8 +225,8 @@ int run_turntable(const TurntableOptions& options) {
 
   const int n = options.frames;
   std::fprintf(stderr,
-               "weft: turntable of %s — %d frames around (%.3g, %.3g, %.3g) m, %dx%d, %s\n",
-               options.input.c_str(), n, center.x(), center.y(), center.z(),
+               "weft: turntable of %s — %d frame%s around (%.3g, %.3g, %.3g) m, %dx%d, %s\n",
+               options.input.c_str(), n, n == 1 ? "" : "s", center.x(), center.y(), center.z(),
                subject.settings.width, subject.settings.height, renderer.description().c_str());
   const int columns = contact_sheet_columns(n, subject.settings.width, subject.settings.height);
   const int thumb_width = std::min(subject.settings.width,
@@ -278,6 +301,10 @@ Command register_turntable(CLI::App& app, const std::string& command_line) {
   check_range(cmd->add_option("--distance-scale", o->orbit.distance_scale,
                               "Factor on the scene camera's distance to its target (default 1)"),
               Range::gt(0.0).le(1e3));
+  cmd->add_option_function<std::string>(
+      "--up", [o](const std::string& text) { o->up = parse_up_axis(text, "--up"); },
+      "A mesh file's up axis: y (default; weft's own OBJ/PLY/glTF exports, Blender) or z "
+      "(weft run --up z exports, many STL/CAD files); a glTF is always y-up");
   add_override_option(*cmd, "--sim-frames", "output.frames", o->overrides,
                       "Simulate to this frame instead of output.frames", "INT");
   return {cmd, [o] { return run_turntable(*o); }};

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "app/mesh_export.h"
 #include "app/scene_options.h"
 #include "app/orbit_camera.h"
 
@@ -25,6 +26,10 @@ struct TurntableOptions {
   std::optional<int> threads;                // --threads (command.h)
   OrbitSettings orbit;                       // --elevation-deg, --distance-scale
   double video_fps = 12.0;                   // of turntable.mp4/.gif: 36 frames take 3 s
+  // --up: the mesh file's up axis (a mesh input only). y (the default: weft's own OBJ/PLY
+  // exports, Blender, glTF) is turned into weft's z-up frame, (x, y, z) ↦ (x, −z, y); z keeps
+  // the file's coordinates. A glTF/GLB is y-up by definition: --up z is refused for it.
+  std::optional<UpAxis> up;
   std::string command_line;                  // recorded in turntable.txt
 };
 

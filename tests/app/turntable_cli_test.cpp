@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include "render/image.h"
@@ -234,6 +235,62 @@ TEST_F(TurntableCli, ARerunLeavesNoStaleMaterialFiles) {
   for (const fs::directory_entry& entry : fs::directory_iterator(out))
     EXPECT_NE(entry.path().filename().string().rfind("mesh_", 0), 0u) << entry.path();
   EXPECT_TRUE(fs::exists(out / "frame_0001.png"));
+}
+
+// The centre the turntable banner names: "… 1 frame around (X, Y, Z) m".
+std::string orbit_centre(const std::string& output) {
+  std::smatch m;
+  if (!std::regex_search(output, m, std::regex(R"(1 frame around (\([^)]*\)) m)"))) return "none";
+  return m[1];
+}
+
+// weft's own OBJ export is y-up by default: turntable MESH reads it back y-up (--up y, the
+// default) into weft's z-up frame, so the exported last frame orbits the same centre as the
+// scene's own turntable (the cloth stands; read in the file's frame it would lie on its side,
+// its centre at z ≈ 0). A --up z export is read with --up z. A scene, or a glTF, refuses --up z.
+TEST_F(TurntableCli, WeftsOwnExportStandsUpInTheTurntable) {
+  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const CommandResult own = run_weft("turntable " + scene.string() + " --frames 1 --size 32x24 --out " +
+                                     (m_dir / "scene_tt").string(), path_env(-1));
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  const std::string centre = orbit_centre(own.output);
+  ASSERT_NE(centre, "none") << own.output;
+  for (const char* up : {"y", "z"}) {
+    const fs::path run = m_dir / (std::string("run_") + up);
+    const CommandResult r = run_weft("run " + scene.string() + " --export-meshes obj --up " + up +
+                                     " --out " + run.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::string mesh = (run / "mesh_0002.obj").string();
+    const std::string as_read = up == std::string("y") ? "" : " --up z";
+    const CommandResult t = run_weft("turntable " + mesh + as_read + " --frames 1 --size 32x24 --out " +
+                                     (m_dir / (std::string("tt_") + up)).string(), path_env(-1));
+    ASSERT_EQ(t.exit_code, 0) << t.output;
+    EXPECT_EQ(orbit_centre(t.output), centre) << "exported with --up " << up << "\n" << t.output;
+  }
+  // Read in the wrong frame, the y-up export lies on its side: another centre.
+  const CommandResult sideways = run_weft("turntable " + (m_dir / "run_y" / "mesh_0002.obj").string() +
+                                          " --up z --frames 1 --size 32x24 --out " +
+                                          (m_dir / "tt_sideways").string(), path_env(-1));
+  ASSERT_EQ(sideways.exit_code, 0) << sideways.output;
+  EXPECT_NE(orbit_centre(sideways.output), centre);
+
+  const CommandResult on_scene = run_weft("turntable " + scene.string() + " --up y --out " +
+                                          (m_dir / "bad1").string(), path_env(-1));
+  EXPECT_EQ(on_scene.exit_code, 1) << on_scene.output;
+  EXPECT_CONTAINS(on_scene.output, "--up: only for a mesh file");
+  const CommandResult gltf_run = run_weft("run " + scene.string() + " --frames 1 --export-meshes gltf --out " +
+                                          (m_dir / "run_gltf").string());
+  ASSERT_EQ(gltf_run.exit_code, 0) << gltf_run.output;
+  const std::string gltf = (m_dir / "run_gltf" / "mesh_0001.gltf").string();
+  const CommandResult gltf_z = run_weft("turntable " + gltf + " --up z --out " + (m_dir / "bad2").string(),
+                                        path_env(-1));
+  EXPECT_EQ(gltf_z.exit_code, 1) << gltf_z.output;
+  EXPECT_CONTAINS(gltf_z.output, "y-up by definition");
+  const CommandResult bad_axis = run_weft("turntable " + gltf + " --up x --out " + (m_dir / "bad3").string(),
+                                          path_env(-1));
+  EXPECT_EQ(bad_axis.exit_code, 1) << bad_axis.output;
+  EXPECT_CONTAINS(bad_axis.output, "--up: expected y or z, got 'x'");
+  for (const char* bad : {"bad1", "bad2", "bad3"}) EXPECT_FALSE(fs::exists(m_dir / bad)) << bad;
 }
 
 }  // namespace
