@@ -92,8 +92,10 @@ int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char
 }
 
 std::string joined_command_line(int argc, char** argv) {
-  std::string line;
-  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  // The program as "weft" however it was called (./build/weft, an installed path): the
+  // records and generated pages spell the command one way, as the README does.
+  std::string line = "weft";
+  for (int i = 1; i < argc; ++i) line += " " + std::string(argv[i]);
   return line;
 }
 

@@ -47,7 +47,8 @@ CLI::Option* check_range(CLI::Option* option, const Range& range);
 // an empty string.
 std::string empty_value_error(const CLI::App& command);
 
-// The command line as typed, recorded in the output folders' run.txt and the like.
+// The command line as typed, with the program spelled "weft" however it was called, recorded
+// in the output folders' run.txt, reports and gallery README.
 std::string joined_command_line(int argc, char** argv);
 
 }  // namespace weft::app

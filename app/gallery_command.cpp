@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/data_dir.h"
 #include "app/json_reader.h"
 #include "app/output_files.h"
 #include "app/progress.h"
@@ -74,15 +75,18 @@ void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
   entry.description = scene.description;
   const int frames = scaled_frames(scene.frames, options.frames_scale);
   const fs::path scratch = options.out / (".frames_" + entry.name);
-  const std::string scene_arg = quoted_if_needed(entry.path.string());
+  // weft's own scenes by their names (find_scene), which any folder reproduces.
+  const std::string scene_arg =
+      options.scenes ? quoted_if_needed(entry.path.string()) : quoted_if_needed(entry.name);
   const std::string frames_arg = frames != scene.frames ? " --frames " + std::to_string(frames) : "";
   const std::string run_out = "out/" + entry.name;
   std::ostringstream commands;
   commands << "weft run " << scene_arg << frames_arg << " --out " << run_out << "\n"
            << "# " << entry.name << ".png is " << run_out << "/" << frame_file_name(frames)
            << "; both images at once:\n"
-           << "weft gallery --scenes " << quoted_if_needed(options.scenes.string()) << " --only "
-           << entry.name;
+           << "weft gallery "
+           << (options.scenes ? "--scenes " + quoted_if_needed(options.scenes->string()) + " " : "")
+           << "--only " << entry.name;
   if (options.frames_scale != 1.0) {
     char scale[32];
     std::snprintf(scale, sizeof scale, "%g", options.frames_scale);
@@ -114,8 +118,10 @@ void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
 
 std::string readme(const std::vector<GalleryEntry>& entries, const GalleryOptions& options) {
   std::ostringstream md;
-  md << "# Gallery\n\nEvery scene of `" << options.scenes.string()
-     << "` rendered by `weft gallery`: the final frame, a contact sheet of frames evenly spaced "
+  md << "# Gallery\n\n"
+     << (options.scenes ? "Every scene of `" + options.scenes->string() + "`"
+                        : std::string("Every one of weft's own scenes"))
+     << " rendered by `weft gallery`: the final frame, a contact sheet of frames evenly spaced "
         "in time, and the commands that reproduce them. Runs are deterministic: the same command "
         "and build give the same bytes.\n\n```sh\n"
      << options.command_line << "\n```\n";
@@ -146,7 +152,8 @@ int run_gallery(const GalleryOptions& options) {
   if (!(options.frames_scale > 0.0 && options.frames_scale <= 10.0))
     throw SceneError("--frames-scale: expected a number in (0, 10], e.g. 0.25, got " +
                      std::to_string(options.frames_scale));
-  const std::vector<fs::path> files = selected(scene_files(options.scenes), options.only);
+  const std::vector<fs::path> files =
+      selected(scene_files(options.scenes.value_or(data_dir() / "scenes")), options.only);
 
   std::vector<GalleryEntry> entries;
   const int n = static_cast<int>(files.size());
@@ -184,9 +191,11 @@ Command register_gallery(CLI::App& app, const std::string& command_line) {
   const auto o = std::make_shared<GalleryOptions>();
   o->command_line = command_line;
   CLI::App* cmd = app.add_subcommand(
-      "gallery", "Render every scene of assets/scenes into out/gallery: <scene>.png (final frame), "
+      "gallery", "Render every scene (weft's own) into out/gallery: <scene>.png (final frame), "
                  "<scene>_sheet.png (contact sheet), README.md with the commands");
-  cmd->add_option("--scenes", o->scenes, "Folder of scene files (default: assets/scenes)");
+  cmd->add_option("--scenes", o->scenes,
+                  "Folder of scene files (default: weft's own scenes, assets/scenes in the "
+                  "source tree, PREFIX/share/weft/scenes installed)");
   cmd->add_option("--out", o->out,
                   "Output folder (default: out/gallery; the repository's gallery/ only if given)");
   check_range(cmd->add_option("--frames-scale", o->frames_scale,

@@ -1,5 +1,5 @@
 #pragma once
-// weft gallery: render every scene of a folder (assets/scenes) into one folder — per scene the
+// weft gallery: render every scene of a folder (weft's own scenes by default) into one folder — per scene the
 // final frame (<scene>.png), a contact sheet (<scene>_sheet.png) and the command that
 // reproduces them — and write its README.md with a section per scene. A scene that fails is
 // reported and the others still run.
@@ -15,7 +15,9 @@
 namespace weft::app {
 
 struct GalleryOptions {
-  std::filesystem::path scenes = "assets/scenes";  // every *.json in it, in name order
+  // Every *.json in it, in name order; none: weft's own scenes (data_dir()/scenes, app/data_dir.h),
+  // named by their bare names in README.md's commands (weft run NAME works from any folder).
+  std::optional<std::filesystem::path> scenes;
   std::filesystem::path out = "out/gallery";       // the repository's gallery/ only if asked
   double frames_scale = 1.0;       // each scene's output.frames × this (rounded, at least 1)
   std::vector<std::string> only;   // scene names (file stems) to render; empty: all

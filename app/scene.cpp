@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "app/cloth_surface_scene.h"
+#include "app/data_dir.h"
 #include "app/environment_scene.h"
 #include "app/json_reader.h"
 #include "app/obstacle_meshes.h"
@@ -634,12 +635,16 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& path) {
+Scene load_scene(const std::filesystem::path& given) {
+  const std::filesystem::path path = find_scene(given);  // a bare name: one of weft's scenes
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                              &std::fclose);
   const auto cannot_read = [&]() {
     const std::string reason = std::strerror(errno);
-    throw SceneError(path.string() + ": cannot read scene file (" + reason + ")");
+    std::string known;
+    if (!path.has_parent_path() && !(known = known_scene_names()).empty())
+      known = "; nor is it one of weft's scenes: " + known;
+    throw SceneError(path.string() + ": cannot read scene file (" + reason + ")" + known);
   };
   if (!file) cannot_read();
   std::string text;

@@ -75,7 +75,9 @@ inline constexpr std::size_t max_obstacles = 1000;
 // Parses and validates scene text; `source` names it in error messages and resolves relative
 // paths. Pins are checked against the grid. Throws SceneError.
 Scene parse_scene(const std::string& text, const std::string& source);
-// Reads a scene file. Throws SceneError (a missing or unreadable file included).
+// Reads a scene file; a bare name that is no file here is one of weft's own scenes
+// (find_scene, app/data_dir.h: "weft run sphere_drape" from any folder). Throws SceneError (a
+// missing or unreadable file included; a bare name's message lists weft's scenes).
 Scene load_scene(const std::filesystem::path& path);
 // The simulator's settings: scene.sim with, when the ground is drawn and a collider
 // (Scene::ground_collider), the ground's plane among the obstacles.
