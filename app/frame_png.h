@@ -1,7 +1,8 @@
 #pragma once
 // One rendered frame written as a PNG, shared by `weft run` and `weft turntable`: RGB, or with
-// `alpha` (output.alpha, `--background transparent`) RGBA, alpha 255 where the pixel centre sees
-// a surface (Renderer::MaskOf::surfaces) and 0 elsewhere.
+// `alpha` (output.alpha, `--background transparent`) RGBA: alpha the share of the pixel the
+// surfaces cover (render/coverage_alpha.h: 16 samples a pixel, so edges are antialiased), the
+// edge colours freed of the plain background colour they were blended with.
 
 #include <filesystem>
 #include <functional>

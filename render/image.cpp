@@ -172,6 +172,22 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   write_png_bytes(image.width(), image.height(), 3, image.data(), path);
 }
 
+void write_png(const Image& image, const std::vector<std::uint8_t>& alpha,
+               const std::filesystem::path& path) {
+  const std::size_t n = static_cast<std::size_t>(image.width()) * image.height();
+  if (alpha.size() != n) {
+    throw std::invalid_argument("write_png: " + std::to_string(alpha.size()) +
+                                " alpha values for the " + std::to_string(image.width()) + "x" +
+                                std::to_string(image.height()) + " image (" + quoted(path) + ")");
+  }
+  std::vector<std::uint8_t> rgba(4 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = image.data()[3 * i + c];
+    rgba[4 * i + 3] = alpha[i];
+  }
+  write_png_bytes(image.width(), image.height(), 4, rgba.data(), path);
+}
+
 void write_png(const Image& image, const Mask& opaque, const std::filesystem::path& path) {
   if (opaque.width != image.width() || opaque.height != image.height()) {
     throw std::invalid_argument("write_png: the alpha mask is " + std::to_string(opaque.width) +
@@ -179,12 +195,9 @@ void write_png(const Image& image, const Mask& opaque, const std::filesystem::pa
                                 std::to_string(image.width()) + "x" +
                                 std::to_string(image.height()) + " (" + quoted(path) + ")");
   }
-  std::vector<std::uint8_t> rgba(4 * opaque.in.size());
-  for (std::size_t i = 0; i < opaque.in.size(); ++i) {
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = image.data()[3 * i + c];
-    rgba[4 * i + 3] = opaque.in[i] ? 255 : 0;
-  }
-  write_png_bytes(image.width(), image.height(), 4, rgba.data(), path);
+  std::vector<std::uint8_t> alpha(opaque.in.size());
+  for (std::size_t i = 0; i < alpha.size(); ++i) alpha[i] = opaque.in[i] ? 255 : 0;
+  write_png(image, alpha, path);
 }
 
 void write_png(const Mask& mask, const std::filesystem::path& path) {

@@ -38,6 +38,10 @@ void write_png(const Image& image, const std::filesystem::path& path);
 // An RGBA PNG: the image's colours, alpha 255 where `opaque` is set and 0 elsewhere (straight,
 // not premultiplied alpha); the sizes must match.
 void write_png(const Image& image, const Mask& opaque, const std::filesystem::path& path);
+// An RGBA PNG of the image's colours and `alpha` (one byte per pixel, straight alpha); the
+// sizes must match.
+void write_png(const Image& image, const std::vector<std::uint8_t>& alpha,
+               const std::filesystem::path& path);
 // A grey PNG of the mask: 255 where set, 0 elsewhere (mask_from_image reads it back).
 void write_png(const Mask& mask, const std::filesystem::path& path);
 // Writes a baseline JPEG of the given quality (1…100); throws std::runtime_error naming the path.

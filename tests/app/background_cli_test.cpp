@@ -1,9 +1,11 @@
 // `--background transparent|R,G,B` on weft run and weft turntable (issue 20 item 8): RGBA
-// frames whose alpha is the renderer's surface mask, a background colour, and a clear error.
+// frames whose alpha is the surfaces' coverage of each pixel, a background colour, and a clear
+// error.
 
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <memory>
@@ -42,31 +44,58 @@ Rgba read_rgba(const std::string& png_path) {
   return image;
 }
 
-// Without a ground the opaque pixels are exactly the cloth's mask (--mask), and the background
-// is transparent.
-TEST_F(BackgroundCli, TransparentRunWritesTheSurfaceMaskAsAlpha) {
+// Without a ground the opaque pixels are the cloth's. Alpha is the share of the pixel the cloth
+// covers (16 samples; item 8's antialiased alpha): 255 inside the cloth's mask (--mask, pixel
+// centres), 0 well outside it, in between along the silhouette, and the covered area is the
+// mask's. The edge colours are freed of the background: composited over the background colour
+// again they give the RGB frame that the same run writes without --background transparent.
+TEST_F(BackgroundCli, TransparentRunHasAntialiasedCoverageAlpha) {
   const auto scene = write_scene("tiny.json", test::tiny_scene());
-  const auto r = test::run_weft("run " + scene.string() +
-                                " --frames 2 --background transparent --mask --set "
-                                "render.ground=false --out " + path("run"));
+  const std::string common = " --frames 2 --mask --set render.ground=false --out ";
+  const auto r = test::run_weft("run " + scene.string() + " --background transparent" + common +
+                                path("run"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto opaque_run = test::run_weft("run " + scene.string() + common + path("rgb"));
+  ASSERT_EQ(opaque_run.exit_code, 0) << opaque_run.output;
   ASSERT_EQ(colour_type(path("run/frame_0002.png")), 6);
   const Rgba frame = read_rgba(path("run/frame_0002.png"));
   ASSERT_TRUE(frame.pixels) << stbi_failure_reason();
   const render::Image mask = render::read_image(m_dir / "run" / "mask_0002.png");
+  const render::Image rgb = render::read_image(m_dir / "rgb" / "frame_0002.png");
   ASSERT_EQ(frame.width, mask.width());
-  int opaque = 0, mismatched = 0;
+  ASSERT_EQ(frame.width, rgb.width());
+  const auto in_mask = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < mask.width() && y < mask.height() && mask.at(x, y).r == 255;
+  };
+  // Background colour of the default scene, as bytes (render.colors.background).
+  const int background[3] = {235, 237, 242};
+  int fractional = 0, mask_pixels = 0, wrong_inside = 0, wrong_outside = 0;
+  double covered = 0.0, edge_error = 0.0;
   for (int y = 0; y < frame.height; ++y) {
     for (int x = 0; x < frame.width; ++x) {
       const std::uint8_t a = frame.alpha(x, y);
-      EXPECT_TRUE(a == 0 || a == 255) << "binary alpha at " << x << "," << y;
-      opaque += a == 255;
-      mismatched += (a == 255) != (mask.at(x, y).r == 255);
+      int neighbours = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) neighbours += in_mask(x + dx, y + dy);
+      mask_pixels += in_mask(x, y);
+      covered += a / 255.0;
+      wrong_inside += neighbours == 9 && a != 255;
+      wrong_outside += neighbours == 0 && a != 0;
+      if (a == 0 || a == 255) continue;
+      ++fractional;
+      const std::uint8_t* p = frame.pixels.get() + 4 * (y * frame.width + x);
+      const render::Rgb8 want = rgb.at(x, y);
+      const int wanted[3] = {want.r, want.g, want.b};
+      for (int c = 0; c < 3; ++c)
+        edge_error += std::abs(a / 255.0 * p[c] + (1.0 - a / 255.0) * background[c] - wanted[c]);
     }
   }
-  EXPECT_GT(opaque, 100) << "the cloth is opaque";
-  EXPECT_LT(opaque, frame.width * frame.height / 2) << "the background is transparent";
-  EXPECT_EQ(mismatched, 0);
+  EXPECT_EQ(wrong_inside, 0) << "inside the cloth: opaque";
+  EXPECT_EQ(wrong_outside, 0) << "away from the cloth: transparent";
+  EXPECT_GT(fractional, 20) << "the silhouette is antialiased";
+  EXPECT_GT(mask_pixels, 100);
+  EXPECT_NEAR(covered, mask_pixels, 0.05 * mask_pixels) << "the covered area is the mask's";
+  EXPECT_LT(edge_error / (3.0 * fractional), 6.0) << "composited edges match the RGB frame";
   EXPECT_EQ(frame.alpha(0, 0), 0);
   // The scene copy says so: output.alpha is set.
   std::ifstream copy(path("run/scene.json"));
