@@ -127,8 +127,8 @@ TEST(FoldsJson, HoldsTheResultFields) {
   EXPECT_EQ(j["n"].get<int>(), r.wrinkles);
   EXPECT_EQ(j["amplitudes_m"].size(), static_cast<std::size_t>(r.wrinkles) + 1);
   EXPECT_EQ(j["status"], "converged");
-  EXPECT_EQ(folds_flag("t"), "--t-mm");
-  EXPECT_EQ(folds_flag("w"), "--w-N-mm2");
+  EXPECT_EQ(folds_flag("t"), "--t/--t-mm");
+  EXPECT_EQ(folds_flag("w"), "--w/--w-N-mm2");
 }
 
 }  // namespace
