@@ -341,16 +341,7 @@ Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& cou
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
   PixelGuide g;
   double l_sum = 0.0, l_squares = 0.0;  // the samples' illumination luminance (denoise.h)
-  double y_sum = 0.0, y_squares = 0.0;  // the samples' luminance (adaptive_error)
-  const int first_batch = std::max(8, view.samples_per_pixel / 4);
-  int taken = 0;
   for (int k = 0; k < view.samples_per_pixel; ++k) {
-    if (view.adaptive_error > 0.0f && k == first_batch) {
-      const double mean = y_sum / k;
-      const double variance = std::max(0.0, (y_squares - y_sum * mean) / (k - 1.0));
-      if (std::sqrt(variance / k) <= view.adaptive_error * std::max(mean, 0.02)) break;
-    }
-    ++taken;
     const auto sample = static_cast<std::uint32_t>(k);
     const Eigen::Vector2f offset =
         view.samples_per_pixel == 1 ? Eigen::Vector2f(0.5f, 0.5f) : pixel_offset(sample, rotation);
@@ -360,9 +351,6 @@ Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& cou
                                                    static_cast<float>(y) + offset.y(), rng, counts,
                                                    first);
     sum += radiance;
-    const double y_l = luminance(radiance);
-    y_sum += y_l;
-    y_squares += y_l * y_l;
     if (!guide) continue;
     double l = luminance(radiance);
     if (first.hit) {
@@ -375,7 +363,7 @@ Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& cou
     l_sum += l;
     l_squares += l * l;
   }
-  const auto n = static_cast<float>(taken);
+  const auto n = static_cast<float>(view.samples_per_pixel);
   if (guide) {
     if (g.coverage > 0.0f) {
       g.normal /= g.coverage;
@@ -384,7 +372,7 @@ Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& cou
     }
     g.coverage /= n;
     // Variance of the mean: the samples' unbiased variance over their count.
-    if (taken > 1)
+    if (view.samples_per_pixel > 1)
       g.variance = static_cast<float>(std::max(0.0, (l_squares - l_sum * l_sum / n) / (n - 1.0)) / n);
     *guide = g;
   }

@@ -64,9 +64,6 @@ struct FrameView {
   float ground_half_size_m = 0.0f;
 
   int samples_per_pixel = 1, bounces = 0, ao_samples = 0;
-  // Adaptive sampling (experiment): > 0 stops a pixel after a quarter of its samples (at least
-  // 4) when the standard error of its mean luminance is below this fraction of the mean.
-  float adaptive_error = 0.0f;
   float ao_distance_m = 0.0f;
   float sheen = 0.0f, sheen_roughness = 0.5f;
   std::uint32_t seed = 0;

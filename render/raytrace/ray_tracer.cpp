@@ -136,7 +136,6 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
       Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m).cast<float>();
   view.ground_half_size_m = static_cast<float>(s.ground_half_size_m);
   view.samples_per_pixel = s.raytrace.samples_per_pixel;
-  view.adaptive_error = static_cast<float>(s.raytrace.adaptive_error);
   view.bounces = s.raytrace.bounces;
   view.ao_samples = s.raytrace.ao_samples;
   view.ao_distance_m = static_cast<float>(s.raytrace.ao_distance_m);

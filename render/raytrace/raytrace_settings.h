@@ -24,8 +24,6 @@ struct RayTraceSettings {
   // Edge-aware à-trous denoising guided by normal, albedo and depth (render/denoise.h); off:
   // the plain mean of the samples.
   bool denoise = true;
-  // Adaptive sampling (experiment, issue 20 item 9; FrameView::adaptive_error). 0: off.
-  double adaptive_error = 0.0;
   int threads = 0;         // render threads; 0: all hardware threads. Never changes a bit.
   std::uint32_t seed = 0;  // mixed into every pixel's random generator
 };
