@@ -78,13 +78,11 @@ fs::path find_scene(const fs::path& given) {
 }
 
 std::string known_scene_names() {
+  const fs::path dir = data_dir() / "scenes";
   std::vector<std::string> names;
-  try {
-    for (const auto& entry : fs::directory_iterator(data_dir() / "scenes"))
-      if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
-  } catch (const std::exception&) {
-    return "";
-  }
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".json") names.push_back(it->path().stem().string());
   std::sort(names.begin(), names.end());
   std::string text;
   for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;

@@ -24,8 +24,8 @@ std::filesystem::path data_dir();
 // When nothing is found, `given` itself (so the caller's "cannot read" names what was typed).
 std::filesystem::path find_scene(const std::filesystem::path& given);
 
-// The names (stems) of data_dir()/scenes's *.json, sorted, comma-separated; "" when there is
-// no data folder. For messages.
+// The names (stems) of data_dir()/scenes's *.json, sorted, comma-separated, for messages.
+// Throws data_dir()'s SceneError when there is no data folder.
 std::string known_scene_names();
 
 }  // namespace weft::app

@@ -642,8 +642,13 @@ Scene load_scene(const std::filesystem::path& given) {
   const auto cannot_read = [&]() {
     const std::string reason = std::strerror(errno);
     std::string known;
-    if (!path.has_parent_path() && !(known = known_scene_names()).empty())
-      known = "; nor is it one of weft's scenes: " + known;
+    if (!path.has_parent_path()) {
+      try {
+        known = "; nor is it one of weft's scenes: " + known_scene_names();
+      } catch (const SceneError& e) {
+        known = std::string("; nor could weft's own scenes be looked in: ") + e.what();
+      }
+    }
     throw SceneError(path.string() + ": cannot read scene file (" + reason + ")" + known);
   };
   if (!file) cannot_read();

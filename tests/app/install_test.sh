@@ -41,4 +41,7 @@ if WEFT_DATA_DIR="$work/nowhere" "$weft" gallery --out g2 > env.log 2>&1; then
 fi
 grep -q "WEFT_DATA_DIR=$work/nowhere: no scenes/ folder" env.log || { cat env.log; fail "WEFT_DATA_DIR message"; }
 [ ! -e g2 ] || fail "g2 written"
+if WEFT_DATA_DIR="$work/nowhere" "$weft" run no_such_scene > env2.log 2>&1; then fail "no_such_scene ran"; fi
+grep -q "no_such_scene: cannot read scene file.*WEFT_DATA_DIR=$work/nowhere: no scenes/ folder" env2.log ||
+  { cat env2.log; fail "a bare name's message without a data folder"; }
 echo "install_test: ok"
