@@ -15,6 +15,7 @@
 #include "app/obstacle_meshes.h"
 #include "app/output_files.h"
 #include "app/progress.h"
+#include "app/run_checkpoint.h"
 #include "app/run_report.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
@@ -202,6 +203,21 @@ class FrameWriter {
     for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
       std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
   }
+  // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
+  void resume(const RunCheckpoint& checkpoint) {
+    m_rows = checkpoint.rows;
+    m_crossing_frames = checkpoint.crossing_frames;
+    m_stats.restore(m_rows);
+  }
+  // The checkpoint of the frames written so far (the simulator at the last one's end).
+  RunCheckpoint checkpoint(int every) const {
+    RunCheckpoint c{static_cast<int>(m_rows.size()), every, m_scene.source, m_scene.text,
+                    m_rows, m_crossing_frames, {}};
+    sim::StateWriter state;
+    m_simulator.save_state(state);
+    c.simulator_state = state.bytes();
+    return c;
+  }
   // The frames in which a self-colliding cloth passes through itself, in order.
   const std::vector<int>& crossing_frames() const { return m_crossing_frames; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
@@ -295,10 +311,36 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
     std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
 }
 
+// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same.
+Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) {
+  Scene scene = parse_scene(checkpoint.scene_text, checkpoint.scene_source);
+  if (options.scene || !options.overrides.empty()) {
+    const Scene given = load_scene_with(options.scene, options.overrides);
+    if (given.text != scene.text)
+      throw SceneError("--resume " + options.resume->string() + ": the checkpoint belongs to " +
+                       "another scene (" + checkpoint.scene_source + " with the overrides in its "
+                       "scene.json, hash " + std::to_string(fnv1a_64(scene.text)) + "; given: " +
+                       given.source + ", hash " + std::to_string(fnv1a_64(given.text)) +
+                       "); give no scene to go on with the checkpoint's");
+  }
+  return scene;
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& options) {
-  Scene scene = load_scene_with(options.scene, options.overrides);
+  std::optional<RunCheckpoint> resumed;
+  if (options.resume) resumed = read_checkpoint(*options.resume);
+  Scene scene = resumed ? resumed_scene(*resumed, options)
+                        : load_scene_with(options.scene, options.overrides);
+  const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
+  if ((every > 0 || resumed) && !options.export_cache.empty())
+    throw SceneError("--export-cache: not with --checkpoint-every or --resume (the point cache "
+                     "holds every frame and is not checkpointed; export meshes per frame with "
+                     "--export-meshes)");
+  if (resumed && resumed->frame >= scene.frames)
+    throw SceneError("--resume " + options.resume->string() + ": the checkpoint is of frame " +
+                     std::to_string(resumed->frame) + ", the scene's last: nothing to resume");
   const FrameSelection& f = options.selection;
   if (!f.last_only && (f.start > scene.frames || f.end.value_or(scene.frames) < f.start))
     throw SceneError("--start/--end: expected 1 <= start <= end <= " +
@@ -307,17 +349,40 @@ int run_scene(const RunOptions& options) {
   apply_threads(scene, options.threads);
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+  if (resumed) {
+    sim::StateReader state(resumed->simulator_state, options.resume->string());
+    try {
+      simulator->restore_state(state);
+    } catch (const sim::StateArchiveError& e) {
+      throw SceneError(std::string(e.what()) + " (a damaged checkpoint)");
+    }
+  }
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
   if (frame_cloth_if_no_camera(scene))
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
                          "over the run (simulated once for it)\n");
 
-  const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  const fs::path dir = options.resume ? (fs::is_directory(*options.resume)
+                                              ? *options.resume
+                                              : options.resume->parent_path())
+                                       : options.out.value_or(fs::path("out") / scene.name);
   print_header(scene, *simulator, *renderer, options.explain);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
+  if (resumed) {
+    writer.resume(*resumed);
+    std::fprintf(stderr, "weft: resuming from the checkpoint of frame %d in %s\n", resumed->frame,
+                 dir.c_str());
+  }
   FrameStreamEnd end;
   try {
-    end = stream_frames(scene, *simulator, [&](const Frame& frame) { writer.write(frame); });
+    end = stream_frames(
+        scene, *simulator,
+        [&](const Frame& frame) {
+          writer.write(frame);
+          if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
+            write_checkpoint(dir, writer.checkpoint(every));
+        },
+        {}, resumed ? resumed->frame + 1 : 1);
   } catch (const CrossingStop& stop) {
     writer.finish();
     std::fprintf(stderr,
@@ -387,6 +452,17 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_flag_callback(
       "--alpha", [o] { o->overrides.push_back({"output.alpha", "true", "--alpha"}); },
       "Write RGBA frames, the background transparent (overrides output.alpha)");
+  CLI::Option* checkpoint = check_range(
+      cmd->add_option("--checkpoint-every", o->checkpoint_every,
+                      "Write checkpoint.weft into the output folder after every K-th frame, "
+                      "replacing the last (docs/checkpoints.md)"),
+      Range::closed(1, 100000));
+  checkpoint->type_name("K");
+  cmd->add_option("--resume", o->resume,
+                  "Go on from the checkpoint in DIR (a folder weft run --checkpoint-every wrote) "
+                  "with the same bits as a run that never stopped; its scene is the checkpoint's")
+      ->type_name("DIR")
+      ->excludes(cmd->get_option("--out"));
   cmd->add_flag("--explain", o->explain,
                 "Print the terms and phases the simulation runs, and each phase's share of its time");
   cmd->add_flag("--report", o->report,
