@@ -8,7 +8,8 @@
 
 #include "app/auto_camera.h"
 #include "app/frame_mesh.h"
-#include "app/frame_png.h"
+#include "app/frame_painter.h"
+#include "app/npy_file.h"
 #include "app/json_reader.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
@@ -42,19 +43,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string frame_name(int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.png", frame);
-  return name;
-}
-
-// mask_0001.png (output.mask), beside frame_0001.png.
-std::string mask_name(int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "mask_%04d.png", frame);
-  return name;
-}
-
 // The cloth's texture beside glTF meshes (--export-meshes gltf), which name it.
 constexpr const char* texture_file_name = "mesh_texture.png";
 
@@ -73,16 +61,16 @@ MeshExportOptions mesh_export_options(const Scene& scene, const RunOptions& opti
 
 // mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
 std::string mesh_name(int frame, MeshFormat format) {
-  char name[32];
-  std::snprintf(name, sizeof name, "mesh_%04d.%s", frame, mesh_extension(format));
-  return name;
+  return numbered_file_name("mesh", frame, mesh_extension(format));
 }
 
 // Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
 // folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
 // first frame is ready: a run that fails before it leaves an earlier run's files as they were.
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
-  start_output(dir, {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"}},
+  start_output(dir,
+               {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
+                {"state", "npy"}},
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
   std::filesystem::remove(dir / texture_file_name);
@@ -167,13 +155,20 @@ class FrameWriter {
   FrameWriter(const Scene& scene, const RunOptions& options, const fs::path& dir,
               sim::Simulator& simulator, render::Renderer& renderer)
       : m_scene(scene), m_options(options), m_dir(dir), m_simulator(simulator),
-        m_renderer(renderer), m_stats(dir / "stats.csv"),
-        m_obstacles(obstacle_render_objects(scene.sim.obstacles, scene.render)),
+        m_stats(dir / "stats.csv"), m_painter(scene, renderer, simulator.mesh()),
         m_triangles(simulator.mesh().triangles()), m_edges(sim::unique_edges(m_triangles)),
-        m_progress(stderr, scene.frames, "frame") {}
+        m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {}
 
   void write(const Frame& frame) {
-    if (m_rows.empty()) prepare_output(m_dir, m_scene, m_options);
+    if (m_rows.empty()) {
+      prepare_output(m_dir, m_scene, m_options);
+      if (m_options.save_states)
+        write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
+    }
+    // Every simulated frame's state, for weft render (its camera frames them all).
+    if (m_options.save_states)
+      write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
+                       m_simulator.state().x);
     FrameStats row;
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
@@ -224,18 +219,9 @@ class FrameWriter {
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
  private:
-  // Moving obstacles are drawn where they are at the frame's time.
   void render_frame(int index) {
-    if (sim::any_moves(m_scene.sim.obstacle_motions))
-      m_obstacles = obstacle_render_objects(m_scene.sim.obstacles, m_scene.sim.obstacle_motions,
-                                            m_simulator.state().time_s, m_scene.render);
-    const render::RenderMesh cloth = to_render_mesh(m_simulator.mesh(), m_simulator.state().x);
-    render_frame_png(m_renderer, cloth, m_scene.render, m_obstacles, m_scene.write_alpha,
-                     m_dir / frame_name(index));
-    if (m_scene.write_mask)
-      render::write_png(m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
-                                               render::Renderer::MaskOf::cloth),
-                        m_dir / mask_name(index));
+    const render::RenderMesh cloth =
+        m_painter.paint(index, m_simulator.state().x, m_simulator.state().time_s, m_dir);
     if (!m_options.export_cache.empty()) m_cache.add(cloth, m_simulator.state().time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
@@ -246,15 +232,15 @@ class FrameWriter {
   const RunOptions& m_options;
   fs::path m_dir;
   sim::Simulator& m_simulator;
-  render::Renderer& m_renderer;
   StatsCsv m_stats;
-  std::vector<render::RenderObject> m_obstacles;
+  FramePainter m_painter;
   std::vector<std::array<sim::Index, 3>> m_triangles;
   std::vector<std::array<sim::Index, 2>> m_edges;
   Progress m_progress;
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
   std::vector<int> m_crossing_frames;
+  sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
 };
 
 // Says where the run stopped and what it kept; writes the report of the frames written.
@@ -463,6 +449,9 @@ Command register_run(CLI::App& app, const std::string& command_line) {
                   "with the same bits as a run that never stopped; its scene is the checkpoint's")
       ->type_name("DIR")
       ->excludes(cmd->get_option("--out"));
+  cmd->add_flag("--save-states", o->save_states,
+                "Also write every frame's cloth positions as state_0001.npy, ... (and frame 0's), "
+                "from which weft render draws frames without simulating (docs/checkpoints.md)");
   cmd->add_flag("--explain", o->explain,
                 "Print the terms and phases the simulation runs, and each phase's share of its time");
   cmd->add_flag("--report", o->report,

@@ -45,6 +45,7 @@ struct RunOptions {
   // checkpoint, writing into DIR (app/run_checkpoint.h, docs/checkpoints.md).
   std::optional<int> checkpoint_every;
   std::optional<std::filesystem::path> resume;
+  bool save_states = false;  // --save-states: state_NNNN.npy per simulated frame (weft render)
 };
 
 // Adds `weft run` to the command line.
