@@ -23,13 +23,7 @@ using weft::app::test::CliDirectoryTest;
 using weft::app::test::run_weft;
 using weft::app::test::tiny_scene;
 
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
+using weft::app::test::file_bytes;
 // stats.csv's lines without the wall-time columns (sim_ms, render_ms, solve_ms).
 std::vector<std::string> stats_without_wall_times(const fs::path& path) {
   std::vector<std::string> rows;

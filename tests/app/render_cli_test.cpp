@@ -20,13 +20,7 @@ namespace {
 using weft::app::test::CliDirectoryTest;
 using weft::app::test::run_weft;
 
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
+using weft::app::test::file_bytes;
 std::string numbered(const char* prefix, int k) {
   char name[32];
   std::snprintf(name, sizeof name, "%s_%04d.png", prefix, k);
