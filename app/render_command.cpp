@@ -1,6 +1,7 @@
 #include "app/render_command.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <regex>
 
@@ -12,6 +13,7 @@
 #include "app/progress.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
+#include "app/slurm_job.h"
 
 namespace weft::app {
 
@@ -43,6 +45,35 @@ sim::Matrix3X read_state(const fs::path& dir, int frame, Eigen::Index vertices) 
   return x;
 }
 
+// The frames in `tasks` contiguous parts, as weft render command lines of their own.
+int submit_render(const RenderOptions& options, const std::vector<int>& selected,
+                  const fs::path& out) {
+  SlurmArray array;
+  array.job_name = "weft-render";
+  array.log_dir = fs::absolute(out / "slurm");
+  array.cpus_per_task = std::max(1, options.threads.value_or(1));
+  const std::size_t tasks = std::min<std::size_t>(static_cast<std::size_t>(options.tasks), selected.size());
+  for (std::size_t t = 0; t < tasks; ++t) {
+    const std::size_t begin = selected.size() * t / tasks, end = selected.size() * (t + 1) / tasks;
+    std::vector<std::string> argv{fs::read_symlink("/proc/self/exe").string(), "render",
+                                  fs::absolute(options.states).string(), "--frames",
+                                  std::to_string(selected[begin]) + "-" + std::to_string(selected[end - 1]),
+                                  "--every", std::to_string(options.every),
+                                  "--out", fs::absolute(out).string(),
+                                  "--threads", std::to_string(array.cpus_per_task)};
+    if (options.scene) argv.insert(argv.end(), {"--scene", fs::absolute(*options.scene).string()});
+    for (const Setting& s : options.overrides) argv.insert(argv.end(), {"--set", s.key + "=" + s.value});
+    array.tasks.push_back(argv);
+  }
+  const fs::path script = out / "slurm" / "render.sbatch";
+  const std::string submitted = write_slurm_array(array, script, options.dry_run);
+  std::fprintf(stderr, "weft: wrote %s: %zu array tasks for %zu frames%s\n", script.c_str(), tasks,
+               selected.size(), options.dry_run ? " (not submitted: --dry-run)" : "");
+  if (options.dry_run) std::printf("%s", slurm_array_script(array).c_str());
+  else std::printf("%s", submitted.c_str());
+  return exit_ok;
+}
+
 }  // namespace
 
 int run_render(const RenderOptions& options) {
@@ -62,6 +93,8 @@ int run_render(const RenderOptions& options) {
   const sim::ClothMesh& mesh = simulator->mesh();
   std::vector<int> selected;
   for (int k = first; k <= last; k += options.every) selected.push_back(k);
+  const fs::path out = options.out.value_or(options.states);
+  if (options.slurm) return submit_render(options, selected, out);
   std::vector<sim::Matrix3X> states;
   for (int k : selected) states.push_back(read_state(options.states, k, mesh.vertex_count()));
   if (!scene.camera_given) {  // weft run's framing: the cloth over frames 0..N
@@ -71,7 +104,6 @@ int run_render(const RenderOptions& options) {
     frame_cloth_if_no_camera(scene, box);
   }
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
-  const fs::path out = options.out.value_or(options.states);
   fs::create_directories(out);
   FramePainter painter(scene, *renderer, mesh);
   Progress progress(stderr, static_cast<int>(selected.size()), "frame");
@@ -106,6 +138,15 @@ Command register_render(CLI::App& app, const std::string&) {
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
   add_render_options(*cmd, o->overrides);
   add_threads_option(*cmd, o->threads);
+  CLI::Option* slurm = cmd->add_flag(
+      "--slurm", o->slurm,
+      "Write OUT/slurm/render.sbatch, a Slurm job array drawing the frames in --tasks parts, "
+      "and submit it with sbatch (--threads N: CPUs per task, default 1)");
+  check_range(cmd->add_option("--tasks", o->tasks, "Array tasks for --slurm (default 4)"),
+              Range::closed(1, 100000))
+      ->needs(slurm);
+  cmd->add_flag("--dry-run", o->dry_run, "With --slurm: write and print the script, do not submit it")
+      ->needs(slurm);
   return {cmd, [o] { return run_render(*o); }};
 }
 

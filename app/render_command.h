@@ -24,6 +24,11 @@ struct RenderOptions {
   int every = 1;                             // every Nth frame from A
   std::vector<Setting> overrides;            // render.*, output.alpha and output.mask only
   std::optional<int> threads;
+  // --slurm: write OUT/slurm/render.sbatch, a job array of `tasks` tasks each drawing one
+  // contiguous part of the frames (app/slurm_job.h), and submit it unless dry_run.
+  bool slurm = false;
+  int tasks = 4;
+  bool dry_run = false;
 };
 
 Command register_render(CLI::App& app, const std::string& command_line);

@@ -438,12 +438,10 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_flag_callback(
       "--alpha", [o] { o->overrides.push_back({"output.alpha", "true", "--alpha"}); },
       "Write RGBA frames, the background transparent (overrides output.alpha)");
-  CLI::Option* checkpoint = check_range(
-      cmd->add_option("--checkpoint-every", o->checkpoint_every,
-                      "Write checkpoint.weft into the output folder after every K-th frame, "
-                      "replacing the last (docs/checkpoints.md)"),
-      Range::closed(1, 100000));
-  checkpoint->type_name("K");
+  check_range(cmd->add_option("--checkpoint-every", o->checkpoint_every,
+                              "Write checkpoint.weft into the output folder after every K-th "
+                              "frame, replacing the last (docs/checkpoints.md)"),
+              Range::closed(1, 100000));
   cmd->add_option("--resume", o->resume,
                   "Go on from the checkpoint in DIR (a folder weft run --checkpoint-every wrote) "
                   "with the same bits as a run that never stopped; its scene is the checkpoint's")

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -83,6 +84,29 @@ TEST_F(RenderCli, ARayTracedSequenceDrawnAsFourFrameRangesEqualsTheRunsFrames) {
   }
   for (int k = 1; k <= 12; ++k)
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
+}
+
+// The script weft render --slurm writes is a bash script: run with SLURM_ARRAY_TASK_ID = 0..3,
+// as Slurm runs its array tasks, it draws the run's frames.
+TEST_F(RenderCli, ASlurmArrayScriptOfFourTasksDrawsTheRunsFrames) {
+  const fs::path states = run("--renderer raytrace --samples 2");
+  const fs::path out = m_dir / "slurm_out";
+  const auto r = run_weft("render " + states.string() +
+                          " --renderer raytrace --samples 2 --slurm --tasks 4 --dry-run --out " +
+                          out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "4 array tasks for 12 frames (not submitted: --dry-run)");
+  EXPECT_CONTAINS(r.output, "#SBATCH --array=0-3");
+  const fs::path script = out / "slurm" / "render.sbatch";
+  ASSERT_TRUE(fs::exists(script));
+  EXPECT_CONTAINS(file_bytes(script), "'--frames' '10-12'");
+  EXPECT_FALSE(fs::exists(out / numbered("frame", 1))) << "--dry-run draws nothing";
+  for (int task = 0; task < 4; ++task)
+    EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash " +
+                           script.string() + " >/dev/null 2>&1").c_str()), 0) << task;
+  for (int k = 1; k <= 12; ++k)
+    EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
+  EXPECT_NE(std::system(("SLURM_ARRAY_TASK_ID=4 bash " + script.string() + " 2>/dev/null").c_str()), 0);
 }
 
 TEST_F(RenderCli, BadRangesMissingStatesAndSimulationKeysAreRefused) {
