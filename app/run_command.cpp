@@ -74,6 +74,7 @@ void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& o
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
   std::filesystem::remove(dir / texture_file_name);
+  std::filesystem::remove(dir / checkpoint_file_name);  // an earlier run's: --resume must not find it
   if (!mesh_export_options(scene, options).texture_uri.empty())
     render::write_png(*scene.render.cloth_surface.texture.image, dir / texture_file_name);
 }

@@ -165,6 +165,10 @@ TEST_F(CheckpointCli, CheckpointsOfAnotherSceneOrBuildOrDamagedOnesAreRefused) {
   const auto missing = run_weft("run --resume " + (m_dir / "nowhere").string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
   EXPECT_CONTAINS(missing.output, "cannot read it");
+
+  // A new run in the folder removes the earlier run's checkpoint: --resume cannot mix runs.
+  ASSERT_EQ(run_weft("run " + scene + " --frames 8 --out " + cut.string()).exit_code, 0);
+  EXPECT_FALSE(fs::exists(file));
 }
 
 }  // namespace
