@@ -26,22 +26,24 @@ render::Camera framing_camera(const Eigen::AlignedBox3d& box_m, const render::Ca
   return c;
 }
 
+void extend_box(Eigen::AlignedBox3d& box, const sim::Matrix3X& x) {
+  for (Eigen::Index v = 0; v < x.rows(); ++v) box.extend(x.row(v).transpose().eval());
+}
+
 Eigen::AlignedBox3d cloth_bounds_over_run(const Scene& scene) {
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   Eigen::AlignedBox3d box;
-  const auto extend = [&](const sim::Simulator& s) {
-    const sim::Matrix3X& x = s.state().x;
-    for (Eigen::Index v = 0; v < x.rows(); ++v) box.extend(x.row(v).transpose().eval());
-  };
-  extend(*simulator);
-  (void)stream_frames(scene, *simulator, [&](const Frame& frame) { extend(frame.simulator); });
+  extend_box(box, simulator->state().x);
+  (void)stream_frames(scene, *simulator,
+                      [&](const Frame& frame) { extend_box(box, frame.simulator.state().x); });
   return box;
 }
 
-bool frame_cloth_if_no_camera(Scene& scene) {
+bool frame_cloth_if_no_camera(Scene& scene, const std::optional<Eigen::AlignedBox3d>& cloth_box_m) {
   if (scene.camera_given) return false;
-  scene.render.camera = framing_camera(cloth_bounds_over_run(scene), scene.render.camera,
-                                       scene.render.width, scene.render.height);
+  scene.render.camera = framing_camera(cloth_box_m ? *cloth_box_m : cloth_bounds_over_run(scene),
+                                       scene.render.camera, scene.render.width,
+                                       scene.render.height);
   return true;
 }
 

@@ -9,6 +9,7 @@
 #include "app/folds_command.h"
 #include "app/gallery_command.h"
 #include "app/measure_command.h"
+#include "app/render_command.h"
 #include "app/run_command.h"
 #include "app/stability_command.h"
 #include "app/sweep_command.h"
@@ -21,7 +22,7 @@ std::vector<Command> register_commands(CLI::App& app, const std::string& line) {
       register_run(app, line),     register_stability(app, line), register_sweep(app, line),
       register_measure(app, line), register_folds(app, line),     register_turntable(app, line),
       register_diff(app, line),    register_compare(app, line),   register_gallery(app, line),
-      register_fit(app, line),
+      register_fit(app, line),     register_render(app, line),
   };
 }
 

@@ -10,9 +10,10 @@ double frame_time_s(const Scene& scene, int frame) { return frame / scene.fps; }
 
 FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
                              const std::function<void(const Frame&)>& on_frame,
-                             const std::function<bool()>& stop) {
+                             const std::function<bool()>& stop, int first_frame) {
   FrameStreamEnd end;
-  for (int k = 1; k <= scene.frames; ++k) {
+  end.frames = first_frame - 1;
+  for (int k = first_frame; k <= scene.frames; ++k) {
     const auto start = std::chrono::steady_clock::now();
     if (scene.dynamics) {
       try {

@@ -36,10 +36,12 @@ struct FrameStreamEnd {
 // Simulates frames 1..scene.frames on `simulator` (made by make_simulator(scene), at its start)
 // and calls on_frame for each; `stop`, if given, is asked after each frame and ends the stream
 // early when it says so (weft measure --until-settled). A divergence stops the stream and is
-// returned; what on_frame throws propagates.
+// returned; what on_frame throws propagates. A simulator restored from a checkpoint of frame
+// k (weft run --resume) streams from first_frame = k + 1.
 [[nodiscard]] FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
                                            const std::function<void(const Frame&)>& on_frame,
-                                           const std::function<bool()>& stop = {});
+                                           const std::function<bool()>& stop = {},
+                                           int first_frame = 1);
 
 // The time of frame k of the scene, seconds: k / fps.
 double frame_time_s(const Scene& scene, int frame);

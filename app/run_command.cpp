@@ -8,13 +8,15 @@
 
 #include "app/auto_camera.h"
 #include "app/frame_mesh.h"
-#include "app/frame_png.h"
+#include "app/frame_painter.h"
+#include "app/npy_file.h"
 #include "app/json_reader.h"
 #include "app/frame_stream.h"
 #include "app/measure_command.h"
 #include "app/obstacle_meshes.h"
 #include "app/output_files.h"
 #include "app/progress.h"
+#include "app/run_checkpoint.h"
 #include "app/run_report.h"
 #include "app/renderer_choice.h"
 #include "app/scene.h"
@@ -41,19 +43,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string frame_name(int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.png", frame);
-  return name;
-}
-
-// mask_0001.png (output.mask), beside frame_0001.png.
-std::string mask_name(int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "mask_%04d.png", frame);
-  return name;
-}
-
 // The cloth's texture beside glTF meshes (--export-meshes gltf), which name it.
 constexpr const char* texture_file_name = "mesh_texture.png";
 
@@ -72,19 +61,20 @@ MeshExportOptions mesh_export_options(const Scene& scene, const RunOptions& opti
 
 // mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
 std::string mesh_name(int frame, MeshFormat format) {
-  char name[32];
-  std::snprintf(name, sizeof name, "mesh_%04d.%s", frame, mesh_extension(format));
-  return name;
+  return numbered_file_name("mesh", frame, mesh_extension(format));
 }
 
 // Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
 // folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
 // first frame is ready: a run that fails before it leaves an earlier run's files as they were.
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
-  start_output(dir, {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"}},
+  start_output(dir,
+               {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
+                {"state", "npy"}},
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
   std::filesystem::remove(dir / texture_file_name);
+  std::filesystem::remove(dir / checkpoint_file_name);  // an earlier run's: --resume must not find it
   if (!mesh_export_options(scene, options).texture_uri.empty())
     render::write_png(*scene.render.cloth_surface.texture.image, dir / texture_file_name);
 }
@@ -166,13 +156,20 @@ class FrameWriter {
   FrameWriter(const Scene& scene, const RunOptions& options, const fs::path& dir,
               sim::Simulator& simulator, render::Renderer& renderer)
       : m_scene(scene), m_options(options), m_dir(dir), m_simulator(simulator),
-        m_renderer(renderer), m_stats(dir / "stats.csv"),
-        m_obstacles(obstacle_render_objects(scene.sim.obstacles, scene.render)),
+        m_stats(dir / "stats.csv"), m_painter(scene, renderer, simulator.mesh()),
         m_triangles(simulator.mesh().triangles()), m_edges(sim::unique_edges(m_triangles)),
-        m_progress(stderr, scene.frames, "frame") {}
+        m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {}
 
   void write(const Frame& frame) {
-    if (m_rows.empty()) prepare_output(m_dir, m_scene, m_options);
+    if (m_rows.empty()) {
+      prepare_output(m_dir, m_scene, m_options);
+      if (m_options.save_states)
+        write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
+    }
+    // Every simulated frame's state, for weft render (its camera frames them all).
+    if (m_options.save_states)
+      write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
+                       m_simulator.state().x);
     FrameStats row;
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
@@ -202,24 +199,30 @@ class FrameWriter {
     for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
       std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
   }
+  // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
+  void resume(const RunCheckpoint& checkpoint) {
+    m_rows = checkpoint.rows;
+    m_crossing_frames = checkpoint.crossing_frames;
+    m_stats.restore(m_rows);
+  }
+  // The checkpoint of the frames written so far (the simulator at the last one's end).
+  RunCheckpoint checkpoint(int every) const {
+    RunCheckpoint c{static_cast<int>(m_rows.size()), every, m_scene.source, m_scene.text,
+                    m_rows, m_crossing_frames, {}};
+    sim::StateWriter state;
+    m_simulator.save_state(state);
+    c.simulator_state = state.bytes();
+    return c;
+  }
   // The frames in which a self-colliding cloth passes through itself, in order.
   const std::vector<int>& crossing_frames() const { return m_crossing_frames; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
  private:
-  // Moving obstacles are drawn where they are at the frame's time.
   void render_frame(int index) {
-    if (sim::any_moves(m_scene.sim.obstacle_motions))
-      m_obstacles = obstacle_render_objects(m_scene.sim.obstacles, m_scene.sim.obstacle_motions,
-                                            m_simulator.state().time_s, m_scene.render);
-    const render::RenderMesh cloth = to_render_mesh(m_simulator.mesh(), m_simulator.state().x);
-    render_frame_png(m_renderer, cloth, m_scene.render, m_obstacles, m_scene.write_alpha,
-                     m_dir / frame_name(index));
-    if (m_scene.write_mask)
-      render::write_png(m_renderer.render_mask(cloth, m_scene.render, m_obstacles,
-                                               render::Renderer::MaskOf::cloth),
-                        m_dir / mask_name(index));
+    const render::RenderMesh cloth =
+        m_painter.paint(index, m_simulator.state().x, m_simulator.state().time_s, m_dir);
     if (!m_options.export_cache.empty()) m_cache.add(cloth, m_simulator.state().time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
@@ -230,15 +233,15 @@ class FrameWriter {
   const RunOptions& m_options;
   fs::path m_dir;
   sim::Simulator& m_simulator;
-  render::Renderer& m_renderer;
   StatsCsv m_stats;
-  std::vector<render::RenderObject> m_obstacles;
+  FramePainter m_painter;
   std::vector<std::array<sim::Index, 3>> m_triangles;
   std::vector<std::array<sim::Index, 2>> m_edges;
   Progress m_progress;
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
   std::vector<int> m_crossing_frames;
+  sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
 };
 
 // Says where the run stopped and what it kept; writes the report of the frames written.
@@ -295,10 +298,36 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
     std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
 }
 
+// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same.
+Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) {
+  Scene scene = parse_scene(checkpoint.scene_text, checkpoint.scene_source);
+  if (options.scene || !options.overrides.empty()) {
+    const Scene given = load_scene_with(options.scene, options.overrides);
+    if (given.text != scene.text)
+      throw SceneError("--resume " + options.resume->string() + ": the checkpoint belongs to " +
+                       "another scene (" + checkpoint.scene_source + " with the overrides in its "
+                       "scene.json, hash " + std::to_string(fnv1a_64(scene.text)) + "; given: " +
+                       given.source + ", hash " + std::to_string(fnv1a_64(given.text)) +
+                       "); give no scene to go on with the checkpoint's");
+  }
+  return scene;
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& options) {
-  Scene scene = load_scene_with(options.scene, options.overrides);
+  std::optional<RunCheckpoint> resumed;
+  if (options.resume) resumed = read_checkpoint(*options.resume);
+  Scene scene = resumed ? resumed_scene(*resumed, options)
+                        : load_scene_with(options.scene, options.overrides);
+  const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
+  if ((every > 0 || resumed) && !options.export_cache.empty())
+    throw SceneError("--export-cache: not with --checkpoint-every or --resume (the point cache "
+                     "holds every frame and is not checkpointed; export meshes per frame with "
+                     "--export-meshes)");
+  if (resumed && resumed->frame >= scene.frames)
+    throw SceneError("--resume " + options.resume->string() + ": the checkpoint is of frame " +
+                     std::to_string(resumed->frame) + ", the scene's last: nothing to resume");
   const FrameSelection& f = options.selection;
   if (!f.last_only && (f.start > scene.frames || f.end.value_or(scene.frames) < f.start))
     throw SceneError("--start/--end: expected 1 <= start <= end <= " +
@@ -307,17 +336,40 @@ int run_scene(const RunOptions& options) {
   apply_threads(scene, options.threads);
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+  if (resumed) {
+    sim::StateReader state(resumed->simulator_state, options.resume->string());
+    try {
+      simulator->restore_state(state);
+    } catch (const sim::StateArchiveError& e) {
+      throw SceneError(std::string(e.what()) + " (a damaged checkpoint)");
+    }
+  }
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
   if (frame_cloth_if_no_camera(scene))
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
                          "over the run (simulated once for it)\n");
 
-  const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  const fs::path dir = options.resume ? (fs::is_directory(*options.resume)
+                                              ? *options.resume
+                                              : options.resume->parent_path())
+                                       : options.out.value_or(fs::path("out") / scene.name);
   print_header(scene, *simulator, *renderer, options.explain);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
+  if (resumed) {
+    writer.resume(*resumed);
+    std::fprintf(stderr, "weft: resuming from the checkpoint of frame %d in %s\n", resumed->frame,
+                 dir.c_str());
+  }
   FrameStreamEnd end;
   try {
-    end = stream_frames(scene, *simulator, [&](const Frame& frame) { writer.write(frame); });
+    end = stream_frames(
+        scene, *simulator,
+        [&](const Frame& frame) {
+          writer.write(frame);
+          if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
+            write_checkpoint(dir, writer.checkpoint(every));
+        },
+        {}, resumed ? resumed->frame + 1 : 1);
   } catch (const CrossingStop& stop) {
     writer.finish();
     std::fprintf(stderr,
@@ -387,6 +439,18 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_flag_callback(
       "--alpha", [o] { o->overrides.push_back({"output.alpha", "true", "--alpha"}); },
       "Write RGBA frames, the background transparent (overrides output.alpha)");
+  check_range(cmd->add_option("--checkpoint-every", o->checkpoint_every,
+                              "Write checkpoint.weft into the output folder after every K-th "
+                              "frame, replacing the last (docs/checkpoints.md)"),
+              Range::closed(1, 100000));
+  cmd->add_option("--resume", o->resume,
+                  "Go on from the checkpoint in DIR (a folder weft run --checkpoint-every wrote) "
+                  "with the same bits as a run that never stopped; its scene is the checkpoint's")
+      ->type_name("DIR")
+      ->excludes(cmd->get_option("--out"));
+  cmd->add_flag("--save-states", o->save_states,
+                "Also write every frame's cloth positions as state_0001.npy, ... (and frame 0's), "
+                "from which weft render draws frames without simulating (docs/checkpoints.md)");
   cmd->add_flag("--explain", o->explain,
                 "Print the terms and phases the simulation runs, and each phase's share of its time");
   cmd->add_flag("--report", o->report,

@@ -40,6 +40,12 @@ struct RunOptions {
   bool explain = false;                        // print the simulated terms and phase times
   bool report = false;  // also write report.html (frames, plots of strain/energy/time; run_report.h)
   std::string command_line;                    // recorded in run.txt
+  // --checkpoint-every K: write out/checkpoint.weft after every K-th frame (0: never; a run
+  // resumed goes on with the checkpoint's K unless given). --resume DIR: go on from DIR's
+  // checkpoint, writing into DIR (app/run_checkpoint.h, docs/checkpoints.md).
+  std::optional<int> checkpoint_every;
+  std::optional<std::filesystem::path> resume;
+  bool save_states = false;  // --save-states: state_NNNN.npy per simulated frame (weft render)
 };
 
 // Adds `weft run` to the command line.

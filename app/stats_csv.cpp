@@ -13,7 +13,9 @@ StatsCsv::StatsCsv(const std::filesystem::path& path)
            "max_step_iterations,unconverged_steps,solve_ms,failed_implicit_solves,cg_iterations,"
            "self_intersections,max_self_contacts\n") {}
 
-void StatsCsv::write(const FrameStats& r) {
+namespace {
+
+std::string row_text(const FrameStats& r) {
   const auto& d = r.diagnostics;
   std::ostringstream line;
   line.precision(9);
@@ -24,8 +26,18 @@ void StatsCsv::write(const FrameStats& r) {
         << s.projection_iterations << ',' << s.max_projection_iterations << ','
         << s.unconverged_steps << ',' << 1e3 * s.solve_s << ',' << s.failed_implicit_solves << ','
         << s.cg_iterations << ',' << r.self_intersections << ',' << s.max_self_contacts << '\n';
-  m_text += line.str();
+  return line.str();
+}
+
+}  // namespace
+
+void StatsCsv::write(const FrameStats& r) {
+  m_text += row_text(r);
   write_text(m_path, m_text);
+}
+
+void StatsCsv::restore(const std::vector<FrameStats>& rows) {
+  for (const FrameStats& r : rows) m_text += row_text(r);
 }
 
 }  // namespace weft::app

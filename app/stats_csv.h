@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sim/diagnostics.h"
 #include "sim/simulator.h"
@@ -25,6 +26,9 @@ class StatsCsv {
  public:
   explicit StatsCsv(const std::filesystem::path& path);  // writes nothing yet
   void write(const FrameStats& row);                       // throws std::runtime_error
+  // Starts from the rows of a run resumed from a checkpoint (app/run_checkpoint.h); writes
+  // them with the next row.
+  void restore(const std::vector<FrameStats>& rows);
 
  private:
   std::filesystem::path m_path;

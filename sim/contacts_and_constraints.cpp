@@ -145,4 +145,32 @@ std::string ContactsAndConstraints::explain_collide() const {
   return line.str();
 }
 
+void ContactsAndConstraints::save_state(StateWriter& out) const {
+  out.section("contacts and constraints");
+  out.pod(m_projector != nullptr);
+  if (m_projector) m_projector->save_state(out);
+  out.pod(m_tension != nullptr);
+  if (m_tension) out.matrix(m_tension->tension_N_m());
+  out.pod(m_self != nullptr);
+  if (m_self) m_self->save_state(out);
+}
+
+void ContactsAndConstraints::restore_state(StateReader& in) {
+  in.section("contacts and constraints");
+  if (in.pod<bool>() != (m_projector != nullptr)) in.fail("another projection setting");
+  if (m_projector) m_projector->restore_state(in);
+  if (in.pod<bool>() != (m_tension != nullptr)) in.fail("another carried-tension setting");
+  if (m_tension) {
+    Eigen::VectorXd k;
+    in.matrix(k);
+    try {
+      m_tension->restore_tension(k);
+    } catch (const std::invalid_argument& e) {
+      in.fail(e.what());
+    }
+  }
+  if (in.pod<bool>() != (m_self != nullptr)) in.fail("another self-collision setting");
+  if (m_self) m_self->restore_state(in);
+}
+
 }  // namespace weft::sim

@@ -47,6 +47,11 @@ class ContactsAndConstraints {
   std::string explain_collide() const;
   const ConstraintProjector* projector() const { return m_projector.get(); }
   const SelfCollision* self_collision() const { return m_self.get(); }
+  // What the phase carries from one step to the next, for a checkpoint: the carried tension,
+  // the projector's and self-collision's memory. The obstacles' poses and motions are not: each
+  // step poses them anew at its times before it uses them.
+  void save_state(StateWriter& out) const;
+  void restore_state(StateReader& in);
 
  private:
   ProjectionResult project(Matrix3X& x, double h_s);  // one projection; carries its tension

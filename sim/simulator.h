@@ -16,6 +16,7 @@
 #include "sim/pin_motion.h"
 #include "sim/sim_settings.h"
 #include "sim/state.h"
+#include "sim/state_archive.h"
 #include "sim/system.h"
 
 namespace weft::sim {
@@ -84,6 +85,15 @@ class Simulator {
   // methods this simulation runs, with their sizes — only what the scene needs is assembled.
   std::vector<std::string> explain() const;
   StepStatistics take_step_statistics();
+
+  // Everything the simulation carries from one step to the next (sim/simulator_state.cpp):
+  // positions, velocities, time, step count, the energy guard, the step statistics not yet
+  // taken, the integrator's, projector's, carried tension's and self-collision's memory. A
+  // Simulator made from the same scene and restored from it continues with the same bits as
+  // the one saved. restore_state() throws StateArchiveError when the bytes do not fit this
+  // simulation (another mesh, integrator or setting).
+  void save_state(StateWriter& out) const;
+  void restore_state(StateReader& in);
 
  private:
   struct MovingPin {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "base/check.h"
@@ -608,6 +609,52 @@ SelfContactCounts SelfCollision::resolve(const Matrix3X& x_start, const Eigen::V
   m_moved.erase(std::unique(m_moved.begin(), m_moved.end()), m_moved.end());
   m_narrow_s += watch.seconds();
   return counts;
+}
+
+void SelfCollision::save_state(StateWriter& out) const {
+  out.section("self-collision");
+  out.pod(m_built);
+  out.pod(m_rebuilds);
+  for (const auto* list : {&m_candidates.vt, &m_candidates.ee, &m_candidates.vv}) out.pods(*list);
+  out.matrix(m_x_built);
+  for (const auto* list : {&m_active.vt, &m_active.ee, &m_active.vv}) out.pods(*list);
+  out.matrix(m_x_active);
+  out.pods(m_watched);
+}
+
+void SelfCollision::restore_state(StateReader& in) {
+  in.section("self-collision");
+  in.pod(m_built);
+  in.pod(m_rebuilds);
+  const Eigen::Index n = m_built ? m_rest.rows() : -1;
+  for (auto* list : {&m_candidates.vt, &m_candidates.ee, &m_candidates.vv}) in.pods(*list);
+  in.matrix(m_x_built, n, 3);
+  for (auto* list : {&m_active.vt, &m_active.ee, &m_active.vv}) in.pods(*list);
+  in.matrix(m_x_active, n, 3);
+  in.pods(m_watched);
+  const auto bad = [](Index id, std::size_t size) { return id < 0 || static_cast<std::size_t>(id) >= size; };
+  for (const PatchPair& pair : m_watched)
+    if (bad(pair.ids[0], m_patches.patches().size()) || bad(pair.ids[1], m_patches.patches().size()))
+      in.fail("a patch pair outside the mesh's patches");
+  const auto ids_of = [](const auto& entry) -> const std::array<Index, 2>& {
+    if constexpr (std::is_same_v<std::decay_t<decltype(entry)>, std::array<Index, 2>>)
+      return entry;
+    else
+      return entry.ids;
+  };
+  const auto check = [&](const auto& list, std::size_t first, std::size_t second) {
+    for (const auto& entry : list) {
+      const std::array<Index, 2>& ids = ids_of(entry);
+      if (bad(ids[0], first) || bad(ids[1], second)) in.fail("a contact pair outside the mesh");
+    }
+  };
+  const std::size_t v = static_cast<std::size_t>(m_rest.rows());
+  check(m_candidates.vt, v, m_triangles.size());
+  check(m_candidates.ee, m_edges.size(), m_edges.size());
+  check(m_candidates.vv, v, v);
+  check(m_active.vt, v, m_triangles.size());
+  check(m_active.ee, m_edges.size(), m_edges.size());
+  check(m_active.vv, v, v);
 }
 
 }  // namespace weft::sim

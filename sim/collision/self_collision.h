@@ -52,6 +52,7 @@
 #include "base/thread_pool.h"
 #include "sim/collision/surface_patches.h"
 #include "sim/grid.h"
+#include "sim/state_archive.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -94,6 +95,12 @@ class SelfCollision {
   // The vertices the last resolve() moved, ascending: the only ones it can have pushed into
   // an obstacle.
   const std::vector<Index>& moved_vertices() const { return m_moved; }
+  // The side memory one resolve() leaves the next, for a checkpoint: the candidate list, the
+  // active pairs, the positions they were made at and the watched patch pairs (the rest is
+  // recomputed from them at every call, or is scratch). restore_state() reads it into a
+  // SelfCollision made for the same mesh and settings.
+  void save_state(StateWriter& out) const;
+  void restore_state(StateReader& in);
 
   double marble_radius_m() const { return m_marble_radius_m; }
   double thickness_m() const { return m_settings.thickness_m; }

@@ -13,6 +13,7 @@
 // stiffness of a taut thread), leaves projection only the change of tension to find.
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,13 @@ class CarriedTensionTerm final : public PairForceTerm {
   // k += 2 μ / (l h²) from a projection's multipliers μ over h seconds.
   void accumulate(const Eigen::VectorXd& mu, double h_s) { accumulate_tension(m_edges, mu, h_s, m_k); }
   const Eigen::VectorXd& tension_N_m() const { return m_k; }  // #edges, or empty before any
+  // For a checkpoint: the tension so far (#edges, or empty before any).
+  void restore_tension(const Eigen::VectorXd& k) {
+    if (k.size() != 0 && k.size() != static_cast<Eigen::Index>(m_edges.size()))
+      throw std::invalid_argument("carried tension: " + std::to_string(k.size()) +
+                                  " values for " + std::to_string(m_edges.size()) + " edges");
+    m_k = k;
+  }
 
   std::string describe() const override {
     return "carried constraint tension on " + std::to_string(m_edges.size()) + " edges";

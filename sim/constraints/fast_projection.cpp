@@ -89,7 +89,11 @@ void FastProjection::fill_matrix() {
 // diagonal regularises it (a tiny compliance) without changing the pattern.
 bool FastProjection::factorize_with_fallback() {
   m_reusable = m_solver->factorize(m_matrix);
-  if (m_reusable) return true;
+  if (m_reusable) {
+    if (m_settings.reuse_iterations > 0)  // for a checkpoint (save_state)
+      m_factored_values.assign(m_matrix.valuePtr(), m_matrix.valuePtr() + m_matrix.nonZeros());
+    return true;
+  }
   double mean_diagonal = 0.0;
   for (int s : m_diagonal_slots) mean_diagonal += m_matrix.valuePtr()[s];
   mean_diagonal /= static_cast<double>(std::max<std::size_t>(1, m_diagonal_slots.size()));
@@ -232,6 +236,25 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
     result.max_strain = best_strain;
   }
   return result;
+}
+
+void FastProjection::save_state(StateWriter& out) const {
+  out.section("fast projection");
+  const bool reusable = m_reusable && m_settings.reuse_iterations > 0;
+  out.pod(reusable);
+  out.pods(reusable ? m_factored_values : std::vector<double>{});
+}
+
+void FastProjection::restore_state(StateReader& in) {
+  in.section("fast projection");
+  m_reusable = in.pod<bool>();
+  in.pods(m_factored_values);
+  if (!m_reusable) return;
+  if (m_factored_values.size() != static_cast<std::size_t>(m_matrix.nonZeros()))
+    in.fail("a factorization of " + std::to_string(m_factored_values.size()) +
+            " values for a matrix of " + std::to_string(m_matrix.nonZeros()));
+  std::copy(m_factored_values.begin(), m_factored_values.end(), m_matrix.valuePtr());
+  if (!m_solver->factorize(m_matrix)) in.fail("the saved factorization fails");
 }
 
 }  // namespace weft::sim

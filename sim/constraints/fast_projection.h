@@ -37,6 +37,10 @@ class FastProjection final : public ConstraintProjector {
   ProjectionResult project(Matrix3X& x) override;
   const std::vector<EdgeConstraint>& constraints() const override { return m_constraints; }
   const Eigen::VectorXd& multipliers() const override { return m_multipliers; }
+  // The reusable factorization is saved as the matrix it factorizes and refactorized on
+  // restore (the same bits: the factorization is deterministic).
+  void save_state(StateWriter& out) const override;
+  void restore_state(StateReader& in) override;
 
  private:
   // One entry of the lower triangle of J M⁻¹ Jᵀ: value += coefficient · d_e·d_f.
@@ -69,6 +73,7 @@ class FastProjection final : public ConstraintProjector {
   // preconditioner for conjugate gradients. After a shift the matrix is (nearly) singular —
   // redundant constraints — and each iteration factorizes afresh.
   bool m_reusable = false;
+  std::vector<double> m_factored_values;  // m_matrix's values m_solver factorized, when reusable
   Matrix3X m_d;          // #C×3 edge vectors x_b − x_a at the current iterate
   Eigen::VectorXd m_c;   // #C constraint values
   Eigen::VectorXd m_multipliers;  // #C Σ α μ of the last project(), kg·m (x moved by −M⁻¹Jᵀ Σαμ)

@@ -16,6 +16,9 @@ class PairwiseProjection final : public ConstraintProjector {
                      const ProjectionSettings& settings);
   ProjectionResult project(Matrix3X& x) override;
   const std::vector<EdgeConstraint>& constraints() const override { return m_constraints; }
+  // Nothing carries over from one step to the next: an empty section.
+  void save_state(StateWriter& out) const override { out.section("pairwise projection"); }
+  void restore_state(StateReader& in) override { in.section("pairwise projection"); }
 
  private:
   std::vector<EdgeConstraint> m_constraints;

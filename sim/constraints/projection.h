@@ -8,6 +8,7 @@
 
 #include "sim/grid.h"
 #include "sim/linear/sparse_spd_solver.h"
+#include "sim/state_archive.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -73,6 +74,10 @@ class ConstraintProjector {
   // so −Jᵀ μ / h² is the constraint force of a step of h seconds. Empty when the method has
   // no multipliers (pairwise projection).
   virtual const Eigen::VectorXd& multipliers() const;
+  // What the projector carries from one step to the next (fast projection: the factorization
+  // it may reuse), for a checkpoint; restore_state() reads it into a projector made alike.
+  virtual void save_state(StateWriter& out) const = 0;
+  virtual void restore_state(StateReader& in) = 0;
 };
 
 // nullptr for ProjectionMethod::none.

@@ -126,4 +126,16 @@ const RelaxationStatus& DynamicRelaxation::relax(const System& system, Matrix3X&
   return m_status;
 }
 
+void DynamicRelaxation::save_state(StateWriter& out) const {
+  out.section("dynamic relaxation");
+  out.pod(m_restart);
+  out.pod(m_status);
+}
+
+void DynamicRelaxation::restore_state(StateReader& in) {
+  in.section("dynamic relaxation");
+  in.pod(m_restart);
+  in.pod(m_status);
+}
+
 }  // namespace weft::sim

@@ -93,6 +93,8 @@ class DynamicRelaxation final : public TimeIntegrator {
   using TimeIntegrator::step;
   StepReport step(const System& system, State& state, double h_s) override;
   Integrator method() const override { return Integrator::dynamic_relaxation; }
+  void save_state(StateWriter& out) const override;
+  void restore_state(StateReader& in) override;
 
   // Steps with h_max_s until the relative residual is ≤ tolerance or max_iterations were run.
   const RelaxationStatus& relax(const System& system, Matrix3X& x, Matrix3X& v, double tolerance,

@@ -136,4 +136,16 @@ void ExplicitStepper::central_difference_step(const System& system, State& state
   m_previous_h_s = h_s;
 }
 
+void ExplicitStepper::save_state(StateWriter& out) const {
+  out.section("explicit stepper");
+  out.pod(m_method);
+  out.pod(m_previous_h_s);
+}
+
+void ExplicitStepper::restore_state(StateReader& in) {
+  in.section("explicit stepper");
+  if (in.pod<Integrator>() != m_method) in.fail("another integrator");
+  in.pod(m_previous_h_s);
+}
+
 }  // namespace weft::sim

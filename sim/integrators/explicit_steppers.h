@@ -47,6 +47,8 @@ class ExplicitStepper final : public TimeIntegrator {
   StepReport step(const System& system, State& state, double h_s) override;
 
   Integrator method() const override { return m_method; }
+  void save_state(StateWriter& out) const override;
+  void restore_state(StateReader& in) override;
   // Internal-force evaluations per step: 1, or 2 (velocity Verlet), or 4 (RK4).
   int force_evaluations_per_step() const;
 

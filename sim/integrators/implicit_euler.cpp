@@ -340,4 +340,15 @@ StepReport ImplicitEuler::step(const System& system, State& state, double h_s) {
   return result;
 }
 
+// The direct solver refactorizes every step; only conjugate gradients' warm start carries over.
+void ImplicitEuler::save_state(StateWriter& out) const {
+  out.section("implicit Euler");
+  out.matrix(m_impl->last_dv);
+}
+
+void ImplicitEuler::restore_state(StateReader& in) {
+  in.section("implicit Euler");
+  in.matrix(m_impl->last_dv, m_impl->last_dv.size(), 1);
+}
+
 }  // namespace weft::sim

@@ -27,6 +27,8 @@ class ImplicitEuler final : public TimeIntegrator {
   using TimeIntegrator::step;
   StepReport step(const System& system, State& state, double h_s) override;
   Integrator method() const override { return Integrator::implicit_euler; }
+  void save_state(StateWriter& out) const override;
+  void restore_state(StateReader& in) override;
 
  private:
   struct Impl;

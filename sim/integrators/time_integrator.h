@@ -10,6 +10,7 @@
 #include "sim/integrators/integrator.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/state.h"
+#include "sim/state_archive.h"
 #include "sim/system.h"
 
 namespace weft::sim {
@@ -34,6 +35,11 @@ class TimeIntegrator {
   // The same on positions and velocities held apart, at time time_s.
   StepReport step(const System& system, Matrix3X& x, Matrix3X& v, double h_s,
                   double time_s = 0.0);
+  // What the integrator carries from one step to the next (central difference's last step,
+  // conjugate gradients' warm start, dynamic relaxation's restart flag and counts), for a
+  // checkpoint; restore_state() reads it back into an integrator made for the same system.
+  virtual void save_state(StateWriter& out) const = 0;
+  virtual void restore_state(StateReader& in) = 0;
 };
 
 // How implicit Euler solves each step's linear system: a sparse direct factorization

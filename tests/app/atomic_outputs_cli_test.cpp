@@ -19,15 +19,9 @@ namespace fs = std::filesystem;
 namespace {
 
 using weft::app::test::CommandResult;
+using weft::app::test::file_bytes;
 using weft::app::test::run_weft;
 using weft::app::test::tiny_scene;
-
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 
 // Every file under `dir` (recursively), by its path relative to `dir`, with its bytes.
 std::map<std::string, std::string> folder_bytes(const fs::path& dir) {

@@ -120,7 +120,8 @@ TEST_F(HostileInput, EveryNumericOptionRejectsNanAndHugeValuesNamingItself) {
   // What a command needs before it reads a scene option (those are checked with the scene).
   const std::map<std::string, std::string> required = {
       {"sweep", " --set output.fps=24"},
-      {"turntable", " " + write_scene("tiny.json", tiny_scene()).string()}};
+      {"turntable", " " + write_scene("tiny.json", tiny_scene()).string()},
+      {"render", " " + m_dir.string() + " --scene " + write_scene("tiny.json", tiny_scene()).string()}};
   for (const std::string& command_option : options) {
     const std::string command = command_option.substr(0, command_option.find(' '));
     const std::string option = command_option.substr(command.size() + 1);
