@@ -45,6 +45,10 @@ struct ProjectionSettings {
   // Fast projection: carry each step's constraint force into the next step's prediction
   // (carried_tension.h). Off only to measure what it buys.
   bool carry_tension = true;
+  // Fast projection: hold the vertices of chains pulled straight between still pins at their
+  // rest length, which have no other shape (taut_chains.h), instead of projecting them. Off
+  // only to measure what it buys.
+  bool hold_taut_chains = true;
   // Fast projection: conjugate-gradient iterations allowed per Newton system on the last
   // factorization (an earlier iterate's or step's matrix, used as preconditioner) before
   // refactorizing. 0 refactorizes every iteration (the paper's iteration), the default: 8
