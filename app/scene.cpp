@@ -324,6 +324,8 @@ sim::ProjectionSettings read_constraints(ObjectReader r) {
   p.max_iterations = static_cast<int>(r.integer("max_iterations", p.max_iterations,
                                                 Range::closed(1, std::numeric_limits<int>::max())));
   p.max_stretch = r.number("max_stretch", p.max_stretch, Range::ge(0.0));
+  p.reuse_iterations = static_cast<int>(
+      r.integer("reuse_iterations", p.reuse_iterations, Range::closed(0, 1000)));
   r.finish();  // unknown keys first: a misspelt "method" gets its "did you mean"
 
   std::string method_name;
@@ -340,6 +342,8 @@ sim::ProjectionSettings read_constraints(ObjectReader r) {
       used_only_by(key, "'fast_projection' or 'pairwise'");
   }
   if (p.method != ProjectionMethod::pairwise) used_only_by("max_stretch", "'pairwise'");
+  if (p.method != ProjectionMethod::fast_projection)
+    used_only_by("reuse_iterations", "'fast_projection'");
   return p;
 }
 

@@ -11,10 +11,12 @@
 //
 //   build/bench/inextensibility_sweep [--sizes 32,64,128] [--step 0.0083333] [--backend NAME]
 //                                     [--cg TOLERANCE] [--quick] [--methods SUBSTRING]
-//                                     [--reuse N] [--threads N] [--frames N]
+//                                     [--reuse N] [--threads N] [--frames N] [--no-hold]
 // --reuse: fast projection's CG iterations on a reused factorization (0: a factorization per
 // iteration, the paper's); --threads: implicit Euler's CG threads (0: all); --frames: fewer
-// frames for the largest sizes (the rows then cover only that start). After the rows, the
+// frames for the largest sizes (the rows then cover only that start); --no-hold: project the
+// top edge between the pins instead of holding it (sim/constraints/taut_chains.h), to measure
+// what holding it buys. After the rows, the
 // targets of issue 18 for fast projection at tol 1e-2, with the growth exponent.
 #include <algorithm>
 #include <cmath>
@@ -62,6 +64,7 @@ struct Options {
   int reuse_iterations = ProjectionSettings{}.reuse_iterations;
   int threads = 0;  // conjugate gradients' matrix–vector product
   int frames = 48;
+  bool hold_taut_chains = true;
 };
 
 Row run(Index n, const Method& method, const Options& options) {
@@ -87,6 +90,7 @@ Row run(Index n, const Method& method, const Options& options) {
   s.projection.tolerance = method.tolerance;
   s.projection.max_iterations = method.iterations;
   s.projection.reuse_iterations = options.reuse_iterations;
+  s.projection.hold_taut_chains = options.hold_taut_chains;
   s.solver_threads = options.threads;
   Simulator sim(mesh, wool, resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), s);
 
@@ -182,9 +186,10 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) options.threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) options.frames = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--no-hold")) options.hold_taut_chains = false;
     else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold]\n", argv[0]);
       return 1;
     }
   }
@@ -207,11 +212,12 @@ int main(int argc, char** argv) {
     methods = kept;
   }
   std::printf("two-corner hang, 1 m wool, %d frames at 24 fps, implicit Euler h = %.4g s (%s), "
-              "projection %s; strain over frames after 0.5 s\n",
+              "projection %s, top edge %s; strain over frames after 0.5 s\n",
               options.frames, options.step_s,
               options.cg_tolerance > 0.0 ? ("CG to " + std::to_string(options.cg_tolerance)).c_str()
                                          : "direct",
-              sparse_backend_name(options.backend));
+              sparse_backend_name(options.backend),
+              options.hold_taut_chains ? "held (taut chain)" : "projected (--no-hold)");
   std::printf("%-6s %-26s %10s %8s %9s %9s %8s %7s %11s %11s %7s\n", "size", "method", "ms/frame",
               "cpu ms", "iter/step", "fact/step", "CG/step", "max it", "max strain", "mean strain", "unconv");
   std::vector<std::pair<int, Row>> target_rows;  // fast projection at tol 1e-2, by size

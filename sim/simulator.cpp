@@ -66,10 +66,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
     : m_mesh(std::move(mesh)),
       m_settings(settings),
       m_pinned(std::move(pinned)),
-      m_system(make_system(m_mesh, material, m_pinned, settings)),
-      m_contacts(m_mesh, m_system.inv_mass, m_settings) {
-  // The projection's carried tension is one more force term (none before the first projection).
-  if (m_contacts.tension_term()) m_system.terms.push_back(m_contacts.tension_term());
+      m_system(make_system(m_mesh, material, m_pinned, settings)) {
   m_system.timers = &m_timers;
   const Index n = m_mesh.vertex_count();
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
@@ -82,18 +79,51 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
                                ? settings.implicit_default_step_s
                                : settings.time_step_safety * m_critical_step_s;
   m_time_step_s = settings.time_step_s.value_or(automatic);
-  IntegratorSettings integrator;
-  integrator.implicit_solve.method = settings.implicit_solve;
-  integrator.implicit_solve.backend = settings.sparse_backend;
-  integrator.implicit_solve.cg_tolerance = settings.implicit_cg_tolerance;
-  integrator.implicit_solve.threads = settings.solver_threads;
+  m_integrator_settings.implicit_solve.method = settings.implicit_solve;
+  m_integrator_settings.implicit_solve.backend = settings.sparse_backend;
+  m_integrator_settings.implicit_solve.cg_tolerance = settings.implicit_cg_tolerance;
+  m_integrator_settings.implicit_solve.threads = settings.solver_threads;
   // Dynamic relaxation: one iteration per step of the explicit integrators' step, with
   // fictitious masses stable at it (sim/integrators/dynamic_relaxation.h).
-  integrator.relaxation_max_step_s = m_time_step_s;
-  m_integrator = make_time_integrator(settings.integrator, m_system, integrator);
+  m_integrator_settings.relaxation_max_step_s = m_time_step_s;
+  m_taut = current_taut_chains();
+  for (Index v : m_taut.vertices) m_system.inv_mass[v] = 0.0;
+  build_solvers();
 }
 
 Simulator::~Simulator() = default;
+
+TautChains Simulator::current_taut_chains() const {
+  if (m_settings.projection.method != ProjectionMethod::fast_projection ||
+      !m_settings.projection.hold_taut_chains)
+    return {};
+  std::vector<Index> still;
+  for (Index p : m_pinned)
+    if (std::none_of(m_moving_pins.begin(), m_moving_pins.end(),
+                     [p](const MovingPin& m) { return m.vertex == p; }))
+      still.push_back(p);
+  return find_taut_chains(m_mesh, m_state.x, still);
+}
+
+void Simulator::build_solvers() {
+  if (m_contacts && m_contacts->tension_term()) {  // the old projection's carried tension
+    auto& terms = m_system.terms;
+    terms.erase(std::remove(terms.begin(), terms.end(), m_contacts->tension_term()), terms.end());
+  }
+  m_contacts = std::make_unique<ContactsAndConstraints>(m_mesh, m_system.inv_mass, m_settings);
+  // The projection's carried tension is one more force term (none before the first projection).
+  if (m_contacts->tension_term()) m_system.terms.push_back(m_contacts->tension_term());
+  m_integrator = make_time_integrator(m_settings.integrator, m_system, m_integrator_settings);
+}
+
+void Simulator::hold_taut_chains() {
+  TautChains taut = current_taut_chains();
+  if (taut.vertices == m_taut.vertices) return;
+  for (Index v : m_taut.vertices) m_system.inv_mass[v] = 1.0 / m_system.mass_kg[v];
+  for (Index v : taut.vertices) m_system.inv_mass[v] = 0.0;
+  m_taut = std::move(taut);
+  build_solvers();
+}
 
 long Simulator::substeps(double dt_s) const {
   const double ratio = dt_s / m_time_step_s;
@@ -130,6 +160,7 @@ void Simulator::set_initial_positions(const Matrix3X& x) {
   m_state.x = x;
   m_state.v.setZero();
   m_initial_x = x;
+  hold_taut_chains();  // pins given closer together leave a chain slack
 }
 
 void Simulator::set_pin_path(const std::vector<Index>& vertices, const PinPath& path) {
@@ -140,6 +171,7 @@ void Simulator::set_pin_path(const std::vector<Index>& vertices, const PinPath& 
   if (!path.moves()) return;
   m_pin_paths.push_back(path);
   for (Index v : vertices) m_moving_pins.push_back({v, m_pin_paths.size() - 1});
+  hold_taut_chains();  // a chain with a moving end is not held
 }
 
 const DynamicRelaxation* Simulator::relaxation() const {
@@ -156,8 +188,8 @@ void Simulator::step(double h_s) {
   if (!integrated.solved) ++m_stats.failed_implicit_solves;
   m_stats.cg_iterations += integrated.cg_iterations;
   m_timers.time(Phase::pins, [&] { place_pins(t1); });
-  m_timers.time(Phase::obstacles, [&] { m_contacts.pose_obstacles(t0, t1); });
-  const bool corrected = m_contacts.resolve(m_x_start, m_state.x, h_s, m_timers, m_stats);
+  m_timers.time(Phase::obstacles, [&] { m_contacts->pose_obstacles(t0, t1); });
+  const bool corrected = m_contacts->resolve(m_x_start, m_state.x, h_s, m_timers, m_stats);
   m_timers.time(Phase::filter,
                 [&] { filter_velocities(corrected, integrated.kinetic_reset, h_s); });
   m_state.time_s = t1;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/constraints/taut_chains.h"
 #include "sim/contacts_and_constraints.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
@@ -72,13 +73,17 @@ class Simulator {
   const System& system() const { return m_system; }
   const Eigen::VectorXd& masses_kg() const { return m_system.mass_kg; }
   const std::vector<Index>& pinned() const { return m_pinned; }
+  // Free vertices held still because they lie on a chain pulled straight between two still pins
+  // at its rest length (fast projection only; sim/constraints/taut_chains.h). Decided at
+  // construction and again when initial positions or pin paths are set.
+  const TautChains& taut_chains() const { return m_taut; }
   double time_step() const { return m_time_step_s; }
   double critical_time_step() const { return m_critical_step_s; }
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
   const PhaseTimers& timers() const { return m_timers; }
   // Self-collision's broad and narrow phase (their times, candidate lists); null when off.
-  const SelfCollision* self_collision() const { return m_contacts.self_collision(); }
+  const SelfCollision* self_collision() const { return m_contacts->self_collision(); }
   // dynamic_relaxation: where the relaxation stands (residual, kinetic peaks); null otherwise.
   const DynamicRelaxation* relaxation() const;
   // One line per phase of a step (integrate, forces, project, collide, pins): which terms and
@@ -110,12 +115,21 @@ class Simulator {
   void check_growth() const;
   std::string explain_integrate() const;
   std::string explain_forces() const;
+  // Finds the taut chains at the current positions and, when they changed, holds their vertices
+  // (inverse mass 0) and rebuilds what depends on which vertices are free: the contacts and
+  // constraints (the projection's pattern) and the integrator (the implicit matrix's).
+  void hold_taut_chains();
+  TautChains current_taut_chains() const;  // none unless fast projection
+
+  void build_solvers();
 
   ClothMesh m_mesh;
   SimSettings m_settings;
   std::vector<Index> m_pinned;
   System m_system;
-  ContactsAndConstraints m_contacts;  // after m_system: it refers to m_system.inv_mass
+  TautChains m_taut;
+  std::unique_ptr<ContactsAndConstraints> m_contacts;  // refers to m_system.inv_mass
+  IntegratorSettings m_integrator_settings;
   std::unique_ptr<TimeIntegrator> m_integrator;
   std::vector<MovingPin> m_moving_pins;
   std::vector<PinPath> m_pin_paths;

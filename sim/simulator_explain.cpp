@@ -9,8 +9,12 @@ std::vector<std::string> Simulator::explain() const {
   std::ostringstream pins;
   pins << "pins: " << m_pinned.size() - m_moving_pins.size() << " fixed, " << m_moving_pins.size()
        << " moving vertices";
-  return {explain_integrate(), explain_forces(), m_contacts.explain_project(),
-          m_contacts.explain_collide(), pins.str()};
+  if (m_taut.chains > 0)
+    pins << "; " << m_taut.vertices.size() << " vertices held on " << m_taut.chains
+         << (m_taut.chains == 1 ? " chain" : " chains")
+         << " pulled straight between still pins at its rest length (inextensible: no other shape)";
+  return {explain_integrate(), explain_forces(), m_contacts->explain_project(),
+          m_contacts->explain_collide(), pins.str()};
 }
 
 std::string Simulator::explain_integrate() const {

@@ -46,13 +46,17 @@ struct ProjectionSettings {
   // Fast projection: carry each step's constraint force into the next step's prediction
   // (carried_tension.h). Off only to measure what it buys.
   bool carry_tension = true;
+  // Fast projection: hold the vertices of chains pulled straight between still pins at their
+  // rest length, which have no other shape (taut_chains.h), instead of projecting them. Off
+  // only to measure what it buys.
+  bool hold_taut_chains = true;
   // Fast projection: conjugate-gradient iterations allowed per Newton system on the last
   // factorization (an earlier iterate's or step's matrix, used as preconditioner) before
-  // refactorizing. 0 refactorizes every iteration (the paper's iteration), the default: 8
-  // saves 13–45 % of the CPU time of the 64² hang (tol 1e-2 to 1e-4) but doubled that of the
-  // 128² hang, whose near-singular steps need more iterations than a factorization costs
-  // (docs/inextensibility.md). Choosing it from the factor's cost is future work.
-  int reuse_iterations = 0;
+  // refactorizing; 0 refactorizes every iteration (the paper's iteration). 8, the default since
+  // taut chains are held: on the two-corner hang it takes 0.81–0.95 of the CPU time of 0 at
+  // 64² and 0.88–1.02 at 128² (tol 1e-2 to 1e-4, docs/benchmarks.md). Before, the 128² hang's
+  // near-singular top edge needed more CG iterations than a factorization costs and doubled it.
+  int reuse_iterations = 8;
 };
 
 struct [[nodiscard]] ProjectionResult {

@@ -162,8 +162,10 @@ TEST_F(Cli, ExplainListsTheTermsAndPhasesTheSceneUses) {
   EXPECT_CONTAINS(q.output, "integrate: implicit_euler, h = 8.33333 ms, sparse direct solve");
   EXPECT_EQ(q.output.find("warp/weft springs"), std::string::npos)
       << q.output;  // constraints instead
-  EXPECT_CONTAINS(q.output,
-                  "project: fast_projection on 144 warp/weft edges");  // the pins share none
+  // 144 warp/weft edges; the top edge runs between the two pins at its rest length, so its 7
+  // inner vertices are held (sim/constraints/taut_chains.h) and its 8 edges leave the projection.
+  EXPECT_CONTAINS(q.output, "project: fast_projection on 136 warp/weft edges");
+  EXPECT_CONTAINS(q.output, "7 vertices held on 1 chain pulled straight between still pins");
   EXPECT_CONTAINS(q.output, "collide: 1 obstacles (0 meshes, 0 moving)");
   // 9×9 vertices: 2·8·8 triangles, 2·9·8 + 8·8 edges; marbles default to half the thickness.
   EXPECT_CONTAINS(q.output, "self-collision over 128 triangles and 208 edges, thickness 2 mm, "

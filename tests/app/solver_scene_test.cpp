@@ -74,6 +74,9 @@ TEST(SolverScene, OmittedKeysTakeTheStructDefaults) {
   EXPECT_EQ(p.edges, sim::ConstrainedEdges::warp_weft);
   EXPECT_EQ(p.tolerance, projection.tolerance);
   EXPECT_EQ(p.max_iterations, projection.max_iterations);
+  EXPECT_EQ(p.reuse_iterations, projection.reuse_iterations);
+  j["simulation"]["constraints"]["reuse_iterations"] = 0;
+  EXPECT_EQ(parse(j).sim.projection.reuse_iterations, 0);
 }
 
 TEST(SolverScene, EachChoiceParses) {
@@ -158,6 +161,15 @@ TEST(SolverScene, OutOfRange) {
   EXPECT_EQ(error_of(j),
             "scene.json: simulation.constraints.max_stretch: expected a number ≥ 0, got -0.1");
   j = solver_scene();
+  j["simulation"]["constraints"] = {{"method", "pairwise"}, {"reuse_iterations", 8}};
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.reuse_iterations: expected only with method "
+            "'fast_projection' (it has no effect otherwise), got method 'pairwise'");
+  j["simulation"]["constraints"] = {{"method", "fast_projection"}, {"reuse_iterations", -1}};
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.constraints.reuse_iterations: expected an integer in [0, "
+            "1000], got -1");
+  j = solver_scene();
   j["simulation"]["cg_tolerance"] = 1.0;
   EXPECT_EQ(error_of(j), "scene.json: simulation.cg_tolerance: expected a number in (0, 1), got 1.0");
   j["simulation"]["implicit_solver"] = "cg";
@@ -177,7 +189,7 @@ TEST(SolverScene, UnknownOrMisplacedKeysInConstraints) {
   EXPECT_EQ(error_of(j),
             "scene.json: simulation.constraints.tolerence: unknown key; did you mean "
             "'tolerance'? (known keys here: method, edges, tolerance, max_iterations, "
-            "max_stretch)");
+            "max_stretch, reuse_iterations)");
   j = solver_scene();
   j["simulation"]["constraints"] = {{"metod", "pairwise"}, {"max_stretch", 0.1}};
   EXPECT_CONTAINS(error_of(j),
