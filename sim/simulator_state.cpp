@@ -20,7 +20,7 @@ void Simulator::save_state(StateWriter& out) const {
   out.pod(m_energy_margin_J);
   out.pod(m_stats);
   m_integrator->save_state(out);
-  m_contacts.save_state(out);
+  m_contacts->save_state(out);
   out.section("simulator end");
 }
 
@@ -39,7 +39,7 @@ void Simulator::restore_state(StateReader& in) {
   in.pod(m_energy_margin_J);
   in.pod(m_stats);
   m_integrator->restore_state(in);
-  m_contacts.restore_state(in);
+  m_contacts->restore_state(in);
   in.section("simulator end");
 }
 
