@@ -6,6 +6,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cmath>
 #include <map>
 #include <string>
 #include <utility>
@@ -62,6 +63,14 @@ TriangleMesh load_triangle_mesh(const std::filesystem::path& path) {
       std::vector<sim::Index> merged(mesh->mNumVertices);
       for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
         const Position p = transformed(placed.to_root, mesh->mVertices[v]);
+        // A NaN would also break the map's ordering and join the vertex to an arbitrary one.
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+          throw MeshFileError(name + ": vertex " + std::to_string(v) + " of mesh " +
+                              std::to_string(node->mMeshes[k]) + " is at (" +
+                              std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " +
+                              std::to_string(p[2]) +
+                              "), not a finite position (or beyond the range of assimp's "
+                              "single-precision floats)");
         const auto [it, inserted] = index_of.emplace(p, static_cast<sim::Index>(positions.size()));
         if (inserted) positions.push_back(p);
         merged[v] = it->second;

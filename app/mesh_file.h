@@ -30,7 +30,8 @@ struct TriangleMesh {
 // equal corners) dropped. Points and lines are ignored.
 // Throws MeshFileError "PATH: cannot read mesh file: <assimp's reason>" when assimp cannot
 // read it (missing file, unknown format, malformed content), and "PATH: no triangles in the
-// mesh file (…)" when it holds none.
+// mesh file (…)" when it holds none, and "PATH: vertex V of mesh M is at (…), not a finite
+// position …" for a NaN or infinite coordinate (assimp reads floats: 1e39 is infinite).
 TriangleMesh load_triangle_mesh(const std::filesystem::path& path);
 
 }  // namespace weft::app

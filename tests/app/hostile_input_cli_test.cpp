@@ -269,6 +269,24 @@ TEST_F(HostileInput, AHeatmapOverAnInputIsRefused) {
   EXPECT_EQ(file_bytes(m_dir / "b.png"), before);
 }
 
+TEST_F(HostileInput, AMeshFileWithANonFiniteVertexIsAnError) {
+  // Its NaN corner used to be joined silently to the vertex (0, 1, 0): exit 0, a wrong obstacle.
+  const fs::path mesh = m_dir / "nan.obj";
+  std::ofstream(mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 1 nan\nf 1 2 3\nf 1 2 4\n";
+  const std::string expected = mesh.string() + ": vertex 3 of mesh 0 is at (";
+  const CommandResult obstacle = run_scene(
+      "mesh", tiny_scene("", ",\n  \"obstacles\": [{\"mesh\": {\"file\": \"" +
+                                 mesh.string() + "\"}}]"),
+      "--frames 1");
+  EXPECT_EQ(obstacle.exit_code, 1) << obstacle.output;
+  EXPECT_CONTAINS(obstacle.output, "obstacles[0].mesh.file: " + expected);
+  const CommandResult turntable =
+      run_weft("turntable " + mesh.string() + " --out " + (m_dir / "turntable").string());
+  EXPECT_EQ(turntable.exit_code, 1) << turntable.output;
+  EXPECT_CONTAINS(turntable.output, expected);
+  EXPECT_CONTAINS(turntable.output, "not a finite position");
+}
+
 // --- accepted, with a warning ------------------------------------------------------------
 
 TEST_F(HostileInput, DuplicatePinsAllPinnedAndAPointCapsuleAreWarnedOf) {

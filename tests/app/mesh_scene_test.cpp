@@ -187,6 +187,15 @@ TEST(MeshFile, ErrorsNameTheFileAndTheReason) {
   const std::string empty = load_error(dir / "points.obj");
   EXPECT_CONTAINS(empty, (dir / "points.obj").string());
   EXPECT_CONTAINS(empty, "no triangles");
+
+  // A NaN corner used to be joined to whichever vertex the map's broken ordering met (here
+  // (0, 1, 0)), a duplicate triangle in place of the file's; 1e39 is infinite as a float.
+  write(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 1 nan\nf 1 2 3\nf 1 2 4\n");
+  const std::string nan = load_error(dir / "nan.obj");
+  EXPECT_CONTAINS(nan, (dir / "nan.obj").string() + ": vertex 3 of mesh 0 is at (");
+  EXPECT_CONTAINS(nan, "nan), not a finite position");
+  write(dir / "huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_CONTAINS(load_error(dir / "huge.obj"), "vertex 1 of mesh 0 is at (inf, ");
 }
 
 // The scene's "mesh" obstacle: path relative to the scene file, scale, rotate_z, translate.
