@@ -115,7 +115,7 @@ TEST_F(FrameStreamCli, BadOverrideIsTheSceneReadersErrorNamingTheKey) {
 TEST_F(FrameStreamCli, ThreadsIsCheckedOnEveryCommandAndChangesNoBit) {
   const fs::path scene = write_scene("tiny.json", tiny_scene());
   const fs::path out = m_dir / "out";
-  for (const std::string command :
+  for (const std::string& command :
        {"run " + scene.string(), "measure " + scene.string(),
         "sweep " + scene.string() + " --set simulation.integrator=symplectic_euler",
         "turntable " + scene.string(), "gallery --scenes " + m_dir.string()}) {
