@@ -97,12 +97,13 @@ TautChains Simulator::current_taut_chains() const {
   if (m_settings.projection.method != ProjectionMethod::fast_projection ||
       !m_settings.projection.hold_taut_chains)
     return {};
-  std::vector<Index> still;
-  for (Index p : m_pinned)
-    if (std::none_of(m_moving_pins.begin(), m_moving_pins.end(),
-                     [p](const MovingPin& m) { return m.vertex == p; }))
-      still.push_back(p);
-  return find_taut_chains(m_mesh, m_state.x, still);
+  std::vector<Index> still, moving;
+  for (Index p : m_pinned) {
+    const bool moves = std::any_of(m_moving_pins.begin(), m_moving_pins.end(),
+                                   [p](const MovingPin& m) { return m.vertex == p; });
+    (moves ? moving : still).push_back(p);
+  }
+  return find_taut_chains(m_mesh, m_state.x, still, moving);
 }
 
 void Simulator::build_solvers() {

@@ -6,9 +6,11 @@
 namespace weft::sim {
 
 TautChains find_taut_chains(const ClothMesh& mesh, const Matrix3X& x,
-                            const std::vector<Index>& still_pins, double relative_tolerance) {
-  std::vector<char> pinned(static_cast<std::size_t>(mesh.vertex_count()), 0);
+                            const std::vector<Index>& still_pins,
+                            const std::vector<Index>& moving_pins, double relative_tolerance) {
+  std::vector<char> pinned(static_cast<std::size_t>(mesh.vertex_count()), 0);  // 1 still, 2 moving
   for (Index p : still_pins) pinned[static_cast<std::size_t>(p)] = 1;
+  for (Index p : moving_pins) pinned[static_cast<std::size_t>(p)] = 2;
   TautChains out;
   // One grid line: vertex(k) for k = 0..count−1, edge_exists(k) for the edge from k to k + 1.
   const auto scan = [&](Index count, auto&& vertex, auto&& edge_exists) {
@@ -24,8 +26,10 @@ TautChains find_taut_chains(const ClothMesh& mesh, const Matrix3X& x,
         edges_at_rest = edges_at_rest &&
                         std::abs((x.row(v) - x.row(a)).norm() - rest) <= relative_tolerance * rest;
       }
-      if (!pinned[static_cast<std::size_t>(v)]) {
-        if (!mesh.is_used(v) || !edge_exists(k)) start = -1;  // the chain breaks here
+      if (pinned[static_cast<std::size_t>(v)] != 1) {
+        // A moving pin, an unused vertex or a missing edge breaks the chain here.
+        if (pinned[static_cast<std::size_t>(v)] == 2 || !mesh.is_used(v) || !edge_exists(k))
+          start = -1;
         continue;
       }
       if (start >= 0 && k - start >= 2 && edges_at_rest &&

@@ -26,10 +26,12 @@ struct TautChains {
 
 // The taut chains of `mesh` at positions x (#V×3, m): maximal runs of existing warp edges along
 // a grid row, or weft edges along a column, between two vertices of `still_pins` with only free
-// used vertices between them, whose ends are their rest length along the chain apart and whose
-// every edge is at its rest length, both within `relative_tolerance`.
+// used vertices between them (a vertex of `moving_pins` breaks a chain), whose ends are their
+// rest length along the chain apart and whose every edge is at its rest length, both within
+// `relative_tolerance`.
 TautChains find_taut_chains(const ClothMesh& mesh, const Matrix3X& x,
                             const std::vector<Index>& still_pins,
+                            const std::vector<Index>& moving_pins = {},
                             double relative_tolerance = 1e-9);
 
 }  // namespace weft::sim

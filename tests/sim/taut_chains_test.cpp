@@ -58,6 +58,31 @@ TEST(TautChains, OnlyAChainExactlyAtItsRestLengthIsHeld) {
   EXPECT_EQ(find_taut_chains(mesh, x, ends).chains, 0);
 }
 
+// A moving pin between two still ones is not part of a chain: the chains either side of it
+// end there, and none runs through it.
+TEST(TautChains, AMovingPinBreaksTheChainItLiesOn) {
+  const ClothMesh mesh = sheet(5, 4);
+  const std::vector<Index> ends{mesh.index(0, 3), mesh.index(4, 3)};
+  const std::vector<Index> middle{mesh.index(2, 3)};
+  EXPECT_EQ(find_taut_chains(mesh, mesh.rest_positions, ends).chains, 1) << "still: one chain";
+  const TautChains taut = find_taut_chains(mesh, mesh.rest_positions, ends, middle);
+  EXPECT_EQ(taut.chains, 0);
+  EXPECT_TRUE(taut.vertices.empty());
+  // Through the simulator: a path on the middle pin lets go of both halves of the row.
+  const std::vector<Index> pins{mesh.index(0, 3), mesh.index(2, 3), mesh.index(4, 3)};
+  SimSettings s;
+  s.integrator = Integrator::implicit_euler;
+  s.projection.method = ProjectionMethod::fast_projection;
+  Simulator sim(mesh, Material{}, pins, s);
+  EXPECT_EQ(sim.taut_chains().chains, 2);
+  sim.set_pin_path(middle, PinPath({{0.0, Vec3::Zero()}, {1.0, Vec3(0.0, 0.0, 0.1)}}));
+  EXPECT_EQ(sim.taut_chains().chains, 0);
+  EXPECT_EQ(sim.system().inv_mass[mesh.index(2, 3)], 0.0) << "a pin stays pinned";
+  EXPECT_GT(sim.system().inv_mass[mesh.index(1, 3)], 0.0);
+  sim.advance(0.5);
+  EXPECT_NEAR(sim.state().x(mesh.index(2, 3), 2), 1.6 + 0.05, 1e-12) << "the pin follows its path";
+}
+
 // A disc's rows are broken by unused vertices beyond its edge: no chain crosses them.
 TEST(TautChains, NoChainThroughAnUnusedVertex) {
   GridSpec grid;
