@@ -95,13 +95,25 @@ int run_render(const RenderOptions& options) {
   for (int k = first; k <= last; k += options.every) selected.push_back(k);
   const fs::path out = options.out.value_or(options.states);
   if (options.slurm) return submit_render(options, selected, out);
-  std::vector<sim::Matrix3X> states;
-  for (int k : selected) states.push_back(read_state(options.states, k, mesh.vertex_count()));
-  if (!scene.camera_given) {  // weft run's framing: the cloth over frames 0..N
+  // Each state file is read once: without a camera every frame's, for weft run's framing (the
+  // cloth over frames 0..N), keeping the selected ones; otherwise only the selected ones.
+  std::vector<sim::Matrix3X> states(selected.size());
+  const auto selected_index = [&](int k) {
+    return k >= first && k <= last && (k - first) % options.every == 0
+               ? static_cast<std::size_t>((k - first) / options.every)
+               : selected.size();
+  };
+  if (!scene.camera_given) {
     Eigen::AlignedBox3d box;
-    for (int k = 0; k <= scene.frames; ++k)
-      extend_box(box, read_state(options.states, k, mesh.vertex_count()));
+    for (int k = 0; k <= scene.frames; ++k) {
+      sim::Matrix3X x = read_state(options.states, k, mesh.vertex_count());
+      extend_box(box, x);
+      if (const std::size_t i = selected_index(k); i < selected.size()) states[i] = std::move(x);
+    }
     frame_cloth_if_no_camera(scene, box);
+  } else {
+    for (std::size_t i = 0; i < selected.size(); ++i)
+      states[i] = read_state(options.states, selected[i], mesh.vertex_count());
   }
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
   fs::create_directories(out);
