@@ -1,0 +1,42 @@
+#pragma once
+// One adaptive remeshing step (seed 002 §5.2 e–h, issue 21 item 2): curvature of the deformed
+// cloth → target sizes (eq. 29) → a new mesh of the material domain graded by them (CGAL
+// Delaunay refinement, boundary and pins kept) → positions and velocities interpolated onto it.
+// When to call it (every N steps, or when remesh_indicator passes a threshold) is the caller's.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "sim/remesh/mesher.h"
+#include "sim/remesh/remesh_types.h"
+#include "sim/remesh/size_field.h"
+#include "sim/remesh/transfer.h"
+
+namespace weft::sim::remesh {
+
+struct RemeshParams {
+  SizeFieldParams size;
+  MesherParams mesher;
+};
+
+struct RemeshInput {
+  Matrix2X material;        // #V×2 rest (u, v), metres
+  Triangles triangles;      // #T×3
+  Matrix3X positions;       // #V×3 world positions, metres
+  Matrix3X velocities;      // #V×3, m/s
+  std::vector<Index> pins;  // vertices to keep exactly (besides the boundary, which is kept)
+};
+
+struct RemeshOutput {
+  MeshResult mesh;                 // the new material coordinates, triangles, new → old vertex
+  Matrix3X positions;              // #V_new×3, interpolated (kept vertices copied)
+  Matrix3X velocities;             // #V_new×3
+  TransferMap transfer;            // to carry further per-vertex quantities (transfer.h)
+  Eigen::VectorXd old_curvature;   // #V_old |κ| (1/m) the sizes came from
+  Eigen::VectorXd old_target_size; // #V_old h_target (m), eq. 29
+};
+
+// Throws std::invalid_argument naming the array or parameter on bad input.
+RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params);
+
+}  // namespace weft::sim::remesh
