@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/timer.h"
 #include "sim/remesh/curvature.h"
 #include "sim/remesh/point_locator.h"
 
@@ -17,6 +18,7 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
                                 " velocities for " + std::to_string(rows) +
                                 " vertices, expected one of each per vertex");
   RemeshOutput out;
+  base::Stopwatch phase;
   out.old_curvature = vertex_curvature(input.material, input.triangles, input.positions);
   out.old_target_size = target_sizes(out.old_curvature, params.size);
 
@@ -29,10 +31,15 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
     return at.barycentric[0] * h(tri(at.triangle, 0)) + at.barycentric[1] * h(tri(at.triangle, 1)) +
            at.barycentric[2] * h(tri(at.triangle, 2));
   };
+  out.curvature_s = phase.seconds();
+  phase.restart();
   out.mesh = mesh_domain(input.material, input.triangles, input.pins, size, params.mesher);
+  out.mesher_s = phase.seconds();
+  phase.restart();
   out.transfer = make_transfer_map(old_mesh, out.mesh.material, out.mesh.new_to_old);
   out.positions = transfer(out.transfer, input.triangles, input.positions);
   out.velocities = transfer(out.transfer, input.triangles, input.velocities);
+  out.transfer_s = phase.seconds();
   return out;
 }
 

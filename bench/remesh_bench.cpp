@@ -1,0 +1,128 @@
+// Issue 21 item 2's figures: what adaptive remeshing buys on a folded sheet, and what CGAL's
+// Delaunay refinement costs.
+//
+// 1. A 1 × 1 m sheet on a uniform 1 cm mesh (20 000 triangles), creased by three parallel
+//    folds (Gaussian ridges 3 cm high and 3 cm wide, |κ| up to 67 /m), remeshed with seed 002
+//    eq. 29 (c, h_min, h_max below): triangles of the adaptive mesh against a uniform mesh of the
+//    same domain at h_min (the size a uniform mesh needs to resolve the folds as finely), and
+//    the wall time of each phase.
+// 2. The mesher alone at a uniform size giving about 10 000 triangles.
+// Medians over --repeats runs (default 3); the uniform mesh at h_min (~0.5 M triangles) once.
+//
+// Run: build/bench/remesh_bench [--repeats 3]
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <vector>
+
+#include "base/timer.h"
+#include "sim/remesh/mesher.h"
+#include "sim/remesh/remesh.h"
+
+namespace {
+
+using namespace weft::sim;
+using namespace weft::sim::remesh;
+
+// A size × size sheet of n × n vertices, cells split along one diagonal.
+void uniform_sheet(double size, Index n, Matrix2X& material, Triangles& triangles) {
+  material.resize(n * n, 2);
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) material.row(j * n + i) << size * i / (n - 1), size * j / (n - 1);
+  triangles.resize(2 * (n - 1) * (n - 1), 3);
+  Index t = 0;
+  for (Index j = 0; j + 1 < n; ++j)
+    for (Index i = 0; i + 1 < n; ++i) {
+      const Index a = j * n + i;
+      triangles.row(t++) << a, a + 1, a + n + 1;
+      triangles.row(t++) << a, a + n + 1, a + n;
+    }
+}
+
+// The process's CPU time, ms: less disturbed than wall time by other work on a shared machine
+// (everything here runs on one thread).
+double cpu_ms() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  return x[x.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 3;
+  for (int a = 1; a < argc; ++a) {
+    if (std::strcmp(argv[a], "--repeats") == 0 && a + 1 < argc) {
+      repeats = std::max(1, std::atoi(argv[++a]));
+    } else {
+      std::fprintf(stderr, "usage: remesh_bench [--repeats N]\n");
+      return 2;
+    }
+  }
+
+  RemeshInput in;
+  uniform_sheet(1.0, 101, in.material, in.triangles);
+  in.positions.resize(in.material.rows(), 3);
+  for (Eigen::Index v = 0; v < in.material.rows(); ++v) {
+    const double u = in.material(v, 0);
+    double z = 0.0;
+    for (double ridge : {0.25, 0.5, 0.75}) z += 0.03 * std::exp(-std::pow((u - ridge) / 0.03, 2));
+    in.positions.row(v) << u, in.material(v, 1), z;
+  }
+  in.velocities = Matrix3X::Zero(in.material.rows(), 3);
+  RemeshParams params;
+  params.size = {/*c_m=*/5e-4, /*h_min_m=*/0.003, /*h_max_m=*/0.05};
+
+  std::vector<double> curvature_ms, mesher_ms, transfer_ms, uniform_ms, ten_k_ms, ten_k_cpu_ms;
+  Eigen::Index adaptive_tris = 0, adaptive_verts = 0, uniform_tris = 0, ten_k_tris = 0;
+  double kappa_max = 0.0;
+  const double ten_k_size = 0.0225;  // m: about 10 000 triangles on the 1 m² sheet
+  for (int r = 0; r < repeats; ++r) {
+    const RemeshOutput out = weft::sim::remesh::remesh(in, params);
+    curvature_ms.push_back(1e3 * out.curvature_s);
+    mesher_ms.push_back(1e3 * out.mesher_s);
+    transfer_ms.push_back(1e3 * out.transfer_s);
+    adaptive_tris = out.mesh.triangles.rows();
+    adaptive_verts = out.mesh.material.rows();
+    kappa_max = out.old_curvature.maxCoeff();
+
+    weft::base::Stopwatch watch;
+    if (r == 0) {  // ~0.5 M triangles, tens of seconds: once
+      const MeshResult uniform = mesh_domain(in.material, in.triangles, {},
+                                             [&](const Vec2&) { return params.size.h_min_m; });
+      uniform_ms.push_back(watch.milliseconds());
+      uniform_tris = uniform.triangles.rows();
+    }
+
+    watch.restart();
+    const double cpu0 = cpu_ms();
+    const MeshResult ten_k =
+        mesh_domain(in.material, in.triangles, {}, [&](const Vec2&) { return ten_k_size; });
+    ten_k_ms.push_back(watch.milliseconds());
+    ten_k_cpu_ms.push_back(cpu_ms() - cpu0);
+    ten_k_tris = ten_k.triangles.rows();
+  }
+
+  std::printf("folded 1 m sheet, 3 folds, max |kappa| estimated %.1f /m; c = %g m, h in [%g, %g] m\n",
+              kappa_max, params.size.c_m, params.size.h_min_m, params.size.h_max_m);
+  std::printf("  old uniform mesh (1 cm):        %8ld triangles\n",
+              static_cast<long>(in.triangles.rows()));
+  std::printf("  adaptive (eq. 29):              %8ld triangles %7ld vertices; curvature %.1f ms, "
+              "mesher %.1f ms, transfer %.1f ms\n",
+              static_cast<long>(adaptive_tris), static_cast<long>(adaptive_verts),
+              median(curvature_ms), median(mesher_ms), median(transfer_ms));
+  std::printf("  uniform at h_min (%g m):      %8ld triangles; mesher %.1f ms (one run)\n",
+              params.size.h_min_m, static_cast<long>(uniform_tris), median(uniform_ms));
+  std::printf("  adaptive / uniform at h_min:    %.3f\n",
+              static_cast<double>(adaptive_tris) / static_cast<double>(uniform_tris));
+  std::printf("mesher alone, uniform h = %g m:   %8ld triangles in %.1f ms wall, %.1f ms CPU "
+              "(medians of %d)\n",
+              ten_k_size, static_cast<long>(ten_k_tris), median(ten_k_ms), median(ten_k_cpu_ms),
+              repeats);
+  return 0;
+}
