@@ -7,6 +7,8 @@
 //    same domain at h_min (the size a uniform mesh needs to resolve the folds as finely), and
 //    the wall time of each phase.
 // 2. The mesher alone at a uniform size giving about 10 000 triangles.
+// 3. The curvature estimate's error against h/R: a 30 × 30 cm sheet rolled on a cylinder of
+//    radius 10 cm (interior vertices, three rings from the boundary, and all vertices).
 // Medians over --repeats runs (default 3); the uniform mesh at h_min (~0.5 M triangles) once.
 //
 // Run: build/bench/remesh_bench [--repeats 3]
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "base/timer.h"
+#include "sim/remesh/curvature.h"
 #include "sim/remesh/mesher.h"
 #include "sim/remesh/remesh.h"
 
@@ -124,5 +127,27 @@ int main(int argc, char** argv) {
               "(medians of %d)\n",
               ten_k_size, static_cast<long>(ten_k_tris), median(ten_k_ms), median(ten_k_cpu_ms),
               repeats);
+
+  std::printf("curvature on a cylinder of R = 0.1 m, max relative error of |kappa|:\n");
+  for (Index n : {16, 31, 61, 121}) {
+    Matrix2X material;
+    Triangles triangles;
+    uniform_sheet(0.3, n, material, triangles);
+    const double R = 0.1;
+    Matrix3X x(material.rows(), 3);
+    for (Eigen::Index v = 0; v < material.rows(); ++v)
+      x.row(v) << R * std::sin(material(v, 0) / R), material(v, 1),
+          R * (1.0 - std::cos(material(v, 0) / R));
+    const Eigen::VectorXd kappa = vertex_curvature(material, triangles, x);
+    double interior = 0.0, all = 0.0;
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < n; ++i) {
+        const double e = std::abs(kappa(j * n + i) * R - 1.0);
+        all = std::max(all, e);
+        if (i >= 3 && j >= 3 && i + 3 < n && j + 3 < n) interior = std::max(interior, e);
+      }
+    std::printf("  h/R = %.3f: interior %.2e, all vertices %.2e\n", 0.3 / (n - 1) / R, interior,
+                all);
+  }
   return 0;
 }
