@@ -10,8 +10,10 @@
 // 3. The curvature estimate's error against h/R: a 30 × 30 cm sheet rolled on a cylinder of
 //    radius 10 cm (interior vertices, three rings from the boundary, and all vertices).
 // Medians over --repeats runs (default 3); the uniform mesh at h_min (~0.5 M triangles) once.
+// --svg FILE draws the adaptive mesh around the middle fold, (u, v) ∈ [0.35, 0.65] × [0, 0.2] m,
+// in material coordinates, the old 1 cm mesh's lines in grey under it.
 //
-// Run: build/bench/remesh_bench [--repeats 3]
+// Run: build/bench/remesh_bench [--repeats 3] [--svg FILE]
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +21,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <string>
 #include <vector>
 
 #include "base/timer.h"
@@ -50,6 +55,22 @@ void uniform_sheet(double size, Index n, Matrix2X& material, Triangles& triangle
 // (everything here runs on one thread).
 double cpu_ms() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
+// The triangles whose centroid lies in the crop [u0, u0 + w] × [0, w·2/3], as SVG polygons,
+// 1000 px per 0.3 m.
+void svg_triangles(std::ofstream& out, const Matrix2X& x, const Triangles& t, const char* style) {
+  const double u0 = 0.35, w = 0.3, scale = 1000.0 / w;
+  out << std::fixed << std::setprecision(1) << "<g " << style << ">\n";  // tenths of a pixel
+  for (Eigen::Index k = 0; k < t.rows(); ++k) {
+    const Vec2 c = (x.row(t(k, 0)) + x.row(t(k, 1)) + x.row(t(k, 2))).transpose() / 3.0;
+    if (c.x() < u0 || c.x() > u0 + w || c.y() > w * 2.0 / 3.0) continue;
+    out << "<polygon points=\"";
+    for (int j = 0; j < 3; ++j)
+      out << (x(t(k, j), 0) - u0) * scale << "," << (w * 2.0 / 3.0 - x(t(k, j), 1)) * scale << " ";
+    out << "\"/>\n";
+  }
+  out << "</g>\n";
+}
+
 double median(std::vector<double> x) {
   std::sort(x.begin(), x.end());
   return x[x.size() / 2];
@@ -59,11 +80,14 @@ double median(std::vector<double> x) {
 
 int main(int argc, char** argv) {
   int repeats = 3;
+  std::string svg_path;
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--repeats") == 0 && a + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++a]));
+    } else if (std::strcmp(argv[a], "--svg") == 0 && a + 1 < argc) {
+      svg_path = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: remesh_bench [--repeats N]\n");
+      std::fprintf(stderr, "usage: remesh_bench [--repeats N] [--svg FILE]\n");
       return 2;
     }
   }
@@ -93,6 +117,20 @@ int main(int argc, char** argv) {
     adaptive_tris = out.mesh.triangles.rows();
     adaptive_verts = out.mesh.material.rows();
     kappa_max = out.old_curvature.maxCoeff();
+    if (r == 0 && !svg_path.empty()) {
+      std::ofstream svg(svg_path);
+      svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000\" height=\"667\">\n"
+          << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+      svg_triangles(svg, in.material, in.triangles,
+                    "fill=\"none\" stroke=\"#bbbbbb\" stroke-width=\"3\"");
+      svg_triangles(svg, out.mesh.material, out.mesh.triangles,
+                    "fill=\"none\" stroke=\"#1f4e9c\" stroke-width=\"0.8\"");
+      svg << "</svg>\n";
+      if (!svg) {
+        std::fprintf(stderr, "remesh_bench: cannot write %s\n", svg_path.c_str());
+        return 1;
+      }
+    }
 
     weft::base::Stopwatch watch;
     if (r == 0) {  // ~0.5 M triangles, tens of seconds: once

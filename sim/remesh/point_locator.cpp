@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "sim/remesh/mesh_topology.h"
 
@@ -62,13 +64,12 @@ std::array<double, 3> PointLocator::barycentric(Index t, const Vec2& p) const {
 }
 
 Index PointLocator::bucket_of(const Vec2& p) const {
-  const Index x = static_cast<Index>(std::floor((p.x() - m_origin.x()) / m_cell));
-  const Index y = static_cast<Index>(std::floor((p.y() - m_origin.y()) / m_cell));
-  if (x < 0 || y < 0 || x >= m_nx || y >= m_ny) {
-    // Just outside the box (a boundary point after rounding): the nearest bucket.
-    return std::clamp<Index>(y, 0, m_ny - 1) * m_nx + std::clamp<Index>(x, 0, m_nx - 1);
-  }
-  return y * m_nx + x;
+  // Clamped before the conversion: a point outside the box (a boundary point after rounding,
+  // or far away) takes the nearest bucket.
+  const auto cell = [&](double x, Index n) {
+    return static_cast<Index>(std::clamp(std::floor(x / m_cell), 0.0, static_cast<double>(n - 1)));
+  };
+  return cell(p.y() - m_origin.y(), m_ny) * m_nx + cell(p.x() - m_origin.x(), m_nx);
 }
 
 Location PointLocator::best_of(const Index* begin, const Index* end, const Vec2& p) const {
@@ -86,6 +87,9 @@ Location PointLocator::best_of(const Index* begin, const Index* end, const Vec2&
 }
 
 Location PointLocator::locate(const Vec2& p) const {
+  if (!p.allFinite())
+    throw std::invalid_argument("point location: material point (" + std::to_string(p.x()) +
+                                ", " + std::to_string(p.y()) + ") is not finite");
   const Index b = bucket_of(p);
   const Index* items = m_bucket_items.data();
   Location found = best_of(items + m_bucket_start[static_cast<size_t>(b)],
@@ -97,6 +101,7 @@ Location PointLocator::locate(const Vec2& p) const {
 }
 
 bool PointLocator::contains(const Vec2& p) const {
+  if (!p.allFinite()) return false;
   const Index b = bucket_of(p);
   const Index* items = m_bucket_items.data();
   const Location found = best_of(items + m_bucket_start[static_cast<size_t>(b)],

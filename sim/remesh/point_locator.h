@@ -25,7 +25,8 @@ class PointLocator {
   // The triangle holding p, with barycentric weights (which may be a rounding error below 0 for
   // a point on the boundary; they are never clamped, so an affine field is reproduced exactly).
   // A point outside the domain gets the triangle whose smallest weight is largest among those
-  // of its bucket, or, when its bucket is empty, among all triangles.
+  // of its bucket, or, when its bucket is empty, among all triangles. A non-finite p throws
+  // std::invalid_argument.
   Location locate(const Vec2& p) const;
 
   // Whether p lies in the closed domain, to a tolerance of 1e-10 of the local triangle's size.

@@ -41,6 +41,8 @@ TEST(PointLocator, FindsPointsOnVerticesEdgesAndTheBoundary) {
   EXPECT_FALSE(locator.contains(Vec2(0.15, 0.1)));   // inside the hole
   EXPECT_FALSE(locator.contains(Vec2(-0.01, 0.1)));  // left of the sheet
   EXPECT_TRUE(locator.contains(Vec2(0.3 + 1e-14, 0.1)));  // a rounding error outside
+  EXPECT_FALSE(locator.contains(Vec2(NAN, 0.1)));
+  EXPECT_THROW(locator.locate(Vec2(0.1, INFINITY)), std::invalid_argument);
 }
 
 TEST(Transfer, AnAffineFieldIsTransferredExactly) {
