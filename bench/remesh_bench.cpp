@@ -53,7 +53,9 @@ void uniform_sheet(double size, Index n, Matrix2X& material, Triangles& triangle
 
 // The process's CPU time, ms: less disturbed than wall time by other work on a shared machine
 // (everything here runs on one thread).
-double cpu_ms() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+double cpu_ms() {
+  return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
 
 // The triangles whose centroid lies in the crop [u0, u0 + w] × [0, w·2/3], as SVG polygons,
 // 1000 px per 0.3 m.
@@ -149,22 +151,24 @@ int main(int argc, char** argv) {
     ten_k_tris = ten_k.triangles.rows();
   }
 
-  std::printf("folded 1 m sheet, 3 folds, max |kappa| estimated %.1f /m; c = %g m, h in [%g, %g] m\n",
-              kappa_max, params.size.c_m, params.size.h_min_m, params.size.h_max_m);
+  std::printf(
+      "folded 1 m sheet, 3 folds, max |kappa| estimated %.1f /m; c = %g m, h in [%g, %g] m\n",
+      kappa_max, params.size.c_m, params.size.h_min_m, params.size.h_max_m);
   std::printf("  old uniform mesh (1 cm):        %8ld triangles\n",
               static_cast<long>(in.triangles.rows()));
-  std::printf("  adaptive (eq. 29):              %8ld triangles %7ld vertices; curvature %.1f ms, "
-              "mesher %.1f ms, transfer %.1f ms\n",
-              static_cast<long>(adaptive_tris), static_cast<long>(adaptive_verts),
-              median(curvature_ms), median(mesher_ms), median(transfer_ms));
+  std::printf(
+      "  adaptive (eq. 29):              %8ld triangles %7ld vertices; curvature %.1f ms, "
+      "mesher %.1f ms, transfer %.1f ms\n",
+      static_cast<long>(adaptive_tris), static_cast<long>(adaptive_verts), median(curvature_ms),
+      median(mesher_ms), median(transfer_ms));
   std::printf("  uniform at h_min (%g m):      %8ld triangles; mesher %.1f ms (one run)\n",
               params.size.h_min_m, static_cast<long>(uniform_tris), median(uniform_ms));
   std::printf("  adaptive / uniform at h_min:    %.3f\n",
               static_cast<double>(adaptive_tris) / static_cast<double>(uniform_tris));
-  std::printf("mesher alone, uniform h = %g m:   %8ld triangles in %.1f ms wall, %.1f ms CPU "
-              "(medians of %d)\n",
-              ten_k_size, static_cast<long>(ten_k_tris), median(ten_k_ms), median(ten_k_cpu_ms),
-              repeats);
+  std::printf(
+      "mesher alone, uniform h = %g m:   %8ld triangles in %.1f ms wall, %.1f ms CPU "
+      "(medians of %d)\n",
+      ten_k_size, static_cast<long>(ten_k_tris), median(ten_k_ms), median(ten_k_cpu_ms), repeats);
 
   std::printf("curvature on a cylinder of R = 0.1 m, max relative error of |kappa|:\n");
   for (Index n : {16, 31, 61, 121}) {

@@ -17,8 +17,8 @@ Eigen::Vector2d principal_curvatures(const Eigen::Matrix2d& first_form,
   const double det_I = I.determinant();
   WEFT_CHECK(det_I > 0.0, "first fundamental form not positive definite");
   // det(II − κ I) = 0: κ² det I − κ (I11 II22 + I22 II11 − 2 I12 II12) + det II = 0.
-  const double mean = (I(0, 0) * II(1, 1) + I(1, 1) * II(0, 0) - 2.0 * I(0, 1) * II(0, 1)) /
-                      (2.0 * det_I);
+  const double mean =
+      (I(0, 0) * II(1, 1) + I(1, 1) * II(0, 0) - 2.0 * I(0, 1) * II(0, 1)) / (2.0 * det_I);
   const double gauss = II.determinant() / det_I;
   const double root = std::sqrt(std::max(mean * mean - gauss, 0.0));
   return {mean + root, mean - root};
@@ -27,8 +27,7 @@ Eigen::Vector2d principal_curvatures(const Eigen::Matrix2d& first_form,
 namespace {
 
 // The vertices within `rings` edges of v, v itself excluded, sorted.
-std::vector<Index> stencil(const std::vector<std::vector<Index>>& neighbours, Index v,
-                           int rings) {
+std::vector<Index> stencil(const std::vector<std::vector<Index>>& neighbours, Index v, int rings) {
   std::vector<Index> found{v};
   std::vector<Index> front{v};
   for (int r = 0; r < rings; ++r) {
@@ -89,8 +88,7 @@ Eigen::VectorXd vertex_curvature(const Matrix2X& material, const Triangles& tria
   check_mesh(material, triangles, "curvature");
   if (positions.rows() != material.rows())
     throw std::invalid_argument("curvature: " + std::to_string(positions.rows()) +
-                                " positions for " + std::to_string(material.rows()) +
-                                " vertices");
+                                " positions for " + std::to_string(material.rows()) + " vertices");
   const Index nv = static_cast<Index>(material.rows());
   const auto neighbours = vertex_neighbours(nv, triangles);
   Eigen::VectorXd kappa = Eigen::VectorXd::Zero(nv);

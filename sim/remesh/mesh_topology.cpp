@@ -10,8 +10,7 @@ namespace weft::sim::remesh {
 
 void check_mesh(const Matrix2X& material, const Triangles& triangles, const char* what) {
   const Index nv = static_cast<Index>(material.rows());
-  if (triangles.rows() == 0)
-    throw std::invalid_argument(std::string(what) + ": no triangles");
+  if (triangles.rows() == 0) throw std::invalid_argument(std::string(what) + ": no triangles");
   for (Index v = 0; v < nv; ++v)
     if (!std::isfinite(material(v, 0)) || !std::isfinite(material(v, 1)))
       throw std::invalid_argument(std::string(what) + ": vertex " + std::to_string(v) +

@@ -25,8 +25,9 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 struct OldVertex {
   Index index = -1;  // the old vertex this CGAL vertex is, or −1 for a Steiner point
 };
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<
-    OldVertex, Kernel, CGAL::Delaunay_mesh_vertex_base_2<Kernel>>;
+using VertexBase =
+    CGAL::Triangulation_vertex_base_with_info_2<OldVertex, Kernel,
+                                                CGAL::Delaunay_mesh_vertex_base_2<Kernel>>;
 using FaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
@@ -160,8 +161,8 @@ MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
     const Point& a = f->vertex(0)->point();
     const Point& b = f->vertex(1)->point();
     const Point& c = f->vertex(2)->point();
-    f->set_in_domain(old_locator.contains(
-        Vec2((a.x() + b.x() + c.x()) / 3.0, (a.y() + b.y() + c.y()) / 3.0)));
+    f->set_in_domain(
+        old_locator.contains(Vec2((a.x() + b.x() + c.x()) / 3.0, (a.y() + b.y() + c.y()) / 3.0)));
   }
 
   const SizeFunction checked_size = checked(size);

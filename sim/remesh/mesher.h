@@ -25,9 +25,9 @@ struct MesherParams {
 };
 
 struct MeshResult {
-  Matrix2X material;             // #V_new×2, metres
-  Triangles triangles;           // #T_new×3, oriented like the old mesh's triangles
-  std::vector<Index> new_to_old; // per new vertex: the old vertex it is (kept), or −1
+  Matrix2X material;              // #V_new×2, metres
+  Triangles triangles;            // #T_new×3, oriented like the old mesh's triangles
+  std::vector<Index> new_to_old;  // per new vertex: the old vertex it is (kept), or −1
 };
 
 // Meshes the domain of (material, triangles). keep: old vertices to keep besides the boundary

@@ -88,8 +88,8 @@ Location PointLocator::best_of(const Index* begin, const Index* end, const Vec2&
 
 Location PointLocator::locate(const Vec2& p) const {
   if (!p.allFinite())
-    throw std::invalid_argument("point location: material point (" + std::to_string(p.x()) +
-                                ", " + std::to_string(p.y()) + ") is not finite");
+    throw std::invalid_argument("point location: material point (" + std::to_string(p.x()) + ", " +
+                                std::to_string(p.y()) + ") is not finite");
   const Index b = bucket_of(p);
   const Index* items = m_bucket_items.data();
   Location found = best_of(items + m_bucket_start[static_cast<size_t>(b)],

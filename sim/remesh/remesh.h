@@ -28,12 +28,12 @@ struct RemeshInput {
 };
 
 struct RemeshOutput {
-  MeshResult mesh;                 // the new material coordinates, triangles, new → old vertex
-  Matrix3X positions;              // #V_new×3, interpolated (kept vertices copied)
-  Matrix3X velocities;             // #V_new×3
-  TransferMap transfer;            // to carry further per-vertex quantities (transfer.h)
-  Eigen::VectorXd old_curvature;   // #V_old |κ| (1/m) the sizes came from
-  Eigen::VectorXd old_target_size; // #V_old h_target (m), eq. 29
+  MeshResult mesh;                  // the new material coordinates, triangles, new → old vertex
+  Matrix3X positions;               // #V_new×3, interpolated (kept vertices copied)
+  Matrix3X velocities;              // #V_new×3
+  TransferMap transfer;             // to carry further per-vertex quantities (transfer.h)
+  Eigen::VectorXd old_curvature;    // #V_old |κ| (1/m) the sizes came from
+  Eigen::VectorXd old_target_size;  // #V_old h_target (m), eq. 29
   // Wall time of the phases, seconds: curvature, sizes and the old mesh's point locator; the
   // CGAL mesher (with its size queries); locating the new vertices and interpolating.
   double curvature_s = 0.0, mesher_s = 0.0, transfer_s = 0.0;

@@ -16,9 +16,9 @@ void check_size_field_params(const SizeFieldParams& params) {
     throw std::invalid_argument("remesh: h_min = " + std::to_string(params.h_min_m) +
                                 " m, expected a positive length");
   if (!positive(params.h_max_m) || params.h_max_m < params.h_min_m)
-    throw std::invalid_argument("remesh: h_max = " + std::to_string(params.h_max_m) +
-                                " m, expected a finite length ≥ h_min = " +
-                                std::to_string(params.h_min_m) + " m");
+    throw std::invalid_argument(
+        "remesh: h_max = " + std::to_string(params.h_max_m) +
+        " m, expected a finite length ≥ h_min = " + std::to_string(params.h_min_m) + " m");
 }
 
 double target_size(double curvature_magnitude, const SizeFieldParams& params) {

@@ -20,8 +20,7 @@ TransferMap make_transfer_map(const PointLocator& old_mesh, const Matrix2X& new_
 namespace {
 
 template <class Matrix>
-Matrix transfer_rows(const TransferMap& map, const Triangles& old_triangles,
-                     const Matrix& values) {
+Matrix transfer_rows(const TransferMap& map, const Triangles& old_triangles, const Matrix& values) {
   const auto n = static_cast<Eigen::Index>(map.location.size());
   Matrix out(n, values.cols());
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -46,8 +45,7 @@ MatrixX transfer(const TransferMap& map, const Triangles& old_triangles, const M
   return transfer_rows(map, old_triangles, values);
 }
 
-Matrix3X transfer(const TransferMap& map, const Triangles& old_triangles,
-                  const Matrix3X& values) {
+Matrix3X transfer(const TransferMap& map, const Triangles& old_triangles, const Matrix3X& values) {
   return transfer_rows(map, old_triangles, values);
 }
 

@@ -47,9 +47,8 @@ TEST(Curvature, CylinderGivesOneOverRadiusAtInteriorVertices) {
   const Index nu = 61, nv = 41;
   const auto m = grid_mesh(0.3, 0.2, nu, nv);
   const Eigen::VectorXd kappa = vertex_curvature(
-      m.material, m.triangles, deform(m.material, [&](double u, double v) {
-        return on_cylinder(u, v, R);
-      }));
+      m.material, m.triangles,
+      deform(m.material, [&](double u, double v) { return on_cylinder(u, v, R); }));
   EXPECT_LT(worst_relative_error(kappa, deep_interior(nu, nv), 1.0 / R), 0.02);
 }
 
@@ -59,12 +58,12 @@ TEST(Curvature, CylinderAtAnAngleToTheWarpAndStretchedGivesOneOverRadius) {
   const double R = 0.1, angle = 35.0 * M_PI / 180.0;
   const Index nu = 61, nv = 61;
   const auto m = grid_mesh(0.25, 0.25, nu, nv);
-  const Eigen::VectorXd kappa = vertex_curvature(
-      m.material, m.triangles, deform(m.material, [&](double u, double v) {
-        const double s = 1.08 * (std::cos(angle) * u + std::sin(angle) * v);
-        const double t = -std::sin(angle) * u + std::cos(angle) * v;
-        return on_cylinder(s, t, R);
-      }));
+  const Eigen::VectorXd kappa =
+      vertex_curvature(m.material, m.triangles, deform(m.material, [&](double u, double v) {
+                         const double s = 1.08 * (std::cos(angle) * u + std::sin(angle) * v);
+                         const double t = -std::sin(angle) * u + std::cos(angle) * v;
+                         return on_cylinder(s, t, R);
+                       }));
   EXPECT_LT(worst_relative_error(kappa, deep_interior(nu, nv), 1.0 / R), 0.02);
 }
 
@@ -89,9 +88,8 @@ TEST(Curvature, CylinderErrorFallsWithTheSquareOfTheSpacing) {
   for (Index n : {16, 31, 61}) {  // spacings 2, 1, 0.5 cm on a 30 cm sheet
     const auto m = grid_mesh(0.3, 0.3, n, n);
     const Eigen::VectorXd kappa = vertex_curvature(
-        m.material, m.triangles, deform(m.material, [&](double u, double v) {
-          return on_cylinder(u, v, R);
-        }));
+        m.material, m.triangles,
+        deform(m.material, [&](double u, double v) { return on_cylinder(u, v, R); }));
     errors.push_back(worst_relative_error(kappa, deep_interior(n, n), 1.0 / R));
   }
   // Second order: each halving divides the error by about 4 (at least 3 here).

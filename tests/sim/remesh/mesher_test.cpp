@@ -29,7 +29,9 @@ PlainMesh holed_sheet() {
 }
 
 // A field 4 mm fine along the line u = 0.1, growing linearly to 4 cm away from it.
-double graded(const Vec2& p) { return std::min(0.04, 0.004 + 0.3 * std::abs(p.x() - 0.1)); }
+double graded(const Vec2& p) {
+  return std::min(0.04, 0.004 + 0.3 * std::abs(p.x() - 0.1));
+}
 
 struct SizeMeasure {
   double worst_ratio = 0.0;   // max over triangles of longest edge / h(centroid)
@@ -42,7 +44,8 @@ SizeMeasure measure(const MeshResult& r, const SizeFunction& size) {
     double longest = 0.0;
     Vec2 centroid = Vec2::Zero();
     for (int k = 0; k < 3; ++k) {
-      const Vec2 a = r.material.row(r.triangles(t, k)), b = r.material.row(r.triangles(t, (k + 1) % 3));
+      const Vec2 a = r.material.row(r.triangles(t, k)),
+                 b = r.material.row(r.triangles(t, (k + 1) % 3));
       longest = std::max(longest, (b - a).norm());
       centroid += a / 3.0;
     }
@@ -65,10 +68,12 @@ TEST(Mesher, MeetsAGradedSizeFieldWithinAFactor) {
   int n_near = 0, n_far = 0;
   for (Eigen::Index t = 0; t < r.triangles.rows(); ++t) {
     const Vec2 c = (r.material.row(r.triangles(t, 0)) + r.material.row(r.triangles(t, 1)) +
-                    r.material.row(r.triangles(t, 2))).transpose() / 3.0;
-    const double a = std::abs(signed_area2(r.material.row(r.triangles(t, 0)),
-                                           r.material.row(r.triangles(t, 1)),
-                                           r.material.row(r.triangles(t, 2))));
+                    r.material.row(r.triangles(t, 2)))
+                       .transpose() /
+                   3.0;
+    const double a =
+        std::abs(signed_area2(r.material.row(r.triangles(t, 0)), r.material.row(r.triangles(t, 1)),
+                              r.material.row(r.triangles(t, 2))));
     if (std::abs(c.x() - 0.1) < 0.01) near += a, ++n_near;
     if (c.x() > 0.3) far += a, ++n_far;
   }
@@ -152,28 +157,31 @@ TEST(Mesher, BadInputIsAnErrorNamingTheItem) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message([&] { mesh_domain(old.material, old.triangles, {9}, uniform); })
-                .find("pinned vertex 9"),
+  EXPECT_NE(message([&] {
+              mesh_domain(old.material, old.triangles, {9}, uniform);
+            }).find("pinned vertex 9"),
             std::string::npos);
   EXPECT_NE(message([&] {
               mesh_domain(old.material, old.triangles, {}, [](const Vec2&) { return 0.0; });
             }).find("size field"),
             std::string::npos);
   EXPECT_NE(message([&] {
-              mesh_domain(old.material, old.triangles, {},
-                          [](const Vec2&) { return 1e-4; }, MesherParams{20.0, 1000});
+              mesh_domain(
+                  old.material, old.triangles, {}, [](const Vec2&) { return 1e-4; },
+                  MesherParams{20.0, 1000});
             }).find("max_vertices"),
             std::string::npos);
   Triangles degenerate = old.triangles;
   degenerate.row(0) << 0, 1, 2;  // three vertices on the line v = 0
-  EXPECT_NE(message([&] { mesh_domain(old.material, degenerate, {}, uniform); })
-                .find("triangle 0 has zero material area"),
+  EXPECT_NE(message([&] {
+              mesh_domain(old.material, degenerate, {}, uniform);
+            }).find("triangle 0 has zero material area"),
             std::string::npos);
   Triangles nonmanifold(3, 3);
   nonmanifold << 0, 1, 4, 0, 1, 3, 0, 1, 5;  // edge (0, 1) in three triangles
-  EXPECT_NE(message([&] { mesh_domain(old.material, nonmanifold, {}, uniform); })
-                .find("non-manifold"),
-            std::string::npos);
+  EXPECT_NE(
+      message([&] { mesh_domain(old.material, nonmanifold, {}, uniform); }).find("non-manifold"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ TEST(Remesh, AFoldedSheetIsRefinedInTheFoldAndCoarsenedWhereFlat) {
   RemeshInput in;
   in.material = old.material;
   in.triangles = old.triangles;
-  in.positions = testing::deform(old.material, [&](double u, double v) { return folded(u, v, u0, r); });
+  in.positions =
+      testing::deform(old.material, [&](double u, double v) { return folded(u, v, u0, r); });
   in.velocities = Matrix3X::Zero(old.material.rows(), 3);
   in.velocities.col(2).setConstant(0.25);  // a uniform drift of 25 cm/s upwards
   in.pins = {15 * 41 + 3, 15 * 41 + 37};
@@ -66,7 +67,8 @@ TEST(Remesh, AFoldedSheetIsRefinedInTheFoldAndCoarsenedWhereFlat) {
       k(v) = (X(v, 0) > u0 && X(v, 0) < u0 + M_PI * r) ? 1.0 / r : 0.0;
     return k;
   };
-  const double before = remesh_indicator(in.material, in.triangles, exact_kappa(in.material), params.size);
+  const double before =
+      remesh_indicator(in.material, in.triangles, exact_kappa(in.material), params.size);
   const double after = remesh_indicator(out.mesh.material, out.mesh.triangles,
                                         exact_kappa(out.mesh.material), params.size);
   EXPECT_GT(before, 5.0 * params.size.c_m);
@@ -77,7 +79,8 @@ TEST(Remesh, AFoldedSheetIsRefinedInTheFoldAndCoarsenedWhereFlat) {
   for (Eigen::Index t = 0; t < out.mesh.triangles.rows(); ++t) {
     const double u = (out.mesh.material(out.mesh.triangles(t, 0), 0) +
                       out.mesh.material(out.mesh.triangles(t, 1), 0) +
-                      out.mesh.material(out.mesh.triangles(t, 2), 0)) / 3.0;
+                      out.mesh.material(out.mesh.triangles(t, 2), 0)) /
+                     3.0;
     if (u > u0 + 0.01 && u < u0 + M_PI * r - 0.01) fold_h += h(t), ++n_fold;
     if (u < u0 - 0.08) flat_h += h(t), ++n_flat;
   }
@@ -93,10 +96,12 @@ TEST(Remesh, ACurvedClothAtRestIsShortenedOnlyByTheChordError) {
   // the velocities stay zero. (Measured: min strain −1.67e-3, mean −3.8e-4 at R = 10 cm.)
   const double R = 0.1, h = 0.01;
   const auto old = testing::grid_mesh(0.3, 0.2, 31, 21);
-  RemeshInput in{old.material, old.triangles,
+  RemeshInput in{old.material,
+                 old.triangles,
                  testing::deform(old.material,
                                  [&](double u, double v) { return testing::on_cylinder(u, v, R); }),
-                 Matrix3X::Zero(old.material.rows(), 3), {}};
+                 Matrix3X::Zero(old.material.rows(), 3),
+                 {}};
   RemeshParams params;
   params.size = {5e-4, 0.003, 0.05};
   const RemeshOutput out = remesh(in, params);
@@ -116,9 +121,12 @@ TEST(Remesh, ACurvedClothAtRestIsShortenedOnlyByTheChordError) {
 
 TEST(Remesh, SameInputGivesTheSameBits) {
   const auto old = testing::grid_mesh(0.2, 0.2, 21, 21);
-  RemeshInput in{old.material, old.triangles,
-                 testing::deform(old.material, [](double u, double v) { return folded(u, v, 0.08, 0.015); }),
-                 Matrix3X::Zero(old.material.rows(), 3), {50}};
+  RemeshInput in{
+      old.material,
+      old.triangles,
+      testing::deform(old.material, [](double u, double v) { return folded(u, v, 0.08, 0.015); }),
+      Matrix3X::Zero(old.material.rows(), 3),
+      {50}};
   in.velocities.col(0) = old.material.col(1);  // a shear flow
   RemeshParams params;
   params.size = {5e-4, 0.003, 0.03};

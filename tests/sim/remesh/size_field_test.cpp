@@ -24,9 +24,9 @@ TEST(SizeField, FollowsEquation29BetweenItsBounds) {
 
 TEST(SizeField, ClampsAtHminAndHmax) {
   const SizeFieldParams p{1e-3, 0.004, 0.04};
-  EXPECT_EQ(target_size(0.0, p), p.h_max_m);     // flat cloth
-  EXPECT_EQ(target_size(0.5, p), p.h_max_m);     // √(c/κ) = 0.0447 > h_max
-  EXPECT_EQ(target_size(100.0, p), p.h_min_m);   // √(c/κ) = 0.00316 < h_min
+  EXPECT_EQ(target_size(0.0, p), p.h_max_m);    // flat cloth
+  EXPECT_EQ(target_size(0.5, p), p.h_max_m);    // √(c/κ) = 0.0447 > h_max
+  EXPECT_EQ(target_size(100.0, p), p.h_min_m);  // √(c/κ) = 0.00316 < h_min
   EXPECT_EQ(target_size(1e12, p), p.h_min_m);
   const Eigen::VectorXd h = target_sizes(Eigen::Vector3d(0.0, 2.5, 1e3), p);
   EXPECT_EQ(h(0), 0.04);
@@ -62,9 +62,9 @@ TEST(SizeField, IndicatorIsCurvatureTimesSizeSquaredOnACylinder) {
   SizeFieldParams p{1e-3, 0.001, 0.1};
   EXPECT_NEAR(remesh_indicator(m.material, m.triangles, kappa, p), h * h / R, 1e-15);
   // With the estimated curvature: the same within the estimate's error (boundary included).
-  EXPECT_NEAR(remesh_indicator(m.material, m.triangles,
-                               vertex_curvature(m.material, m.triangles, x), p),
-              h * h / R, 0.05 * h * h / R);
+  EXPECT_NEAR(
+      remesh_indicator(m.material, m.triangles, vertex_curvature(m.material, m.triangles, x), p),
+      h * h / R, 0.05 * h * h / R);
   // Triangles already at h_min cannot be refined: they do not call for a remesh.
   p.h_min_m = 0.02;
   EXPECT_EQ(remesh_indicator(m.material, m.triangles, kappa, p), 0.0);

@@ -22,7 +22,9 @@ PlainMesh notched_sheet() {
                    [](Index i, Index j) { return !(i >= 6 && i < 9 && j >= 4 && j < 7); });
 }
 
-double uniform_size(const Vec2& p) { return 0.006 + 0.02 * p.x(); }
+double uniform_size(const Vec2& p) {
+  return 0.006 + 0.02 * p.x();
+}
 
 TEST(PointLocator, FindsPointsOnVerticesEdgesAndTheBoundary) {
   const PlainMesh m = notched_sheet();
@@ -30,7 +32,8 @@ TEST(PointLocator, FindsPointsOnVerticesEdgesAndTheBoundary) {
   // Every vertex and every edge midpoint (boundary ones included) lies in a triangle holding it.
   for (Eigen::Index t = 0; t < m.triangles.rows(); ++t)
     for (int k = 0; k < 3; ++k) {
-      const Vec2 a = m.material.row(m.triangles(t, k)), b = m.material.row(m.triangles(t, (k + 1) % 3));
+      const Vec2 a = m.material.row(m.triangles(t, k)),
+                 b = m.material.row(m.triangles(t, (k + 1) % 3));
       for (const Vec2& p : {a, Vec2(0.5 * (a + b)), Vec2(0.3 * a + 0.7 * b)}) {
         const Location at = locator.locate(p);
         ASSERT_GE(at.triangle, 0);
@@ -38,8 +41,8 @@ TEST(PointLocator, FindsPointsOnVerticesEdgesAndTheBoundary) {
         EXPECT_TRUE(locator.contains(p));
       }
     }
-  EXPECT_FALSE(locator.contains(Vec2(0.15, 0.1)));   // inside the hole
-  EXPECT_FALSE(locator.contains(Vec2(-0.01, 0.1)));  // left of the sheet
+  EXPECT_FALSE(locator.contains(Vec2(0.15, 0.1)));        // inside the hole
+  EXPECT_FALSE(locator.contains(Vec2(-0.01, 0.1)));       // left of the sheet
   EXPECT_TRUE(locator.contains(Vec2(0.3 + 1e-14, 0.1)));  // a rounding error outside
   EXPECT_FALSE(locator.contains(Vec2(NAN, 0.1)));
   EXPECT_THROW(locator.locate(Vec2(0.1, INFINITY)), std::invalid_argument);
@@ -52,7 +55,8 @@ TEST(Transfer, AnAffineFieldIsTransferredExactly) {
   const Vec3 b(0.1, -2.0, 1.5);
   const auto field = [&](const Matrix2X& X) {
     Matrix3X x(X.rows(), 3);
-    for (Eigen::Index v = 0; v < X.rows(); ++v) x.row(v) = (A * X.row(v).transpose() + b).transpose();
+    for (Eigen::Index v = 0; v < X.rows(); ++v)
+      x.row(v) = (A * X.row(v).transpose() + b).transpose();
     return x;
   };
   const MeshResult r = mesh_domain(old.material, old.triangles, {17}, uniform_size);
@@ -79,7 +83,8 @@ double spring_energy(const Matrix2X& material, const Triangles& triangles, const
   for (Eigen::Index t = 0; t < triangles.rows(); ++t)
     for (int k = 0; k < 3; ++k) {
       const Index i = triangles(t, k), j = triangles(t, (k + 1) % 3);
-      const double strain = (x.row(i) - x.row(j)).norm() - (material.row(i) - material.row(j)).norm();
+      const double strain =
+          (x.row(i) - x.row(j)).norm() - (material.row(i) - material.row(j)).norm();
       energy += 0.25 * strain * strain;  // each interior edge is seen twice
     }
   return energy;
