@@ -9,6 +9,8 @@
 // 2. The mesher alone at a uniform size giving about 10 000 triangles.
 // 3. The curvature estimate's error against h/R: a 30 × 30 cm sheet rolled on a cylinder of
 //    radius 10 cm (interior vertices, three rings from the boundary, and all vertices).
+// 4. A cloth at rest remeshed, flat and rolled on cylinders: the spring energy of its edges
+//    before and after, the most negative edge strain after, and the velocities (zero).
 // Medians over --repeats runs (default 3); the uniform mesh at h_min (~0.5 M triangles) once.
 // --svg FILE draws the adaptive mesh around the middle fold, (u, v) ∈ [0.35, 0.65] × [0, 0.2] m,
 // in material coordinates, the old 1 cm mesh's lines in grey under it.
@@ -16,6 +18,7 @@
 // Run: build/bench/remesh_bench [--repeats 3] [--svg FILE]
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -78,6 +81,41 @@ double median(std::vector<double> x) {
   return x[x.size() / 2];
 }
 
+// Of a mesh made for a uniform size h: the largest and the median longest edge / h, and the
+// median mean side / h.
+std::array<double, 3> edge_ratios(const MeshResult& mesh, double h) {
+  std::vector<double> longest, mean;
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    double l = 0.0, sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = (mesh.material.row(mesh.triangles(t, k)) -
+                        mesh.material.row(mesh.triangles(t, (k + 1) % 3)))
+                           .norm();
+      l = std::max(l, e);
+      sum += e;
+    }
+    longest.push_back(l / h);
+    mean.push_back(sum / (3.0 * h));
+  }
+  return {*std::max_element(longest.begin(), longest.end()), median(longest), median(mean)};
+}
+
+// Sum of ½ k (|x_i − x_j| − L_ij)² over the triangle edges (interior ones seen twice, halved),
+// k = 1 N/m, L from the material coordinates; and the most negative edge strain.
+std::array<double, 2> spring_energy_and_min_strain(const Matrix2X& X, const Triangles& t,
+                                                   const Matrix3X& x) {
+  double energy = 0.0, min_strain = 0.0;
+  for (Eigen::Index k = 0; k < t.rows(); ++k)
+    for (int j = 0; j < 3; ++j) {
+      const Index a = t(k, j), b = t(k, (j + 1) % 3);
+      const double rest = (X.row(a) - X.row(b)).norm();
+      const double stretch = (x.row(a) - x.row(b)).norm() - rest;
+      energy += 0.25 * stretch * stretch;
+      min_strain = std::min(min_strain, stretch / rest);
+    }
+  return {energy, min_strain};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -108,6 +146,7 @@ int main(int argc, char** argv) {
   params.size = {/*c_m=*/5e-4, /*h_min_m=*/0.003, /*h_max_m=*/0.05};
 
   std::vector<double> curvature_ms, mesher_ms, transfer_ms, uniform_ms, ten_k_ms, ten_k_cpu_ms;
+  std::array<double, 3> ten_k_shape{};
   Eigen::Index adaptive_tris = 0, adaptive_verts = 0, uniform_tris = 0, ten_k_tris = 0;
   double kappa_max = 0.0;
   const double ten_k_size = 0.0225;  // m: about 10 000 triangles on the 1 m² sheet
@@ -149,6 +188,7 @@ int main(int argc, char** argv) {
     ten_k_ms.push_back(watch.milliseconds());
     ten_k_cpu_ms.push_back(cpu_ms() - cpu0);
     ten_k_tris = ten_k.triangles.rows();
+    if (r == 0) ten_k_shape = edge_ratios(ten_k, ten_k_size);
   }
 
   std::printf(
@@ -169,6 +209,35 @@ int main(int argc, char** argv) {
       "mesher alone, uniform h = %g m:   %8ld triangles in %.1f ms wall, %.1f ms CPU "
       "(medians of %d)\n",
       ten_k_size, static_cast<long>(ten_k_tris), median(ten_k_ms), median(ten_k_cpu_ms), repeats);
+  std::printf("  longest edge / h: max %.3f, median %.2f; mean side / h: median %.2f\n",
+              ten_k_shape[0], ten_k_shape[1], ten_k_shape[2]);
+
+  // 4. A cloth at rest remeshed: 30 × 30 cm on 1 cm cells, flat and rolled on cylinders.
+  std::printf("at rest, 30 cm sheet on 1 cm cells, remeshed (c = 0.5 mm, h in [3 mm, 5 cm]):\n");
+  for (double R : {0.0, 0.1, 0.05, 0.02}) {
+    RemeshInput rest;
+    uniform_sheet(0.3, 31, rest.material, rest.triangles);
+    rest.positions.resize(rest.material.rows(), 3);
+    for (Eigen::Index v = 0; v < rest.material.rows(); ++v) {
+      const double u = rest.material(v, 0);
+      if (R == 0.0) {
+        rest.positions.row(v) << u, rest.material(v, 1), 1.0;
+      } else {
+        rest.positions.row(v) << R * std::sin(u / R), rest.material(v, 1),
+            R * (1.0 - std::cos(u / R));
+      }
+    }
+    rest.velocities = Matrix3X::Zero(rest.material.rows(), 3);
+    const RemeshOutput out = weft::sim::remesh::remesh(rest, params);
+    const auto before = spring_energy_and_min_strain(rest.material, rest.triangles, rest.positions);
+    const auto after =
+        spring_energy_and_min_strain(out.mesh.material, out.mesh.triangles, out.positions);
+    std::printf(
+        "  R = %-5g m %6ld triangles; spring energy %.2e -> %.2e J; min edge strain %.2e; "
+        "max |v| %.1e m/s\n",
+        R, static_cast<long>(out.mesh.triangles.rows()), before[0], after[0], after[1],
+        out.velocities.cwiseAbs().maxCoeff());
+  }
 
   std::printf("curvature on a cylinder of R = 0.1 m, max relative error of |kappa|:\n");
   for (Index n : {16, 31, 61, 121}) {
