@@ -13,14 +13,15 @@ namespace weft::app {
 
 namespace {
 
-// The model's constants, measured on this project's scenes (docs/cluster.md, "Resource
-// estimates": the largest per-unit cost seen, on one CPU).
-constexpr double kSecondsPerVertexStep = 0.0;    // simulation
-constexpr double kSecondsPerRasterPixel = 0.0;   // per frame drawn by the rasterizer
-constexpr double kSecondsPerRayPixelSample = 0.0;  // per frame, pixel and sample, ray tracer
-constexpr double kBaseMegabytes = 0.0;           // the program, its libraries, a GL context
-constexpr double kMegabytesPerVertex = 0.0;
-constexpr double kMegabytesPerPixel = 0.0;
+// The model's constants: the largest per-unit cost measured on one CPU of the development
+// machine (docs/cluster.md, "Resource estimates", has the runs).
+constexpr double kSecondsPerVertexStep = 8e-7;         // explicit integrators
+constexpr double kSecondsPerVertexSolveStep = 3.5e-5;  // implicit Euler, fast projection
+constexpr double kSecondsPerRasterPixel = 2.3e-6;      // per frame drawn, PNG written
+constexpr double kSecondsPerRayPixelSample = 6e-6;     // per frame, pixel and sample
+constexpr double kBaseMegabytes = 110.0;  // the program, its libraries, a GL context
+constexpr double kMegabytesPerVertex = 4.2e-3;
+constexpr double kMegabytesPerPixel = 1.1e-4;
 // Margins over the estimate.
 constexpr double kTimeMargin = 3.0;
 constexpr int kStartMinutes = 5;
@@ -42,6 +43,10 @@ TaskWork scene_work(const Scene& scene, bool draws) {
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   work.vertices = static_cast<long>(simulator->mesh().vertex_count());
   if (scene.dynamics) work.steps = simulator->substeps(1.0 / scene.fps) * scene.frames;
+  // RK4 evaluates the forces four times a step.
+  if (scene.sim.integrator == sim::Integrator::rk4) work.steps *= 4;
+  work.solves = scene.sim.integrator == sim::Integrator::implicit_euler ||
+                scene.sim.projection.method != sim::ProjectionMethod::none;
   return work;
 }
 
@@ -49,7 +54,8 @@ double estimated_seconds(const TaskWork& w) {
   const double per_frame = w.samples > 0
                                ? kSecondsPerRayPixelSample * static_cast<double>(w.pixels) * w.samples
                                : kSecondsPerRasterPixel * static_cast<double>(w.pixels);
-  return kSecondsPerVertexStep * static_cast<double>(w.vertices) * static_cast<double>(w.steps) +
+  return (w.solves ? kSecondsPerVertexSolveStep : kSecondsPerVertexStep) *
+             static_cast<double>(w.vertices) * static_cast<double>(w.steps) +
          per_frame * static_cast<double>(w.frames_drawn);
 }
 

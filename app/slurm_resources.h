@@ -1,6 +1,7 @@
 #pragma once
 // What a Slurm task asks for (`--cpus-per-task`, `--mem`, `--time`), estimated from the work:
-// vertices × simulation steps, frames drawn × pixels (× samples for the ray tracer). The model
+// vertices × simulation steps (steps that solve a linear system cost more), frames drawn ×
+// pixels (× samples for the ray tracer). The model
 // and how its constants were measured are in docs/cluster.md ("Resource estimates"); it is
 // deliberately generous (a task killed at its limit costs more than an idle reservation).
 
@@ -22,6 +23,7 @@ struct SlurmResources {
 struct TaskWork {
   long vertices = 0;        // the cloth's
   long steps = 0;           // simulation steps (0: no simulation, e.g. weft render)
+  bool solves = false;      // each step solves a linear system (implicit Euler, projection)
   long frames_drawn = 0;    // images written
   long pixels = 0;          // per image
   int samples = 0;          // ray tracer's samples per pixel; 0: the rasterizer
