@@ -16,7 +16,7 @@ namespace {
 // The model's constants: the largest per-unit cost measured on one CPU of the development
 // machine (docs/cluster.md, "Resource estimates", has the runs).
 constexpr double kSecondsPerVertexStep = 8e-7;         // explicit integrators
-constexpr double kSecondsPerVertexSolveStep = 3.5e-5;  // implicit Euler, fast projection
+constexpr double kSecondsPerVertexSolveStep = 1.2e-4;  // implicit Euler, fast projection
 constexpr double kSecondsPerRasterPixel = 2.3e-6;      // per frame drawn, PNG written
 constexpr double kSecondsPerRayPixelSample = 6e-6;     // per frame, pixel and sample
 constexpr double kBaseMegabytes = 110.0;  // the program, its libraries, a GL context
