@@ -344,18 +344,17 @@ Command register_gallery(CLI::App& app, const std::string& command_line) {
       },
       "Comma-separated scene names (file stems) to render");
   add_threads_option(*cmd, o->threads);
-  CLI::Option* slurm = cmd->add_flag(
-      "--slurm", o->slurm,
+  CLI::Option* slurm = add_slurm_flags(
+      *cmd, o->slurm, o->dry_run,
       "Write OUT/slurm/gallery.sbatch (a Slurm job array, one task per scene) and "
       "OUT/slurm/collect.sbatch (writes README.md after them) and submit both with sbatch");
-  cmd->add_flag("--dry-run", o->dry_run, "With --slurm: write and print the scripts, submit nothing")
-      ->needs(slurm);
-  // What the Slurm scripts run: hidden from --help.
+  // What the Slurm scripts run (in a group of their own: CLI11 names a hidden option nowhere,
+  // not even in its errors).
   CLI::Option* task = cmd->add_flag("--task", o->task, "Render the scenes, leave their results")
-                          ->group("")
+                          ->group("Run by the --slurm scripts")
                           ->excludes(slurm);
   cmd->add_flag("--collect", o->collect, "Write README.md from the tasks' results")
-      ->group("")
+      ->group("Run by the --slurm scripts")
       ->excludes(slurm)
       ->excludes(task);
   return {cmd, [o] { return run_gallery(*o); }};

@@ -25,8 +25,8 @@ struct GalleryOptions {
   std::string command_line;        // recorded in README.md
   // Slurm (docs/cluster.md): --slurm writes OUT/slurm/gallery.sbatch, an array of one task per
   // scene, and OUT/slurm/collect.sbatch, which writes README.md after them; the tasks run the
-  // hidden --task (render the --only scenes, leave OUT/slurm/results/<scene>.txt), the collect
-  // job the hidden --collect.
+  // --task (render the --only scenes, leave OUT/slurm/results/<scene>.txt), the collect
+  // job --collect.
   bool slurm = false;
   bool dry_run = false;
   bool task = false;

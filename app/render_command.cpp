@@ -153,14 +153,12 @@ Command register_render(CLI::App& app, const std::string&) {
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
   add_render_options(*cmd, o->overrides);
   add_threads_option(*cmd, o->threads);
-  CLI::Option* slurm = cmd->add_flag(
-      "--slurm", o->slurm,
+  CLI::Option* slurm = add_slurm_flags(
+      *cmd, o->slurm, o->dry_run,
       "Write OUT/slurm/render.sbatch, a Slurm job array drawing the frames in --tasks parts, "
       "and submit it with sbatch (--threads N: CPUs per task, default 1)");
   check_range(cmd->add_option("--tasks", o->tasks, "Array tasks for --slurm (default 4)"),
               Range::closed(1, 100000))
-      ->needs(slurm);
-  cmd->add_flag("--dry-run", o->dry_run, "With --slurm: write and print the script, do not submit it")
       ->needs(slurm);
   return {cmd, [o] { return run_render(*o); }};
 }

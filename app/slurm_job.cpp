@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <CLI/CLI.hpp>
+
 #include "app/output_files.h"
 
 namespace weft::app {
@@ -137,6 +139,13 @@ void submit_array_and_collect(const SlurmArray& array, const std::filesystem::pa
   }
   const std::string id = submitted_job_id(submitted);
   std::printf("%s%s", submitted.c_str(), submit_slurm_script(collect_script, id).c_str());
+}
+
+CLI::Option* add_slurm_flags(CLI::App& command, bool& slurm, bool& dry_run, const std::string& help) {
+  CLI::Option* flag = command.add_flag("--slurm", slurm, help);
+  command.add_flag("--dry-run", dry_run, "With --slurm: write and print the scripts, submit nothing")
+      ->needs(flag);
+  return flag;
 }
 
 void record_submission(const std::filesystem::path& dir, const std::string& command_line) {

@@ -14,6 +14,11 @@
 
 #include "app/slurm_resources.h"
 
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
 namespace weft::app {
 
 struct SlurmArray {
@@ -63,6 +68,9 @@ std::string write_slurm_array(const SlurmArray& array, const std::filesystem::pa
 void submit_array_and_collect(const SlurmArray& array, const std::filesystem::path& array_script,
                               const SlurmJob& collect, const std::filesystem::path& collect_script,
                               bool dry_run);
+
+// Adds --slurm (with `help`) and --dry-run (which needs it) to a command; returns --slurm.
+CLI::Option* add_slurm_flags(CLI::App& command, bool& slurm, bool& dry_run, const std::string& help);
 
 // The command line a submission was made with, kept in DIR/slurm/command.txt for the collect
 // job's records (run.txt, README.md): record_submission writes it, submitted_command_line reads

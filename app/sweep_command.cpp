@@ -6,13 +6,11 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
-#include "app/output_files.h"
 #include "app/scene.h"
 #include "app/scene_patch.h"
 #include "app/slurm_job.h"
@@ -194,18 +192,17 @@ Command register_sweep(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--reference", o->reference,
                   "Run number (row of sweep.csv) the errors are measured against (default: the "
                   "finished run with the largest wall time, taken as the most accurate)");
-  CLI::Option* slurm = cmd->add_flag(
-      "--slurm", o->slurm,
+  CLI::Option* slurm = add_slurm_flags(
+      *cmd, o->slurm, o->dry_run,
       "Write OUT/slurm/sweep.sbatch (a Slurm job array, one task per point) and "
       "OUT/slurm/collect.sbatch (merges their results after them) and submit both with sbatch");
-  cmd->add_flag("--dry-run", o->dry_run, "With --slurm: write and print the scripts, submit nothing")
-      ->needs(slurm);
-  // What the Slurm scripts run: hidden from --help.
+  // What the Slurm scripts run (in a group of their own: CLI11 names a hidden option nowhere,
+  // not even in its errors).
   cmd->add_option("--point", o->point, "Run only this point and leave its result in OUT/points")
-      ->group("")
+      ->group("Run by the --slurm scripts")
       ->excludes(slurm);
   cmd->add_flag("--collect", o->collect, "Merge the results the points left in OUT/points")
-      ->group("")
+      ->group("Run by the --slurm scripts")
       ->excludes(slurm)
       ->excludes("--point");
   return {cmd, [o] { return run_sweep(*o); }};

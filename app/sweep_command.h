@@ -25,7 +25,7 @@ struct SweepOptions {
   std::string command_line;                    // recorded in run.txt
   // Slurm (docs/cluster.md): --slurm writes OUT/slurm/sweep.sbatch, an array of one task per
   // point, and OUT/slurm/collect.sbatch, which merges their results after them; the tasks run
-  // the hidden --point K, the collect job the hidden --collect (app/sweep_point.h).
+  // --point K, the collect job --collect (app/sweep_point.h).
   bool slurm = false;
   bool dry_run = false;           // with slurm: write and print the scripts, submit nothing
   std::optional<int> point;       // run only this point (1-based) and leave its result
