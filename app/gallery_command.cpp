@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +19,8 @@
 #include "app/run_command.h"
 #include "app/run_report.h"
 #include "app/scene.h"
+#include "app/slurm_job.h"
+#include "app/slurm_resources.h"
 #include "base/timer.h"
 
 namespace weft::app {
@@ -69,16 +72,23 @@ std::string quoted_if_needed(const std::string& s) {
   return s.find_first_of(" \t'\"$") == std::string::npos ? s : "'" + s + "'";
 }
 
-// Runs one scene; fills the entry's description and commands, or its error.
-void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
-  const Scene scene = load_scene(entry.path);
+// The scene in weft run's command line: weft's own scenes by their names (find_scene), which any
+// folder reproduces.
+std::string scene_argument(const GalleryEntry& entry, const GalleryOptions& options) {
+  return options.scenes ? quoted_if_needed(entry.path.string()) : quoted_if_needed(entry.name);
+}
+
+std::string frames_argument(int frames, const Scene& scene) {
+  return frames != scene.frames ? " --frames " + std::to_string(frames) : "";
+}
+
+// Reads the entry's scene and fills its description and the commands that reproduce it.
+Scene describe_scene(GalleryEntry& entry, const GalleryOptions& options) {
+  Scene scene = load_scene(entry.path);
   entry.description = scene.description;
   const int frames = scaled_frames(scene.frames, options.frames_scale);
-  const fs::path scratch = options.out / (".frames_" + entry.name);
-  // weft's own scenes by their names (find_scene), which any folder reproduces.
-  const std::string scene_arg =
-      options.scenes ? quoted_if_needed(entry.path.string()) : quoted_if_needed(entry.name);
-  const std::string frames_arg = frames != scene.frames ? " --frames " + std::to_string(frames) : "";
+  const std::string scene_arg = scene_argument(entry, options);
+  const std::string frames_arg = frames_argument(frames, scene);
   const std::string run_out = "out/" + entry.name;
   std::ostringstream commands;
   commands << "weft run " << scene_arg << frames_arg << " --out " << run_out << "\n"
@@ -94,7 +104,16 @@ void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
   }
   commands << " --out " << quoted_if_needed(options.out.string());
   entry.commands = commands.str();
+  return scene;
+}
 
+// Runs one scene; fills the entry's description and commands, or throws.
+void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
+  const Scene scene = describe_scene(entry, options);
+  const int frames = scaled_frames(scene.frames, options.frames_scale);
+  const fs::path scratch = options.out / (".frames_" + entry.name);
+  const std::string scene_arg = scene_argument(entry, options);
+  const std::string frames_arg = frames_argument(frames, scene);
   RunOptions run;
   run.scene = entry.path;
   run.out = scratch;
@@ -148,43 +167,157 @@ int scaled_frames(int frames, double scale) {
   return std::max(1, static_cast<int>(std::lround(frames * scale)));
 }
 
+namespace {
+
+GalleryEntry entry_for(const fs::path& file) {
+  GalleryEntry entry;
+  entry.path = file;
+  entry.name = file.stem().string();
+  return entry;
+}
+
+// README.md and the summary, from the local run or the collect job; the exit code.
+int finish_gallery(const std::vector<GalleryEntry>& entries, const GalleryOptions& options,
+                   const std::string& how) {
+  fs::create_directories(options.out);  // when no scene got as far as its first frame
+  write_text(options.out / "README.md", readme(entries, options));
+  std::vector<std::string> failed;
+  for (const GalleryEntry& e : entries)
+    if (!e.error.empty()) failed.push_back(e.name + " (" + e.error + ")");
+  const int n = static_cast<int>(entries.size());
+  std::printf("weft gallery: %d of %d scenes rendered into %s (README.md; %s)\n",
+              n - static_cast<int>(failed.size()), n, options.out.c_str(), how.c_str());
+  if (failed.empty()) return exit_ok;
+  // stdout too: the collect job's log is where a Slurm user looks.
+  std::printf("weft gallery: %zu failed:\n", failed.size());
+  for (const std::string& f : failed) std::printf("  %s\n", f.c_str());
+  std::fflush(stdout);
+  std::fprintf(stderr, "weft gallery: %zu failed:\n", failed.size());
+  for (const std::string& f : failed) std::fprintf(stderr, "  %s\n", f.c_str());
+  return exit_failure;
+}
+
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+fs::path result_file(const GalleryOptions& options, const std::string& name) {
+  return options.out / "slurm" / "results" / (name + ".txt");
+}
+
+// The command line of a task (--only NAME --task) or the collect job (--collect), run in the
+// folder it was submitted from (#SBATCH --chdir), so that README.md names the same paths.
+std::vector<std::string> gallery_argv(const GalleryOptions& options,
+                                      const std::vector<std::string>& only,
+                                      const std::string& mode) {
+  std::vector<std::string> argv{fs::read_symlink("/proc/self/exe").string(), "gallery"};
+  if (options.scenes) argv.insert(argv.end(), {"--scenes", options.scenes->string()});
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.17g", options.frames_scale);
+  argv.insert(argv.end(), {"--out", options.out.string(), "--frames-scale", scale});
+  if (options.threads) argv.insert(argv.end(), {"--threads", std::to_string(*options.threads)});
+  std::string names;
+  for (const std::string& name : only) names += (names.empty() ? "" : ",") + name;
+  if (!names.empty()) argv.insert(argv.end(), {"--only", names});
+  argv.push_back(mode);
+  return argv;
+}
+
+int submit_gallery(const GalleryOptions& options, const std::vector<fs::path>& files) {
+  const fs::path slurm_dir = fs::absolute(options.out / "slurm");
+  SlurmArray array;
+  array.job_name = "weft-gallery";
+  array.first_index = 1;  // task K renders scene K of the list
+  array.log_dir = slurm_dir;
+  array.chdir = fs::current_path();
+  std::vector<TaskWork> works;
+  for (const fs::path& file : files) {
+    Scene scene = load_scene(file);
+    scene.frames = scaled_frames(scene.frames, options.frames_scale);
+    works.push_back(scene_work(scene, true));
+    array.tasks.push_back(gallery_argv(options, {file.stem().string()}, "--task"));
+  }
+  array.resources = estimate_resources(works, options.threads.value_or(1));
+  SlurmJob collect;
+  collect.job_name = "weft-gallery-collect";
+  collect.argv = gallery_argv(options, options.only, "--collect");
+  collect.log = slurm_dir / "weft-gallery-collect.log";
+  collect.chdir = array.chdir;
+  collect.resources = estimate_resources({TaskWork{}}, 1);
+  fs::remove_all(slurm_dir / "results");  // an earlier submission's
+  record_submission(options.out, options.command_line);
+  submit_array_and_collect(array, slurm_dir / "gallery.sbatch", collect,
+                           slurm_dir / "collect.sbatch", options.dry_run);
+  return exit_ok;
+}
+
+// The collect job: each scene's outcome from the result its task left.
+void collect_scene(GalleryEntry& entry, std::size_t k, const GalleryOptions& options) {
+  const fs::path slurm_dir = fs::absolute(options.out / "slurm");
+  const std::string again =
+      "; its log: " + (slurm_dir / ("weft-gallery_" + std::to_string(k) + ".log")).string() +
+      "; resubmit it alone with sbatch --array=" + std::to_string(k) + " " +
+      (slurm_dir / "gallery.sbatch").string() + ", then sbatch " +
+      (slurm_dir / "collect.sbatch").string();
+  describe_scene(entry, options);
+  std::ifstream in(result_file(options, entry.name));
+  std::string line;
+  if (!in || !std::getline(in, line)) {
+    entry.error = "no result (its task did not finish)" + again;
+  } else if (line != "rendered") {
+    entry.error = (line.rfind("failed: ", 0) == 0 ? line.substr(8) : line) + again;
+  }
+}
+
+}  // namespace
+
 int run_gallery(const GalleryOptions& options) {
   if (!(options.frames_scale > 0.0 && options.frames_scale <= 10.0))
     throw SceneError("--frames-scale: expected a number in (0, 10], e.g. 0.25, got " +
                      std::to_string(options.frames_scale));
   const std::vector<fs::path> files =
       selected(scene_files(options.scenes.value_or(data_dir() / "scenes")), options.only);
+  if (options.slurm) return submit_gallery(options, files);
 
   std::vector<GalleryEntry> entries;
   const int n = static_cast<int>(files.size());
+  if (options.collect) {
+    for (int k = 0; k < n; ++k) {
+      entries.push_back(entry_for(files[static_cast<std::size_t>(k)]));
+      try {
+        collect_scene(entries.back(), static_cast<std::size_t>(k + 1), options);
+      } catch (const std::exception& e) {
+        entries.back().error = e.what();
+      }
+    }
+    GalleryOptions as_submitted = options;
+    as_submitted.command_line = submitted_command_line(options.out, options.command_line);
+    return finish_gallery(entries, as_submitted, "merged from the Slurm tasks' results");
+  }
+
   const base::Stopwatch watch;
+  int failures = 0;
   for (int k = 0; k < n; ++k) {
-    GalleryEntry entry;
-    entry.path = files[static_cast<std::size_t>(k)];
-    entry.name = entry.path.stem().string();
+    GalleryEntry entry = entry_for(files[static_cast<std::size_t>(k)]);
     std::fprintf(stderr, "weft gallery: scene %d/%d: %s\n", k + 1, n, entry.name.c_str());
     try {
       render_scene(entry, options);
     } catch (const std::exception& e) {
       entry.error = e.what();
+      ++failures;
       std::fprintf(stderr, "weft gallery: %s failed: %s\n", entry.name.c_str(), e.what());
+    }
+    if (options.task) {  // for the collect job; its README.md is the collect job's
+      fs::create_directories(result_file(options, entry.name).parent_path());
+      write_text(result_file(options, entry.name),
+                 entry.error.empty() ? "rendered\n" : "failed: " + one_line(entry.error) + "\n");
     }
     entries.push_back(std::move(entry));
   }
-  fs::create_directories(options.out);  // when no scene got as far as its first frame
-  write_text(options.out / "README.md", readme(entries, options));
-
-  std::vector<std::string> failed;
-  for (const GalleryEntry& e : entries)
-    if (!e.error.empty()) failed.push_back(e.name + " (" + e.error + ")");
-  const double elapsed_s = watch.seconds();
-  std::printf("weft gallery: %d of %d scenes rendered into %s (README.md; %s)\n",
-              n - static_cast<int>(failed.size()), n, options.out.c_str(),
-              format_duration(elapsed_s).c_str());
-  if (failed.empty()) return exit_ok;
-  std::fprintf(stderr, "weft gallery: %zu failed:\n", failed.size());
-  for (const std::string& f : failed) std::fprintf(stderr, "  %s\n", f.c_str());
-  return exit_failure;
+  if (options.task) return failures ? exit_failure : exit_ok;
+  return finish_gallery(entries, options, format_duration(watch.seconds()));
 }
 
 Command register_gallery(CLI::App& app, const std::string& command_line) {
@@ -211,6 +344,19 @@ Command register_gallery(CLI::App& app, const std::string& command_line) {
       },
       "Comma-separated scene names (file stems) to render");
   add_threads_option(*cmd, o->threads);
+  CLI::Option* slurm = add_slurm_flags(
+      *cmd, o->slurm, o->dry_run,
+      "Write OUT/slurm/gallery.sbatch (a Slurm job array, one task per scene) and "
+      "OUT/slurm/collect.sbatch (writes README.md after them) and submit both with sbatch");
+  // What the Slurm scripts run (in a group of their own: CLI11 names a hidden option nowhere,
+  // not even in its errors).
+  CLI::Option* task = cmd->add_flag("--task", o->task, "Render the scenes, leave their results")
+                          ->group("Run by the --slurm scripts")
+                          ->excludes(slurm);
+  cmd->add_flag("--collect", o->collect, "Write README.md from the tasks' results")
+      ->group("Run by the --slurm scripts")
+      ->excludes(slurm)
+      ->excludes(task);
   return {cmd, [o] { return run_gallery(*o); }};
 }
 

@@ -23,6 +23,14 @@ struct GalleryOptions {
   std::vector<std::string> only;   // scene names (file stems) to render; empty: all
   std::optional<int> threads;      // --threads (command.h), passed to every run
   std::string command_line;        // recorded in README.md
+  // Slurm (docs/cluster.md): --slurm writes OUT/slurm/gallery.sbatch, an array of one task per
+  // scene, and OUT/slurm/collect.sbatch, which writes README.md after them; the tasks run the
+  // --task (render the --only scenes, leave OUT/slurm/results/<scene>.txt), the collect
+  // job --collect.
+  bool slurm = false;
+  bool dry_run = false;
+  bool task = false;
+  bool collect = false;
 };
 
 // Frames of a scene of `frames` frames under --frames-scale: round(frames × scale), at least 1.

@@ -14,6 +14,7 @@
 #include "app/renderer_choice.h"
 #include "app/scene.h"
 #include "app/slurm_job.h"
+#include "app/slurm_resources.h"
 
 namespace weft::app {
 
@@ -46,13 +47,15 @@ sim::Matrix3X read_state(const fs::path& dir, int frame, Eigen::Index vertices) 
 }
 
 // The frames in `tasks` contiguous parts, as weft render command lines of their own.
-int submit_render(const RenderOptions& options, const std::vector<int>& selected,
-                  const fs::path& out) {
+int submit_render(const RenderOptions& options, const Scene& scene, Eigen::Index vertices,
+                  const std::vector<int>& selected, const fs::path& out) {
   SlurmArray array;
   array.job_name = "weft-render";
   array.log_dir = fs::absolute(out / "slurm");
-  array.cpus_per_task = std::max(1, options.threads.value_or(1));
   const std::size_t tasks = std::min<std::size_t>(static_cast<std::size_t>(options.tasks), selected.size());
+  TaskWork work = drawing_work(scene, static_cast<long>((selected.size() + tasks - 1) / tasks));
+  work.vertices = static_cast<long>(vertices);
+  array.resources = estimate_resources({work}, options.threads.value_or(1));
   for (std::size_t t = 0; t < tasks; ++t) {
     const std::size_t begin = selected.size() * t / tasks, end = selected.size() * (t + 1) / tasks;
     std::vector<std::string> argv{fs::read_symlink("/proc/self/exe").string(), "render",
@@ -60,7 +63,7 @@ int submit_render(const RenderOptions& options, const std::vector<int>& selected
                                   std::to_string(selected[begin]) + "-" + std::to_string(selected[end - 1]),
                                   "--every", std::to_string(options.every),
                                   "--out", fs::absolute(out).string(),
-                                  "--threads", std::to_string(array.cpus_per_task)};
+                                  "--threads", std::to_string(array.resources.cpus)};
     if (options.scene) argv.insert(argv.end(), {"--scene", fs::absolute(*options.scene).string()});
     for (const Setting& s : options.overrides) argv.insert(argv.end(), {"--set", s.key + "=" + s.value});
     array.tasks.push_back(argv);
@@ -94,7 +97,7 @@ int run_render(const RenderOptions& options) {
   std::vector<int> selected;
   for (int k = first; k <= last; k += options.every) selected.push_back(k);
   const fs::path out = options.out.value_or(options.states);
-  if (options.slurm) return submit_render(options, selected, out);
+  if (options.slurm) return submit_render(options, scene, mesh.vertex_count(), selected, out);
   // Each state file is read once: without a camera every frame's, for weft run's framing (the
   // cloth over frames 0..N), keeping the selected ones; otherwise only the selected ones.
   std::vector<sim::Matrix3X> states(selected.size());
@@ -150,14 +153,12 @@ Command register_render(CLI::App& app, const std::string&) {
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");
   add_render_options(*cmd, o->overrides);
   add_threads_option(*cmd, o->threads);
-  CLI::Option* slurm = cmd->add_flag(
-      "--slurm", o->slurm,
+  CLI::Option* slurm = add_slurm_flags(
+      *cmd, o->slurm, o->dry_run,
       "Write OUT/slurm/render.sbatch, a Slurm job array drawing the frames in --tasks parts, "
       "and submit it with sbatch (--threads N: CPUs per task, default 1)");
   check_range(cmd->add_option("--tasks", o->tasks, "Array tasks for --slurm (default 4)"),
               Range::closed(1, 100000))
-      ->needs(slurm);
-  cmd->add_flag("--dry-run", o->dry_run, "With --slurm: write and print the script, do not submit it")
       ->needs(slurm);
   return {cmd, [o] { return run_render(*o); }};
 }

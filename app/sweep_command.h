@@ -23,13 +23,21 @@ struct SweepOptions {
   // largest wall time (taken as the most accurate).
   std::optional<int> reference;
   std::string command_line;                    // recorded in run.txt
+  // Slurm (docs/cluster.md): --slurm writes OUT/slurm/sweep.sbatch, an array of one task per
+  // point, and OUT/slurm/collect.sbatch, which merges their results after them; the tasks run
+  // --point K, the collect job --collect (app/sweep_point.h).
+  bool slurm = false;
+  bool dry_run = false;           // with slurm: write and print the scripts, submit nothing
+  std::optional<int> point;       // run only this point (1-based) and leave its result
+  bool collect = false;           // merge the points' results
 };
 
 // Adds `weft sweep` to the command line.
 Command register_sweep(CLI::App& app, const std::string& command_line);
 
-// Runs the sweep; returns an ExitCode (app/run_command.h): exit_ok, or exit_diverged when no
-// run finished. Bad input (a --set key or value, --frames, --threads, --reference) throws SceneError
+// Runs the sweep; returns an ExitCode (app/run_command.h): exit_ok, exit_diverged when every
+// run diverged, exit_failure when a run failed (it threw, or its Slurm task left no result: the
+// others are still merged). Bad input (a --set key or value, --frames, --threads, --reference) throws SceneError
 // before anything is simulated or written.
 int run_sweep(const SweepOptions& options);
 

@@ -23,7 +23,7 @@ constexpr std::size_t kMaxRunRows = 30;
 std::vector<Series> front_lines(const std::vector<PlotRun>& runs) {
   std::vector<std::size_t> front;
   for (std::size_t k = 0; k < runs.size(); ++k)
-    if (runs[k].pareto && !runs[k].diverged) front.push_back(k);
+    if (runs[k].pareto && !runs[k].diverged && !runs[k].failed) front.push_back(k);
   std::sort(front.begin(), front.end(),
             [&](std::size_t a, std::size_t b) { return runs[a].time_s < runs[b].time_s; });
   std::vector<Series> lines;
@@ -52,7 +52,7 @@ Series markers(const std::vector<PlotRun>& runs, const char* name, bool pareto, 
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const PlotRun& r = runs[k];
     const bool on_edge = !(r.error_m > 0.0);
-    if (r.diverged || r.pareto != pareto || on_edge != reference) continue;
+    if (r.diverged || r.failed || r.pareto != pareto || on_edge != reference) continue;
     s.x.push_back(r.time_s);
     s.y.push_back(r.error_m);  // ≤ 0 falls on the log axis' low end
     s.point_labels.push_back(std::to_string(k + 1));
@@ -76,7 +76,8 @@ std::vector<LegendEntry> legend(const std::vector<PlotRun>& runs) {
     std::string line = std::to_string(k + 1) + (k + 1 < 10 ? "      " : "    ") + r.label;
     if (r.reference) line += " (reference)";
     if (r.diverged) line += " (diverged)";
-    out.push_back({line, Swatch::none, {}, r.diverged ? chart::kLightGrey : r.pareto ? kPareto : chart::kInk});
+    if (r.failed) line += " (failed: no result)";
+    out.push_back({line, Swatch::none, {}, r.diverged || r.failed ? chart::kLightGrey : r.pareto ? kPareto : chart::kInk});
   }
   out.push_back({""});
   for (const char* note : {"error: RMS distance from the reference at the same",
@@ -93,7 +94,7 @@ chart::Figure sweep_chart(const std::vector<PlotRun>& runs, const std::string& t
   // it exactly) sits on the bottom edge at its time.
   std::vector<double> times, errors;
   for (const PlotRun& r : runs) {
-    if (r.diverged) continue;
+    if (r.diverged || r.failed) continue;
     times.push_back(r.time_s);
     if (r.error_m > 0.0) errors.push_back(r.error_m);
   }

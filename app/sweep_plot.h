@@ -16,6 +16,7 @@ struct PlotRun {
   bool pareto = false;
   bool reference = false;  // error 0 by definition: drawn on the bottom edge of the plot
   bool diverged = false;   // not drawn; listed in the legend
+  bool failed = false;     // no result (a Slurm task that did not finish): as diverged
 };
 
 // Runs are numbered from 1 in the order given (the rows of sweep.csv).

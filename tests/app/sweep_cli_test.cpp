@@ -124,8 +124,10 @@ TEST(SweepCli, DivergedRunIsARowNotAnError) {
   const auto rows = read_csv(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 3u);
   const std::vector<std::string>& header = rows[0];
-  ASSERT_EQ(header.size(), 12u);
+  ASSERT_EQ(header.size(), 13u);
   EXPECT_EQ(header[9], "diverged");
+  EXPECT_EQ(header[12], "failed");
+  EXPECT_EQ(rows[2][12], "0");  // diverged is a result, not a failure
   EXPECT_EQ(rows[1][9], "0");
   EXPECT_EQ(rows[1][11], "1");  // the reference: the only run that finished
   EXPECT_EQ(rows[2][9], "1");
