@@ -8,7 +8,7 @@
 // converges in at most one iteration, holds at two, and shrinks from three on (faster still
 // when the projection misses its tolerance) — the count of iterations, not a timer, so the
 // chosen steps are the same bits on every machine. A prediction far from the constraints
-// (the flat start: the edges beside the pins stretch by g h²/l) is not projected at all: a step
+// (the flat start: the row below a pinned edge drops by g h²) is not projected at all: a step
 // whose unconstrained prediction strains an edge beyond `max_prediction_strain` is undone and
 // redone shorter — strain grows as h², so at h √(0.9 ε_max/ε) — at the cost of one
 // unconstrained step. Steps land exactly on the end of each advance() (a frame): the remaining
