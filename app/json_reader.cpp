@@ -416,11 +416,20 @@ double ObjectReader::quantity(const std::string& key, Quantity kind, std::option
 }
 
 std::optional<double> ObjectReader::quantity_or_keyword(const std::string& key, Quantity kind,
-                                                        const std::string& keyword,
+                                                        const std::vector<std::string>& keywords,
                                                         const Range& range) {
   const Json* v = find(key);
-  if (!v || (v->is_string() && v->get<std::string>() == keyword)) return std::nullopt;
-  return read_quantity(*v, Where{m_file, path_of(key)}, kind, range, "'" + keyword + "' or ");
+  if (!v) return std::nullopt;
+  std::string alternatives;
+  for (const std::string& word : keywords) {
+    if (v->is_string() && v->get<std::string>() == word) return std::nullopt;
+    alternatives += "'" + word + "' or ";
+  }
+  return read_quantity(*v, Where{m_file, path_of(key)}, kind, range, alternatives);
+}
+
+bool ObjectReader::holds_keyword(const std::string& key, const std::string& keyword) {
+  return has(key) && m_object->at(key).is_string() && m_object->at(key).get<std::string>() == keyword;
 }
 
 double ObjectReader::angle_deg(const std::string& key, std::optional<double> fallback_deg,

@@ -89,9 +89,13 @@ class ObjectReader {
   // A number in SI units or a string with units (app/units.h), converted to SI; `range` is in SI.
   double quantity(const std::string& key, Quantity kind, std::optional<double> fallback,
                   const Range& range = {});
-  // A quantity or the string `keyword` (e.g. "auto"); absent or `keyword` give nullopt.
+  // A quantity or one of the strings `keywords` (e.g. "auto"); absent or a keyword give nullopt
+  // (holds_keyword() tells which).
   std::optional<double> quantity_or_keyword(const std::string& key, Quantity kind,
-                                            const std::string& keyword, const Range& range = {});
+                                            const std::vector<std::string>& keywords,
+                                            const Range& range = {});
+  // Whether the key is present and holds exactly the string `keyword`.
+  bool holds_keyword(const std::string& key, const std::string& keyword);
   // An angle in degrees: a bare number is in degrees (the one exception to "numbers are SI"),
   // a string has units ("40 deg", "0.7 rad"). `range` is in degrees.
   double angle_deg(const std::string& key, std::optional<double> fallback_deg,

@@ -405,6 +405,18 @@ sim::SelfCollisionSettings read_self_collision(ObjectReader r, Scene::CrossingPo
   return c;
 }
 
+// "simulation.adaptive_step" (sim/adaptive_step.h).
+void read_adaptive_step(ObjectReader r, sim::AdaptiveStepSettings& a) {
+  a.min_step_s = r.quantity("min_step", Quantity::time, a.min_step_s, Range::gt(0.0));
+  a.max_step_s = r.quantity("max_step", Quantity::time, a.max_step_s, Range::gt(0.0));
+  a.max_prediction_strain =
+      r.number("max_prediction_strain", a.max_prediction_strain, Range::gt(0.0).le(1.0));
+  if (a.max_step_s < a.min_step_s)
+    r.fail("max_step", "expected at least min_step (" + std::to_string(a.min_step_s) +
+                           " s), got " + std::to_string(a.max_step_s) + " s");
+  r.finish();
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
                      Scene::CrossingPolicy& crossings) {
@@ -422,7 +434,14 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));
-  s.time_step_s = r.quantity_or_keyword("time_step", Quantity::time, "auto", Range::gt(0.0));
+  s.time_step_s =
+      r.quantity_or_keyword("time_step", Quantity::time, {"auto", "adaptive"}, Range::gt(0.0));
+  s.adaptive_step.enabled = r.holds_keyword("time_step", "adaptive");
+  if (r.has("adaptive_step")) {
+    if (!s.adaptive_step.enabled)
+      r.fail("adaptive_step", "applies only with time_step \"adaptive\"");
+    read_adaptive_step(r.object("adaptive_step"), s.adaptive_step);
+  }
   s.time_step_safety = r.number("time_step_safety", s.time_step_safety, Range::gt(0.0).le(1.0));
   s.max_speed_m_s = r.quantity("max_speed", Quantity::speed, s.max_speed_m_s, Range::gt(0.0));
   s.max_strain = r.number("max_strain", s.max_strain, Range::gt(0.0));

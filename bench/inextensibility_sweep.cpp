@@ -12,11 +12,14 @@
 //   build/bench/inextensibility_sweep [--sizes 32,64,128] [--step 0.0083333] [--backend NAME]
 //                                     [--cg TOLERANCE] [--quick] [--methods SUBSTRING]
 //                                     [--reuse N] [--threads N] [--frames N] [--no-hold]
+//                                     [--adaptive STRAIN] [--max-step SECONDS]
 // --reuse: fast projection's CG iterations on a reused factorization (0: a factorization per
 // iteration, the paper's); --threads: implicit Euler's CG threads (0: all); --frames: fewer
 // frames for the largest sizes (the rows then cover only that start); --no-hold: project the
 // top edge between the pins instead of holding it (sim/constraints/taut_chains.h), to measure
-// what holding it buys. After the rows, the
+// what holding it buys; --adaptive: fast projection with the adaptive step
+// (sim/adaptive_step.h) aiming its prediction's strain at STRAIN, its steps at most --max-step
+// (default 1/24 s; --step is then unused). After the rows, the
 // targets of issue 18 for fast projection at tol 1e-2, with the growth exponent.
 #include <algorithm>
 #include <cmath>
@@ -54,6 +57,8 @@ struct Row {
   double max_strain = 0.0, mean_strain = 0.0;
   double max_strain_every_frame = 0.0;  // over every frame, the first 0.5 s included
   long unconverged = 0;
+  double steps_per_frame = 0.0;
+  long rejected = 0;  // adaptive steps redone shorter
   bool diverged = false;
 };
 
@@ -65,6 +70,8 @@ struct Options {
   int threads = 0;  // conjugate gradients' matrix–vector product
   int frames = 48;
   bool hold_taut_chains = true;
+  double adaptive_strain = 0.0;  // > 0: the adaptive step, aiming at this prediction strain
+  double max_step_s = 1.0 / 24.0;
 };
 
 Row run(Index n, const Method& method, const Options& options) {
@@ -92,6 +99,11 @@ Row run(Index n, const Method& method, const Options& options) {
   s.projection.reuse_iterations = options.reuse_iterations;
   s.projection.hold_taut_chains = options.hold_taut_chains;
   s.solver_threads = options.threads;
+  if (options.adaptive_strain > 0.0 && method.projection == ProjectionMethod::fast_projection) {
+    s.adaptive_step.enabled = true;
+    s.adaptive_step.max_prediction_strain = options.adaptive_strain;
+    s.adaptive_step.max_step_s = options.max_step_s;
+  }
   Simulator sim(mesh, wool, resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), s);
 
   Row row;
@@ -117,6 +129,7 @@ Row run(Index n, const Method& method, const Options& options) {
     cg_iterations += st.cg_iterations;
     row.max_iterations = std::max(row.max_iterations, st.max_projection_iterations);
     row.unconverged += st.unconverged_steps;
+    row.rejected += st.rejected_steps;
     const Diagnostics d = sim.diagnostics();
     row.max_strain_every_frame = std::max(row.max_strain_every_frame, d.max_strain);
     if (frame / 24.0 > 0.5) {
@@ -131,6 +144,7 @@ Row run(Index n, const Method& method, const Options& options) {
   row.iterations_per_step = static_cast<double>(iterations) / static_cast<double>(steps);
   row.factorizations_per_step = static_cast<double>(factorizations) / static_cast<double>(steps);
   row.cg_per_step = static_cast<double>(cg_iterations) / static_cast<double>(steps);
+  row.steps_per_frame = static_cast<double>(steps) / options.frames;
   row.mean_strain = strain_frames > 0 ? strain_sum / strain_frames : 0.0;
   return row;
 }
@@ -188,8 +202,10 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--no-hold")) options.hold_taut_chains = false;
     else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) only = argv[++i];
+    else if (!std::strcmp(argv[i], "--adaptive") && i + 1 < argc) options.adaptive_strain = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options.max_step_s = std::atof(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS]\n", argv[0]);
       return 1;
     }
   }
@@ -211,15 +227,21 @@ int main(int argc, char** argv) {
       if (m.name.find(only) != std::string::npos) kept.push_back(m);
     methods = kept;
   }
-  std::printf("two-corner hang, 1 m wool, %d frames at 24 fps, implicit Euler h = %.4g s (%s), "
+  char step[96];
+  if (options.adaptive_strain > 0.0)
+    std::snprintf(step, sizeof step, "adaptive to a prediction strain of %g, at most %.4g s",
+                  options.adaptive_strain, options.max_step_s);
+  else
+    std::snprintf(step, sizeof step, "h = %.4g s", options.step_s);
+  std::printf("two-corner hang, 1 m wool, %d frames at 24 fps, implicit Euler %s (%s), "
               "projection %s, top edge %s; strain over frames after 0.5 s\n",
-              options.frames, options.step_s,
+              options.frames, step,
               options.cg_tolerance > 0.0 ? ("CG to " + std::to_string(options.cg_tolerance)).c_str()
                                          : "direct",
               sparse_backend_name(options.backend),
               options.hold_taut_chains ? "held (taut chain)" : "projected (--no-hold)");
-  std::printf("%-6s %-26s %10s %8s %9s %9s %8s %7s %11s %11s %7s\n", "size", "method", "ms/frame",
-              "cpu ms", "iter/step", "fact/step", "CG/step", "max it", "max strain", "mean strain", "unconv");
+  std::printf("%-6s %-26s %10s %8s %9s %9s %8s %7s %11s %11s %7s %11s %8s\n", "size", "method", "ms/frame",
+              "cpu ms", "iter/step", "fact/step", "CG/step", "max it", "max strain", "mean strain", "unconv", "steps/frame", "rejected");
   std::vector<std::pair<int, Row>> target_rows;  // fast projection at tol 1e-2, by size
   for (int n : sizes) {
     for (const Method& m : methods) {
@@ -230,9 +252,9 @@ int main(int argc, char** argv) {
         std::printf("%-6s %-26s diverged\n", size.c_str(), m.name.c_str());
         continue;
       }
-      std::printf("%-6s %-26s %10.2f %8.2f %9.2f %9.2f %8.1f %7d %10.4f%% %10.4f%% %7ld\n", size.c_str(),
+      std::printf("%-6s %-26s %10.2f %8.2f %9.2f %9.2f %8.1f %7d %10.4f%% %10.4f%% %7ld %11.2f %8ld\n", size.c_str(),
                   m.name.c_str(), r.ms_per_frame, r.cpu_ms_per_frame, r.iterations_per_step, r.factorizations_per_step, r.cg_per_step, r.max_iterations, 100 * r.max_strain, 100 * r.mean_strain,
-                  r.unconverged);
+                  r.unconverged, r.steps_per_frame, r.rejected);
       std::fflush(stdout);
     }
   }

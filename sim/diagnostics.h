@@ -33,6 +33,8 @@ struct StepStatistics {
   long failed_implicit_solves = 0;
   long cg_iterations = 0;             // implicit Euler by conjugate gradients, summed over steps
   long max_self_contacts = 0;         // self-collision contacts in any one step
+  double min_step_s = 0.0, max_step_s = 0.0;  // the shortest and longest step (0: none taken)
+  long rejected_steps = 0;  // adaptive steps redone shorter (sim/adaptive_step.h)
 };
 
 enum class Phase { forces, integrate, project, collide, check, pins, obstacles, filter, count };

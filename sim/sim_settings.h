@@ -20,6 +20,16 @@
 
 namespace weft::sim {
 
+// simulation.time_step: "adaptive" (sim/adaptive_step.h): implicit Euler with fast projection
+// only; the step follows the projection's iterations, and a step whose unconstrained
+// prediction strains an edge beyond max_prediction_strain is redone shorter.
+struct AdaptiveStepSettings {
+  bool enabled = false;
+  double min_step_s = 1.0 / 960.0;
+  double max_step_s = 1.0 / 24.0;       // also the first step's length
+  double max_prediction_strain = 0.25;  // ε_max
+};
+
 struct SimSettings {
   ClothModel model = ClothModel::mass_spring;  // the forces (sim/cloth_model.h)
   Integrator integrator = Integrator::symplectic_euler;
@@ -35,6 +45,7 @@ struct SimSettings {
   // implicit_default_step_s.
   std::optional<double> time_step_s;
   double time_step_safety = 0.8;
+  AdaptiveStepSettings adaptive_step;  // when enabled, time_step_s is unused
   double implicit_default_step_s = 1.0 / 120.0;
   // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
   // explosion, not physics: free fall reaches 100 m/s only after 10 s).

@@ -79,6 +79,16 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
                                ? settings.implicit_default_step_s
                                : settings.time_step_safety * m_critical_step_s;
   m_time_step_s = settings.time_step_s.value_or(automatic);
+  if (settings.adaptive_step.enabled) {
+    if (settings.integrator != Integrator::implicit_euler ||
+        settings.projection.method != ProjectionMethod::fast_projection)
+      throw std::invalid_argument(
+          "simulation.time_step: \"adaptive\" follows the strain of fast projection's "
+          "prediction: it needs integrator implicit_euler and constraints.method "
+          "fast_projection");
+    m_adaptive = std::make_unique<AdaptiveStep>(settings.adaptive_step);
+    m_time_step_s = settings.adaptive_step.max_step_s;
+  }
   m_integrator_settings.implicit_solve.method = settings.implicit_solve;
   m_integrator_settings.implicit_solve.backend = settings.sparse_backend;
   m_integrator_settings.implicit_solve.cg_tolerance = settings.implicit_cg_tolerance;
@@ -139,12 +149,36 @@ long Simulator::substeps(double dt_s) const {
 
 void Simulator::advance(double dt_s) {
   if (dt_s <= 0.0) return;
+  if (m_adaptive) {
+    advance_adaptively(dt_s);
+    return;
+  }
   const long n = substeps(dt_s);
   if (!m_energy_guard_started) start_energy_guard();
   const double h = dt_s / static_cast<double>(n);
   const double t_end = m_state.time_s + dt_s;
   for (long s = 0; s < n; ++s) step(h);
   m_state.time_s = t_end;  // no drift from summing substeps
+  check_growth();
+}
+
+void Simulator::advance_adaptively(double dt_s) {
+  if (!m_energy_guard_started) start_energy_guard();
+  const double t_end = m_state.time_s + dt_s;
+  double remaining = dt_s;
+  long attempts = 0;
+  while (remaining > 0.0) {
+    if (static_cast<double>(++attempts) > max_substeps)
+      throw std::invalid_argument("the adaptive step took more than " +
+                                  std::to_string(static_cast<long>(max_substeps)) +
+                                  " steps for one advance");
+    const double h = m_adaptive->next_step(remaining);
+    if (!attempt_step(h, /*may_reject=*/true)) continue;
+    // The last step ends exactly at t_end (no drift from summing steps).
+    remaining = h < remaining ? t_end - m_state.time_s : 0.0;
+    if (remaining <= 1e-12 * dt_s) remaining = 0.0;
+  }
+  m_state.time_s = t_end;
   check_growth();
 }
 
@@ -179,9 +213,12 @@ const DynamicRelaxation* Simulator::relaxation() const {
   return dynamic_cast<const DynamicRelaxation*>(m_integrator.get());
 }
 
-void Simulator::step(double h_s) {
+void Simulator::step(double h_s) { attempt_step(h_s, /*may_reject=*/false); }
+
+bool Simulator::attempt_step(double h_s, bool may_reject) {
   const double t0 = m_state.time_s, t1 = t0 + h_s;
   m_x_start = m_state.x;
+  if (may_reject) m_v_start = m_state.v;
   m_timers.time(Phase::pins, [&] { drive_pins(h_s); });
   const StepReport integrated =
       m_timers.time(Phase::integrate, [&] { return m_integrator->step(m_system, m_state, h_s); });
@@ -189,14 +226,31 @@ void Simulator::step(double h_s) {
   if (!integrated.solved) ++m_stats.failed_implicit_solves;
   m_stats.cg_iterations += integrated.cg_iterations;
   m_timers.time(Phase::pins, [&] { place_pins(t1); });
+  if (m_adaptive) {
+    const double strain = max_edge_strain(m_contacts->projector()->constraints(), m_state.x);
+    if (m_adaptive->reject(h_s, strain) && may_reject) {
+      m_state.x = m_x_start;
+      m_state.v = m_v_start;
+      ++m_stats.rejected_steps;
+      return false;
+    }
+  }
   m_timers.time(Phase::obstacles, [&] { m_contacts->pose_obstacles(t0, t1); });
+  const long iterations_before = m_stats.projection_iterations;
+  const long unconverged_before = m_stats.unconverged_steps;
   const bool corrected = m_contacts->resolve(m_x_start, m_state.x, h_s, m_timers, m_stats);
+  if (m_adaptive)
+    m_adaptive->accept(h_s, static_cast<int>(m_stats.projection_iterations - iterations_before),
+                       m_stats.unconverged_steps == unconverged_before);
   m_timers.time(Phase::filter,
                 [&] { filter_velocities(corrected, integrated.kinetic_reset, h_s); });
   m_state.time_s = t1;
   ++m_steps;
+  m_stats.min_step_s = m_stats.steps == 0 ? h_s : std::min(m_stats.min_step_s, h_s);
+  m_stats.max_step_s = std::max(m_stats.max_step_s, h_s);
   ++m_stats.steps;
   m_timers.time(Phase::check, [&] { check_finite(); });
+  return true;
 }
 
 // Every integrator leaves a pinned vertex's velocity as it is (zero acceleration), so the

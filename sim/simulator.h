@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/adaptive_step.h"
 #include "sim/constraints/taut_chains.h"
 #include "sim/contacts_and_constraints.h"
 #include "sim/diagnostics.h"
@@ -48,8 +49,9 @@ class Simulator {
             const SimSettings& settings);
   ~Simulator();
 
-  // Advances by exactly dt_s, in equal substeps of at most time_step(). Throws DivergenceError,
-  // and std::invalid_argument as substeps().
+  // Advances by exactly dt_s, in equal substeps of at most time_step(), or with the adaptive
+  // step (sim/adaptive_step.h) in steps it chooses. Throws DivergenceError, and
+  // std::invalid_argument as substeps().
   void advance(double dt_s);
   // The number of equal steps, each at most time_step(), that advance(dt_s) takes: at least 1.
   // Throws std::invalid_argument when that is more than max_substeps (a time step of 1e-300 s,
@@ -59,7 +61,8 @@ class Simulator {
   // simulated time). Throws std::invalid_argument naming a vertex that is not pinned.
   void set_pin_path(const std::vector<Index>& vertices, const PinPath& path);
   // One step of h seconds, as named, timed phases: drive pins → integrate → place pins → move
-  // obstacles → contacts and constraints → velocity filter → check.
+  // obstacles → contacts and constraints → velocity filter → check. With the adaptive step, the
+  // step is never rejected here, but its prediction still sets the next planned step.
   void step(double h_s);
   // Starts the cloth from these positions (#V×3, m) instead of its flat rest state, at rest:
   // e.g. a tension-field fold pattern (sim/folds/). Pins hold their vertices where they are
@@ -77,7 +80,10 @@ class Simulator {
   // at its rest length (fast projection only; sim/constraints/taut_chains.h). Decided at
   // construction and again when initial positions or pin paths are set.
   const TautChains& taut_chains() const { return m_taut; }
+  // The fixed step, or the adaptive step's longest.
   double time_step() const { return m_time_step_s; }
+  // The adaptive step's controller; null unless simulation.time_step is "adaptive".
+  const AdaptiveStep* adaptive_step() const { return m_adaptive.get(); }
   double critical_time_step() const { return m_critical_step_s; }
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
@@ -108,7 +114,10 @@ class Simulator {
   Eigen::RowVector3d pin_position(const MovingPin& pin, double time_s) const;
   void drive_pins(double h_s);  // sets moving pins' velocities to reach their path at t + h
   void place_pins(double time_s);  // puts moving pins exactly on their path
-  void integrate(double h_s);
+  // step(h_s); with may_reject and the adaptive step, a step whose prediction strays too far is
+  // undone (positions, velocities) before its contacts and constraints: returns false.
+  bool attempt_step(double h_s, bool may_reject);
+  void advance_adaptively(double dt_s);
   void filter_velocities(bool corrected, bool kinetic_reset, double h_s);
   void check_finite() const;
   void start_energy_guard();
@@ -137,6 +146,8 @@ class Simulator {
   std::vector<EdgeConstraint> m_warp_weft_edges;  // for the strain diagnostic
   State m_state;
   Matrix3X m_x_start;  // #V×3 start-of-step positions: velocity filter, friction
+  Matrix3X m_v_start;  // #V×3 start-of-step velocities, kept for an adaptive step's rejection
+  std::unique_ptr<AdaptiveStep> m_adaptive;
   // The energy guard of check_growth(): the total energy at the first advance() and how much
   // it may grow; none when pins, obstacles or air feed energy in.
   bool m_energy_guard_started = false;

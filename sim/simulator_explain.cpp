@@ -19,8 +19,13 @@ std::vector<std::string> Simulator::explain() const {
 
 std::string Simulator::explain_integrate() const {
   std::ostringstream line;
-  line << "integrate: " << integrator_name(m_settings.integrator) << ", h = " << 1e3 * m_time_step_s
-       << " ms";
+  line << "integrate: " << integrator_name(m_settings.integrator);
+  if (m_adaptive)
+    line << ", adaptive h from " << 1e3 * m_settings.adaptive_step.min_step_s << " to "
+         << 1e3 * m_settings.adaptive_step.max_step_s
+         << " ms (following the projection's iterations)";
+  else
+    line << ", h = " << 1e3 * m_time_step_s << " ms";
   if (m_settings.integrator == Integrator::implicit_euler) {
     if (m_settings.implicit_solve == ImplicitSolve::direct)
       line << ", sparse direct solve (" << sparse_backend_name(m_settings.sparse_backend) << ")";

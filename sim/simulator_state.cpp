@@ -19,6 +19,7 @@ void Simulator::save_state(StateWriter& out) const {
   out.pod(m_start_energy_J.value_or(0.0));
   out.pod(m_energy_margin_J);
   out.pod(m_stats);
+  out.pod(m_adaptive ? m_adaptive->planned_step_s() : 0.0);
   m_integrator->save_state(out);
   m_contacts->save_state(out);
   out.section("simulator end");
@@ -38,6 +39,8 @@ void Simulator::restore_state(StateReader& in) {
   m_start_energy_J = has_start_energy ? std::optional<double>(start_energy_J) : std::nullopt;
   in.pod(m_energy_margin_J);
   in.pod(m_stats);
+  const double planned_step_s = in.pod<double>();
+  if (m_adaptive) m_adaptive->set_planned_step_s(planned_step_s);
   m_integrator->restore_state(in);
   m_contacts->restore_state(in);
   in.section("simulator end");

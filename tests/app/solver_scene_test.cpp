@@ -126,6 +126,50 @@ TEST(SolverScene, WrongEnumsListTheChoices) {
             "'triangle_edges', got the string 'all'");
 }
 
+// "adaptive" time steps (sim/adaptive_step.h): the keyword, its settings, and their mistakes.
+TEST(SolverScene, AnAdaptiveTimeStepParsesWithItsSettings) {
+  Json j = solver_scene();
+  j["simulation"]["time_step"] = "adaptive";
+  sim::SimSettings s = parse(j).sim;
+  EXPECT_TRUE(s.adaptive_step.enabled);
+  EXPECT_FALSE(s.time_step_s.has_value());
+  EXPECT_EQ(s.adaptive_step.max_step_s, sim::AdaptiveStepSettings{}.max_step_s);
+  j["simulation"]["adaptive_step"] = {
+      {"min_step", "0.5 ms"}, {"max_step", "20 ms"}, {"max_prediction_strain", 0.02}};
+  s = parse(j).sim;
+  EXPECT_DOUBLE_EQ(s.adaptive_step.min_step_s, 5e-4);
+  EXPECT_DOUBLE_EQ(s.adaptive_step.max_step_s, 0.02);
+  EXPECT_EQ(s.adaptive_step.max_prediction_strain, 0.02);
+  j["simulation"]["time_step"] = "auto";
+  EXPECT_FALSE(parse(solver_scene()).sim.adaptive_step.enabled);
+}
+
+TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
+  Json j = solver_scene();
+  j["simulation"]["time_step"] = "adaptve";
+  EXPECT_CONTAINS(error_of(j), "simulation.time_step: expected 'auto' or 'adaptive' or ");
+  j["simulation"]["time_step"] = "1 ms";
+  j["simulation"]["adaptive_step"] = {{"max_step", "20 ms"}};
+  EXPECT_EQ(error_of(j),
+            "scene.json: simulation.adaptive_step: applies only with time_step \"adaptive\"");
+  j["simulation"]["time_step"] = "adaptive";
+  j["simulation"]["adaptive_step"] = {{"min_step", "30 ms"}, {"max_step", "20 ms"}};
+  EXPECT_CONTAINS(error_of(j), "simulation.adaptive_step.max_step: expected at least min_step");
+  j["simulation"]["adaptive_step"] = {{"max_prediction_strain", 0}};
+  EXPECT_CONTAINS(error_of(j), "simulation.adaptive_step.max_prediction_strain");
+  // It follows fast projection's prediction: another method or integrator is refused when the
+  // simulator is made.
+  j["simulation"].erase("adaptive_step");
+  j["simulation"]["constraints"] = {{"method", "none"}};
+  const Scene scene = parse(j);
+  try {
+    (void)make_simulator(scene);
+    ADD_FAILURE() << "an adaptive step without fast projection was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_CONTAINS(std::string(e.what()), "\"adaptive\" follows the strain of fast projection");
+  }
+}
+
 TEST(SolverScene, CholmodIsAnErrorOnlyWhenTheBuildLacksIt) {
   Json j = solver_scene();
   j["simulation"]["linear_solver"] = "cholmod";
