@@ -33,13 +33,6 @@ ContactsAndConstraints::ContactsAndConstraints(const ClothMesh& mesh,
   m_posed_obstacles = posed_obstacles(settings.obstacles, settings.obstacle_motions, 0.0);
   if (settings.self_collision.enabled)
     m_self = std::make_unique<SelfCollision>(mesh, settings.self_collision);
-  if (m_self && m_projector && settings.projection.method == ProjectionMethod::fast_projection) {
-    m_contact_rows = std::make_unique<SelfContactRows>(mesh, settings.self_collision.thickness_m,
-                                                       settings.self_collision.neighbourhood_edges);
-    m_contact_projection = std::make_unique<ContactProjection>(
-        m_projector->constraints(), settings.projection.tolerance,
-        settings.projection.max_iterations, settings.sparse_backend);
-  }
 }
 
 ContactsAndConstraints::~ContactsAndConstraints() = default;
@@ -54,20 +47,11 @@ void ContactsAndConstraints::pose_obstacles(double t0_s, double t1_s) {
 
 bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, double h_s,
                                      PhaseTimers& timers, StepStatistics& stats) {
-  if (m_contact_rows) {
-    // The rows of the pairs that can meet between x_start and about the prediction x: the
-    // corrections add up to half a mean edge beyond it.
-    timers.time(Phase::collide, [&] {
-      m_contact_rows->gather(x_start, x, m_inv_mass, 0.5 * m_contact_rows->mean_edge_m());
-    });
-  }
   bool collided = timers.time(Phase::collide, [&] { return collide(x_start, x, true, stats); });
   if (!m_projector) return collided;
   ProjectionResult total;
   for (int round = 0; round <= kContactRounds; ++round) {
-    const ProjectionResult r = timers.time(Phase::project, [&] {
-      return m_contact_rows ? project_contacts(x, h_s) : project(x, h_s);
-    });
+    const ProjectionResult r = timers.time(Phase::project, [&] { return project(x, h_s); });
     total.iterations += r.iterations;
     total.solve_s += r.solve_s;
     total.factorizations += r.factorizations;
@@ -86,31 +70,6 @@ ProjectionResult ContactsAndConstraints::project(Matrix3X& x, double h_s) {
   const ProjectionResult r = m_projector->project(x);
   if (m_tension) m_tension->accumulate(m_projector->multipliers(), h_s);
   return r;
-}
-
-ProjectionResult ContactsAndConstraints::project_contacts(Matrix3X& x, double h_s) {
-  const double distance_m = m_contact_rows->distance_m();
-  const double allowed_m = -ContactProjection::contact_tolerance * distance_m;
-  // Fast projection alone, kept when it leaves every row within the tolerance.
-  Matrix3X plain = x;
-  const ProjectionResult r = m_projector->project(plain);
-  if (m_contact_rows->worst_violation(plain) >= allowed_m) {
-    x = plain;
-    if (m_tension) m_tension->accumulate(m_projector->multipliers(), h_s);
-    return r;
-  }
-  // Else the projection with the rows, from where fast projection started: its result had
-  // pushed some pair through, and the rows are nearer to hold from before that.
-  const ContactProjectionResult c =
-      m_contact_projection->project(x, m_inv_mass, m_contact_rows->rows(), distance_m,
-                                    m_contact_rows->lateral_m());
-  if (m_tension) m_tension->accumulate(m_contact_projection->multipliers(), h_s);
-  ProjectionResult out = c.projection;
-  out.iterations += r.iterations;
-  out.solve_s += r.solve_s;
-  out.factorizations += r.factorizations;
-  out.reuse_iterations += r.reuse_iterations;
-  return out;
 }
 
 void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& stats) {

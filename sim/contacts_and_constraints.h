@@ -15,9 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/collision/self_contact_rows.h"
 #include "sim/constraints/carried_tension.h"
-#include "sim/constraints/contact_projection.h"
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
@@ -57,9 +55,6 @@ class ContactsAndConstraints {
 
  private:
   ProjectionResult project(Matrix3X& x, double h_s);  // one projection; carries its tension
-  // project() when it leaves every self-contact row within the contact tolerance, else the
-  // projection with the rows (contact_projection.h) from x; carries its tension.
-  ProjectionResult project_contacts(Matrix3X& x, double h_s);
   bool collide(const Matrix3X& x_start, Matrix3X& x, bool with_friction, StepStatistics& stats);
   static void record(const ProjectionResult& r, StepStatistics& stats);  // a step's, summed
   static constexpr int kContactRounds = 2;  // push-outs between projections, per step
@@ -69,10 +64,6 @@ class ContactsAndConstraints {
   std::unique_ptr<ConstraintProjector> m_projector;
   std::shared_ptr<CarriedTensionTerm> m_tension;  // when fast projection carries tension
   std::unique_ptr<SelfCollision> m_self;          // when settings.self_collision.enabled
-  // With self-collision and fast projection: the step's self-contact rows and the projection
-  // that solves them with the edges (issue 23).
-  std::unique_ptr<SelfContactRows> m_contact_rows;
-  std::unique_ptr<ContactProjection> m_contact_projection;
   std::vector<Obstacle> m_posed_obstacles;        // where the obstacles are at the step's end
   std::vector<RigidPose> m_obstacle_step_motions;  // each one's motion over the step; empty: none
 };
