@@ -58,7 +58,7 @@ std::unique_ptr<ConstraintProjector> make_projector(const ClothMesh& mesh,
                                                     const ProjectionSettings& settings,
                                                     SparseBackend backend) {
   if (settings.method != ProjectionMethod::none && settings.edges == ConstrainedEdges::warp_weft)
-    mesh.require_grid("projection onto inextensible warp/weft edges (simulation.projection.edges "
+    mesh.require_grid("projection onto inextensible warp/weft edges (simulation.constraints.edges "
                       "warp_weft)");
   switch (settings.method) {
     case ProjectionMethod::none:

@@ -228,7 +228,7 @@ TEST(ClothMeshErrors, FastProjectionOnATriangleMeshNamesTheReason) {
   const fs::path dir = test_dir();
   write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
   Json scene = sheet_scene("baraff_witkin", {{"mesh", "triangles.obj"}});
-  scene["simulation"]["projection"] = {{"method", "fast_projection"}};
+  scene["simulation"]["constraints"] = {{"method", "fast_projection"}};
   const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());
   try {
     make_simulator(s);
