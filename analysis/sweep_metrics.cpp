@@ -8,6 +8,7 @@ namespace weft::app {
 
 sim::Vec3 position_at_material_point(const sim::ClothMesh& mesh, const sim::Matrix3X& x,
                                      const sim::Vec2& uv) {
+  mesh.require_grid("comparing runs at material points (sweep distance)");
   if (mesh.nu < 2 || mesh.nv < 2 || x.rows() != mesh.vertex_count())
     throw std::invalid_argument("position_at_material_point: positions do not match the grid");
   // The grid's extent from its far corner's material coordinates (make_grid spaces vertices

@@ -30,6 +30,7 @@ sim::Vec3 mean_position(const sim::Matrix3X& x, const std::vector<sim::Index>& v
 
 // The vertices of the four grid edges, u = 0, u = 1, v = 0, v = 1.
 std::vector<std::vector<sim::Index>> grid_edges(const sim::ClothMesh& mesh) {
+  mesh.require_grid("weft fit's cantilever (its clamped grid edge)");
   std::vector<std::vector<sim::Index>> edges(4);
   for (sim::Index j = 0; j < mesh.nv; ++j) {
     edges[0].push_back(mesh.index(0, j));

@@ -194,7 +194,8 @@ bool hangs_as_curtain(const Scene& scene) {
   const sim::Vec3 g = scene.sim.gravity_m_s2;
   if (!(g.norm() > 0.0) || scene.grid.weft_axis.normalized().dot(g.normalized()) < 1.0 - 1e-9)
     return false;
-  const sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  if (scene.mesh && !scene.mesh->has_grid()) return false;  // its folds are counted on the grid
+  const sim::ClothMesh mesh = cloth_mesh(scene);
   const std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
   const auto is_pinned = [&](sim::Index v) {
     return std::binary_search(pinned.begin(), pinned.end(), v);
@@ -229,8 +230,8 @@ int run_measure(const MeasureOptions& options) {
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
   MeasureCsv csv(dir / "measure.csv");
   std::fprintf(stderr,
-               "weft: measuring %s — %d frames at %g fps, %dx%d vertices, time step %.3g ms, %s\n",
-               scene.source.c_str(), scene.frames, scene.fps, scene.grid.nu, scene.grid.nv,
+               "weft: measuring %s — %d frames at %g fps, %s, time step %.3g ms, %s\n",
+               scene.source.c_str(), scene.frames, scene.fps, cloth_size_text(scene).c_str(),
                1e3 * simulator->time_step(),
                support ? ("drape over " + support_name(*support)).c_str()
                        : "no support under the cloth: settle time only");

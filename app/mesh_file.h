@@ -34,4 +34,22 @@ struct TriangleMesh {
 // position …" for a NaN or infinite coordinate (assimp reads floats: 1e39 is infinite).
 TriangleMesh load_triangle_mesh(const std::filesystem::path& path);
 
+// A mesh read with its polygons as the file gives them (for the cloth: a quad grid is kept as
+// quads), and each vertex's texture coordinates and colour when every mesh of the file has them.
+struct PolygonMesh {
+  sim::Matrix3X vertices;                          // #V×3, in the file's length units
+  std::vector<std::vector<sim::Index>> faces;      // #F polygons (≥ 3 corners), file's order
+  std::vector<sim::Vec2> uv;                       // #V (channel 0), or empty: none in the file
+  std::vector<Eigen::Vector3d> colour;             // #V RGB 0..1 (channel 0), or empty: none
+  // The first vertex whose corners carry different texture coordinates (a UV seam: the
+  // pattern is cut there though the surface is joined), or −1.
+  sim::Index uv_seam_vertex = -1;
+};
+
+// The same reading as load_triangle_mesh — every mesh merged, node transforms applied, equal
+// positions joined in first-seen order, collapsed corners dropped (a polygon left with fewer
+// than 3 is dropped), the same errors ("no polygons" for "no triangles") — without
+// triangulating. A vertex's UV and colour are those of its first corner.
+PolygonMesh load_polygon_mesh(const std::filesystem::path& path);
+
 }  // namespace weft::app

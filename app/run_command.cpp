@@ -83,10 +83,10 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
                   const render::Renderer& renderer, bool explain) {
   std::fprintf(
       stderr,
-      "weft: %s — %d frame%s at %g fps, %dx%d vertices, time step %.3g ms (critical %.3g ms), "
+      "weft: %s — %d frame%s at %g fps, %s, time step %.3g ms (critical %.3g ms), "
       "%s\n",
-      scene.source.c_str(), scene.frames, scene.frames == 1 ? "" : "s", scene.fps, scene.grid.nu,
-      scene.grid.nv, 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
+      scene.source.c_str(), scene.frames, scene.frames == 1 ? "" : "s", scene.fps,
+      cloth_size_text(scene).c_str(), 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
       renderer.description().c_str());
   const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
                              scene.sim.integrator != sim::Integrator::dynamic_relaxation;

@@ -145,8 +145,11 @@ fs::path write_run_report(const fs::path& dir, const Scene& scene, const std::st
   html += "<table>\n<tr><td>frames</td><td>" + std::to_string(last) + " at " +
           fixed(scene.fps, 3 * (scene.fps != std::floor(scene.fps))) + " fps (" +
           fixed(rows.back().diagnostics.time_s, 3) + " s simulated)</td></tr>\n";
-  html += "<tr><td>cloth</td><td>" + std::to_string(scene.grid.nu) + " × " +
-          std::to_string(scene.grid.nv) + " vertices</td></tr>\n";
+  html += "<tr><td>cloth</td><td>" +
+          (scene.mesh ? cloth_size_text(scene)
+                      : std::to_string(scene.grid.nu) + " × " + std::to_string(scene.grid.nv) +
+                            " vertices") +
+          "</td></tr>\n";
   html += "<tr><td>largest strain</td><td>" + fixed(100.0 * max_strain, 3) + " %</td></tr>\n";
   html += "<tr><td>steps that missed the projection tolerance</td><td>" +
           std::to_string(unconverged) + "</td></tr>\n";

@@ -14,6 +14,7 @@
 #include <optional>
 #include <utility>
 
+#include "app/cloth_mesh_file.h"
 #include "app/cloth_surface_scene.h"
 #include "app/data_dir.h"
 #include "app/environment_scene.h"
@@ -94,7 +95,7 @@ sim::PinPath read_pin_path(ObjectReader& pin) {
 
 // One pin object: exactly one of "corner", "vertex", "grid", "region", and an optional "path".
 sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
-  const std::vector<std::string> selectors{"corner", "vertex", "grid", "region"};
+  const std::vector<std::string> selectors{"corner", "vertex", "grid", "region", "box"};
   std::vector<std::string> given;
   for (const auto& s : selectors)
     if (r.has(s)) given.push_back(s);
@@ -102,7 +103,8 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
     const std::string got =
         given.empty() ? "none of them" : "both '" + given[0] + "' and '" + given[1] + "'";
     throw_scene_error(r.file(), r.path(),
-                      "expected exactly one of 'corner', 'vertex', 'grid' or 'region', got " + got);
+                      "expected exactly one of 'corner', 'vertex', 'grid', 'region' or 'box', got " +
+                          got);
   }
   const Range index_range = Range::closed(0, std::numeric_limits<sim::Index>::max());
   sim::PinSpec pin;
@@ -114,7 +116,7 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
   } else if (given[0] == "grid") {
     const auto ij = r.integers("grid", 2, required, index_range);
     pin = sim::PinGrid{static_cast<sim::Index>(ij[0]), static_cast<sim::Index>(ij[1])};
-  } else {
+  } else if (given[0] == "region") {
     ObjectReader region = r.required_object("region");
     const auto u = region.numbers("u", 2, required, Range::closed(0, 1));
     const auto v = region.numbers("v", 2, required, Range::closed(0, 1));
@@ -122,6 +124,23 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
     if (v[0] > v[1]) region.fail("v", "expected [min, max] with min ≤ max, got a reversed range");
     region.finish();
     pin = sim::PinRegion{u[0], u[1], v[0], v[1]};
+  } else {
+    // A box in material coordinates (u, v: two values each) or in the world (x, y, z).
+    ObjectReader box = r.required_object("box");
+    sim::PinBox b;
+    b.world = box.enumeration<bool>("space", {{"material", false}, {"world", true}}, false);
+    const std::size_t n = b.world ? 3 : 2;
+    const auto lo = box.quantities("min", Quantity::length, n, required);
+    const auto hi = box.quantities("max", Quantity::length, n, required);
+    b.lo.setZero();
+    b.hi.setZero();
+    for (std::size_t k = 0; k < n; ++k) {
+      b.lo[static_cast<int>(k)] = lo[k];
+      b.hi[static_cast<int>(k)] = hi[k];
+      if (lo[k] > hi[k]) box.fail("max", "expected max ≥ min on every axis, got a reversed range");
+    }
+    box.finish();
+    pin = b;
   }
   path = read_pin_path(r);
   r.finish();
@@ -130,11 +149,10 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
 
 // Resolves each pin against the grid alone, so that an error names its own key path; warns of
 // a vertex pinned twice and of a cloth pinned everywhere.
-void check_pins(const std::vector<sim::PinSpec>& pins, const sim::GridSpec& grid,
+void check_pins(const std::vector<sim::PinSpec>& pins, const sim::ClothMesh& mesh,
                 const std::string& file, const std::string& pins_path,
                 std::vector<std::string>& warnings) {
   if (pins.empty()) return;  // no pins: the cloth falls freely
-  const sim::ClothMesh mesh = sim::make_grid(grid);
   std::map<sim::Index, std::size_t> pinned_by;  // vertex → the first pin holding it
   for (std::size_t k = 0; k < pins.size(); ++k) {
     const std::string path = pins_path + "[" + std::to_string(k) + "]";
@@ -162,8 +180,62 @@ void check_pins(const std::vector<sim::PinSpec>& pins, const sim::GridSpec& grid
                        "moves but what a pin path moves");
 }
 
-// "cloth": the grid, its shape, its material and its pins.
+void read_cloth_grid(ObjectReader& r, Scene& scene);
+
+// "mesh": the cloth from a mesh file (app/cloth_mesh_file.h), its path relative to the scene
+// file; its placement from "origin", "warp_axis", "weft_axis" (default: as the file gives it).
+void read_cloth_mesh(ObjectReader& r, Scene& scene) {
+  for (const char* key : {"size", "resolution", "shape"})
+    if (r.has(key))
+      r.fail(key, "the cloth comes from the mesh file in cloth.mesh; a grid key does not apply");
+  ClothMeshFileSpec spec;
+  const std::filesystem::path file = r.string("mesh", required);
+  spec.path = file.is_absolute() ? file : std::filesystem::path(r.file()).parent_path() / file;
+  spec.pattern = r.enumeration<PatternSource>(
+      "pattern", {{"uv", PatternSource::uv}, {"plane", PatternSource::plane}},
+      PatternSource::automatic);
+  spec.uv_scale_m = r.quantity("uv_scale", Quantity::length, 1.0, Range::gt(0.0));
+  spec.warp_angle_rad = r.angle_deg("warp_angle", 0.0) * base::kPi / 180.0;
+  spec.scale = r.number("scale", 1.0, Range::gt(0.0));
+  spec.origin = r.quantity_vec3("origin", Quantity::length, sim::Vec3::Zero());
+  spec.warp_axis = read_axis(r, "warp_axis", spec.warp_axis);
+  spec.weft_axis = read_axis(r, "weft_axis", spec.weft_axis);
+  if (std::fabs(spec.warp_axis.dot(spec.weft_axis)) > unit_tolerance)
+    r.fail("weft_axis", "expected a unit vector orthogonal to warp_axis");
+  if (r.has("initial_shape"))
+    r.fail("initial_shape", "the tension-field start needs the warp/weft grid of cloth.size and "
+                            "cloth.resolution, not a mesh file");
+  try {
+    scene.mesh = std::make_shared<const sim::ClothMesh>(load_cloth_mesh(spec));
+  } catch (const MeshFileError& e) {
+    r.fail("mesh", e.what());
+  }
+  // The grid's placement keys, for what reads them (the measures' weft axis).
+  scene.grid.origin = spec.origin;
+  scene.grid.warp_axis = spec.warp_axis;
+  scene.grid.weft_axis = spec.weft_axis;
+}
+
+// "cloth": the grid, its shape, its material and its pins; or a mesh file.
 void read_cloth(ObjectReader r, Scene& scene) {
+  if (r.has("mesh")) {
+    read_cloth_mesh(r, scene);
+  } else {
+    read_cloth_grid(r, scene);
+  }
+  scene.material = read_material(r.object("material"));
+  for (ObjectReader& pin : r.objects("pins")) {
+    sim::PinPath path;
+    scene.pins.push_back(read_pin(pin, path));
+    scene.pin_paths.push_back(std::move(path));
+  }
+  r.finish();
+  if (!scene.pins.empty())
+    check_pins(scene.pins, cloth_mesh(scene), r.file(), r.path_of("pins"), scene.warnings);
+}
+
+// The grid keys of "cloth".
+void read_cloth_grid(ObjectReader& r, Scene& scene) {
   sim::GridSpec& g = scene.grid;
   const auto size = r.quantities("size", Quantity::length, 2, required, Range::gt(0.0));
   g.size_u_m = size[0];
@@ -183,19 +255,11 @@ void read_cloth(ObjectReader r, Scene& scene) {
                   std::acos(g.warp_axis.dot(g.weft_axis)) * 180.0 / base::kPi);
     r.fail("weft_axis", std::string("expected a unit vector orthogonal to warp_axis, got ") + got);
   }
-  scene.material = read_material(r.object("material"));
   if (r.has("initial_shape")) {
     ObjectReader shape = r.object("initial_shape");
     scene.tension_field = read_tension_field_shape(shape.required_object("tension_field"));
     shape.finish();
   }
-  for (ObjectReader& pin : r.objects("pins")) {
-    sim::PinPath path;
-    scene.pins.push_back(read_pin(pin, path));
-    scene.pin_paths.push_back(std::move(path));
-  }
-  r.finish();
-  check_pins(scene.pins, g, r.file(), r.path_of("pins"), scene.warnings);
 }
 
 // "mesh": a closed triangle mesh read from a file (app/mesh_file.h), its path relative to the
@@ -714,8 +778,18 @@ sim::SimSettings simulated_settings(const Scene& scene) {
   return settings;
 }
 
+sim::ClothMesh cloth_mesh(const Scene& scene) {
+  return scene.mesh ? *scene.mesh : sim::make_grid(scene.grid);
+}
+
+std::string cloth_size_text(const Scene& scene) {
+  if (scene.mesh)
+    return std::to_string(scene.mesh->used_vertex_count()) + " vertices (" + scene.mesh->source + ")";
+  return std::to_string(scene.grid.nu) + "x" + std::to_string(scene.grid.nv) + " vertices";
+}
+
 std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
-  sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  sim::ClothMesh mesh = cloth_mesh(scene);
   std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
   std::unique_ptr<sim::Simulator> simulator;
   try {

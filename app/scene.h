@@ -31,6 +31,8 @@ struct Scene {
   std::string text;         // the scene file's text, copied into the output folder
 
   sim::GridSpec grid;
+  // cloth.mesh: the cloth read from a mesh file (app/cloth_mesh_file.h); null: the grid above.
+  std::shared_ptr<const sim::ClothMesh> mesh;
   sim::Material material;
   std::vector<sim::PinSpec> pins;
   std::vector<sim::PinPath> pin_paths;  // one per pin; empty: the pin stays put
@@ -82,6 +84,11 @@ Scene load_scene(const std::filesystem::path& path);
 // The simulator's settings: scene.sim with, when the ground is drawn and a collider
 // (Scene::ground_collider), the ground's plane among the obstacles.
 sim::SimSettings simulated_settings(const Scene& scene);
+
+// The scene's cloth mesh: the file's (Scene::mesh) or the grid's (make_grid).
+sim::ClothMesh cloth_mesh(const Scene& scene);
+// "41x41 vertices" for a grid scene, "812 vertices (panel.obj)" for a mesh file's.
+std::string cloth_size_text(const Scene& scene);
 
 // The scene's simulator: grid, pins and their paths, material and settings (simulated_settings).
 // A material the model rejects throws SceneError naming cloth.material.

@@ -101,9 +101,9 @@ Subject scene_subject(const TurntableOptions& o) {
   // A renderer that cannot start fails before the simulation time is spent.
   s.renderer = make_chosen_renderer(scene.render);
 
-  std::fprintf(stderr, "weft: %s — simulating %d frames at %g fps to t = %.3g s, %dx%d vertices\n",
+  std::fprintf(stderr, "weft: %s — simulating %d frames at %g fps to t = %.3g s, %s\n",
                scene.source.c_str(), scene.frames, scene.fps, scene.frames / scene.fps,
-               scene.grid.nu, scene.grid.nv);
+               cloth_size_text(scene).c_str());
   // The frame stream of weft run, so the last frame is the one weft run writes.
   Progress progress(stderr, scene.frames, "simulate");
   const FrameStreamEnd end = stream_frames(scene, *simulator, [&](const Frame& frame) {

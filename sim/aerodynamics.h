@@ -69,16 +69,21 @@ inline Vec3 quad_area_vector(const Vec3& x0, const Vec3& x1, const Vec3& x2, con
 class Aerodynamics final : public VelocityForceTerm {
  public:
   Aerodynamics(std::vector<std::array<Index, 4>> quads, const AeroSettings& settings);
+  // Quads and triangles (a cloth mesh without a grid): a triangle panel's drag is shared by
+  // its three corners, as its lumped mass is.
+  Aerodynamics(std::vector<std::array<Index, 4>> quads, std::vector<std::array<Index, 3>> triangles,
+               const AeroSettings& settings);
 
   // "air drag on 16 quads (C_d 0.9, 1.1 kg/m³, wind 3 m/s gusting ±25 % every 2 s)"
   std::string describe() const override;
   // f += the drag on every quad at positions x (m), velocities v (m/s), time t (s).
   void add_forces(const Matrix3X& x, const Matrix3X& v, double time_s, Matrix3X& f) const override;
   const AeroSettings& settings() const { return m_settings; }
-  std::size_t panel_count() const { return m_quads.size(); }
+  std::size_t panel_count() const { return m_quads.size() + m_triangles.size(); }
 
  private:
   std::vector<std::array<Index, 4>> m_quads;
+  std::vector<std::array<Index, 3>> m_triangles;
   AeroSettings m_settings;
 };
 

@@ -8,6 +8,7 @@
 namespace weft::sim {
 
 std::vector<std::array<Index, 3>> ClothMesh::triangles() const {
+  if (!has_grid()) return faces;
   std::vector<std::array<Index, 3>> tris;
   tris.reserve(2 * quads.size());
   for (const auto& q : quads) {
@@ -15,6 +16,12 @@ std::vector<std::array<Index, 3>> ClothMesh::triangles() const {
     tris.push_back({q[0], q[2], q[3]});
   }
   return tris;
+}
+
+void ClothMesh::require_grid(const std::string& what) const {
+  if (!has_grid())
+    throw std::invalid_argument(what + " needs the cloth's warp/weft grid; " + name() +
+                                " has none (a triangle mesh; docs/meshes.md)");
 }
 
 Index ClothMesh::used_vertex_count() const {
@@ -37,9 +44,10 @@ bool keeps_cell(const GridSpec& spec, double u_m, double v_m) {
   return true;
 }
 
-}  // namespace
 
-ClothMesh make_grid(const GridSpec& spec) {
+// make_grid with the cells `keep` selects (its size is #(nu−1)(nv−1), cell (i, j) at
+// j·(nu−1) + i), or by the spec's shape when it is empty.
+ClothMesh grid_of(const GridSpec& spec, const std::vector<bool>& keep) {
   if (spec.nu < 2 || spec.nv < 2)
     throw std::invalid_argument("grid resolution must be at least 2×2 vertices, got " +
                                 std::to_string(spec.nu) + "×" + std::to_string(spec.nv));
@@ -71,7 +79,9 @@ ClothMesh make_grid(const GridSpec& spec) {
   mesh.vertex_used.assign(static_cast<std::size_t>(n), false);
   for (Index j = 0; j + 1 < spec.nv; ++j) {
     for (Index i = 0; i + 1 < spec.nu; ++i) {
-      if (!keeps_cell(spec, (i + 0.5) * du, (j + 0.5) * dv)) continue;
+      if (keep.empty() ? !keeps_cell(spec, (i + 0.5) * du, (j + 0.5) * dv)
+                       : !keep[static_cast<std::size_t>(j * (spec.nu - 1) + i)])
+        continue;
       mesh.cell_kept[static_cast<std::size_t>(j * (spec.nu - 1) + i)] = true;
       const std::array<Index, 4> q{mesh.index(i, j), mesh.index(i + 1, j), mesh.index(i + 1, j + 1),
                                    mesh.index(i, j + 1)};
@@ -83,6 +93,18 @@ ClothMesh make_grid(const GridSpec& spec) {
     }
   }
   return mesh;
+}
+
+}  // namespace
+
+ClothMesh make_grid(const GridSpec& spec) { return grid_of(spec, {}); }
+
+ClothMesh make_grid_cells(const GridSpec& spec, const std::vector<bool>& cells) {
+  if (static_cast<Index>(cells.size()) != std::max<Index>(0, (spec.nu - 1) * (spec.nv - 1)))
+    throw std::invalid_argument("make_grid_cells: " + std::to_string(cells.size()) +
+                                " cell flags for a grid of " + std::to_string(spec.nu) + "×" +
+                                std::to_string(spec.nv) + " vertices");
+  return grid_of(spec, cells);
 }
 
 }  // namespace weft::sim

@@ -1,6 +1,8 @@
 #pragma once
-// Warp/weft quad grid: the cloth's rest shape and topology. The grid is rectangular; a specimen
-// of another shape (a Cusick drape disc) keeps only the grid cells inside it.
+// The cloth's rest shape and topology (ClothMesh): either a warp/weft quad grid — rectangular,
+// or a specimen of another shape (a Cusick drape disc) that keeps only the grid cells inside
+// it (make_grid) — or a general triangle mesh, such as one read from a file (no grid;
+// sim/triangle_cloth.h, docs/meshes.md).
 
 #include <array>
 #include <string>
@@ -35,16 +37,32 @@ struct GridSpec {
 // holds the kept cells only. A vertex of no kept cell is unused: it has no area (so no mass),
 // no forces or constraints act on it, the simulator never moves it, and it is neither drawn
 // nor counted in the diagnostics. A rectangle keeps every cell and uses every vertex.
+//
+// A mesh without a grid (has_grid() false: nu = nv = 0, no quads, no cells) is given by its
+// triangles (`faces`), each counter-clockwise about warp×weft in material coordinates; every
+// vertex is a corner of one. The grid's accessors (index, has_cell, the edge counts) are for
+// grid meshes only; what needs the grid checks has_grid() and says so.
 struct ClothMesh {
-  Index nu = 0, nv = 0;
-  Matrix3X rest_positions;                     // #V×3, metres
-  std::vector<Vec2> material_coords;           // #V (u, v), metres
+  Index nu = 0, nv = 0;                        // 0 × 0: no grid
+  // #V×3, metres: the rest shape, the flat pattern laid in space (material point (u, v) at
+  // origin + u·warp_axis + v·weft_axis); the simulation starts here unless start_positions.
+  Matrix3X rest_positions;
+  std::vector<Vec2> material_coords;           // #V (u, v), metres; u along the warp
   std::vector<std::array<Index, 4>> quads;     // #Q kept cells, row by row, counter-clockwise about warp×weft: (i,j) (i+1,j) (i+1,j+1) (i,j+1)
+  std::vector<std::array<Index, 3>> faces;     // a mesh without a grid: its triangles
+  Matrix3X start_positions;                    // #V×3 where the simulation starts, or empty: at rest
+  std::string source;                          // where it came from (a file), for messages; "" for a built-in grid
   Eigen::VectorXd vertex_area_m2;              // #V lumped (area-weighted) area per vertex, 0 if unused
   std::vector<bool> cell_kept;                 // #(nu−1)(nv−1): cell (i, j) at j·(nu−1) + i
   std::vector<bool> vertex_used;               // #V: a corner of at least one kept cell
 
   Index vertex_count() const { return static_cast<Index>(rest_positions.rows()); }
+  bool has_grid() const { return nu > 0 && nv > 0; }
+  // "the cloth mesh panel.obj" or "the cloth", for messages about what a mesh lacks.
+  std::string name() const { return source.empty() ? "the cloth" : "the cloth mesh " + source; }
+  // Throws std::invalid_argument "<what> needs the cloth's warp/weft grid; <name()> has none
+  // (a triangle mesh; docs/meshes.md)" when the mesh has no grid.
+  void require_grid(const std::string& what) const;
   Index index(Index i, Index j) const { return j * nu + i; }
   // Whether cell (i, j) is kept; false outside the grid (i ∉ [0, nu−2] or j ∉ [0, nv−2]).
   bool has_cell(Index i, Index j) const {
@@ -57,10 +75,17 @@ struct ClothMesh {
   int weft_edge_cells(Index i, Index j) const { return has_cell(i - 1, j) + has_cell(i, j); }
   bool is_used(Index v) const { return vertex_used[static_cast<std::size_t>(v)]; }
   Index used_vertex_count() const;
-  // Two triangles per quad, split along the (i,j)–(i+1,j+1) diagonal, same orientation as quads.
+  // Two triangles per quad, split along the (i,j)–(i+1,j+1) diagonal, same orientation as
+  // quads; a mesh without a grid: its faces.
   std::vector<std::array<Index, 3>> triangles() const;
+  // Where the simulation starts: start_positions, or rest_positions when that is empty.
+  const Matrix3X& start() const { return start_positions.rows() ? start_positions : rest_positions; }
 };
 
 ClothMesh make_grid(const GridSpec& spec);
+// The grid of spec's size, resolution and placement keeping the cells flagged in `cells`
+// (#(nu−1)(nv−1), cell (i, j) at j·(nu−1) + i) whatever spec.shape says: a grid recognised in
+// a mesh file (sim/triangle_cloth.h).
+ClothMesh make_grid_cells(const GridSpec& spec, const std::vector<bool>& cells);
 
 }  // namespace weft::sim

@@ -1,10 +1,14 @@
 #include "sim/mass_spring.h"
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "sim/collision/self_intersection.h"  // unique_edges
+#include "sim/continuum/hinge_bending.h"
 #include "sim/energies/bend_angle.h"
 #include "sim/energies/spring.h"
 #include "sim/energies/spring_hessian.h"
@@ -22,9 +26,45 @@ double rest_length(const ClothMesh& mesh, Index a, Index b) {
   return (mesh.material_coords[b] - mesh.material_coords[a]).norm();
 }
 
+// Springs along the edges of a triangle mesh (no grid): edge e of material length L at angle θ
+// to the warp gets k = Y(θ) · Σ A_t / L² over the triangles t beside it, with
+// Y(θ) = Y_warp cos²θ + Y_weft sin²θ (van Gelder 1998, "Approximate simulation of elastic
+// membranes by triangulated spring meshes", made anisotropic). Approximate: springs on
+// irregular triangles cannot reproduce given stretch and shear rigidities exactly; the shear
+// rigidity is not used (docs/meshes.md). Baraff–Witkin is the accurate model on such a mesh.
+std::vector<Spring> triangle_edge_springs(const ClothMesh& mesh, const Material& m) {
+  std::map<std::array<Index, 2>, double> area_beside;  // edge (min, max) → Σ A_t
+  for (const auto& t : mesh.faces) {
+    const Vec2 p = mesh.material_coords[t[1]] - mesh.material_coords[t[0]];
+    const Vec2 q = mesh.material_coords[t[2]] - mesh.material_coords[t[0]];
+    const double area = 0.5 * std::abs(p.x() * q.y() - p.y() * q.x());
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      area_beside[{std::min(a, b), std::max(a, b)}] += area;
+    }
+  }
+  std::vector<Spring> springs;
+  for (const auto& [e, area] : area_beside) {
+    const Vec2 d = mesh.material_coords[e[1]] - mesh.material_coords[e[0]];
+    const double L2 = d.squaredNorm();
+    const double Y = (m.stretch_warp_N_m * d.x() * d.x() + m.stretch_weft_N_m * d.y() * d.y()) / L2;
+    springs.push_back({e[0], e[1], std::sqrt(L2), Y * area / L2,
+                       d.x() * d.x() >= d.y() * d.y() ? SpringKind::warp : SpringKind::weft});
+  }
+  return springs;
+}
+
 }  // namespace
 
 MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs) {
+  if (!mesh.has_grid()) {
+    std::vector<Spring> springs;
+    if (structural_springs) springs = triangle_edge_springs(mesh, m);
+    m_springs = std::make_shared<SpringTerm>(std::move(springs));
+    // Bending across each edge: the dihedral hinges of the continuum model (hinge_bending.h).
+    if (m.bend_warp_Nm > 0.0 || m.bend_weft_Nm > 0.0) m_hinges = std::make_shared<HingeBending>(mesh, m);
+    return;
+  }
   std::vector<Spring> springs;
   std::vector<AngularSpring> bends;
   const Index nu = mesh.nu, nv = mesh.nv;
@@ -95,22 +135,25 @@ ForceTerms MassSpringModel::terms() const {
   ForceTerms terms;
   if (!m_springs->springs().empty()) terms.push_back(m_springs);
   if (!m_bends->bends().empty()) terms.push_back(m_bends);
+  if (m_hinges) terms.push_back(m_hinges);
   return terms;
 }
 
 void MassSpringModel::add_forces(const Matrix3X& x, Matrix3X& f) const {
   m_springs->add_forces(x, f);
   m_bends->add_forces(x, f);
+  if (m_hinges) m_hinges->add_forces(x, f);
 }
 
 double MassSpringModel::energy(const Matrix3X& x) const {
-  return m_springs->energy(x) + m_bends->energy(x);
+  return m_springs->energy(x) + m_bends->energy(x) + (m_hinges ? m_hinges->energy(x) : 0.0);
 }
 
 Eigen::VectorXd MassSpringModel::stiffness_row_bound(Index vertex_count) const {
   Eigen::VectorXd bound = Eigen::VectorXd::Zero(vertex_count);
   m_springs->add_stiffness_row_bound(bound);
   m_bends->add_stiffness_row_bound(bound);
+  if (m_hinges) m_hinges->add_stiffness_row_bound(bound);
   return bound;
 }
 

@@ -6,6 +6,8 @@
 // the grid does not change the behaviour (seed 004: k_i ∝ 1/l_i).
 // The springs and the angular bending are two ForceTerms (sim/force_term.h), SpringTerm and
 // AngularBendingTerm, which a System steps like any other; MassSpringModel builds them.
+// On a triangle mesh without a grid (a mesh file): springs along every triangle edge and
+// dihedral hinges across every interior edge instead (mass_spring.cpp, docs/meshes.md).
 
 #include <memory>
 #include <string>
@@ -112,6 +114,8 @@ class MassSpringModel {
 
  private:
   std::shared_ptr<const SpringTerm> m_springs = std::make_shared<SpringTerm>(std::vector<Spring>{});
+  // A mesh without a grid: bending across its edges by dihedral hinges, or null.
+  std::shared_ptr<const ForceTerm> m_hinges;
   std::shared_ptr<const AngularBendingTerm> m_bends =
       std::make_shared<AngularBendingTerm>(std::vector<AngularSpring>{});
 };

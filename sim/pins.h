@@ -10,10 +10,18 @@
 namespace weft::sim {
 
 struct PinVertex { Index index; };          // flat vertex index
-struct PinGrid { Index i, j; };             // grid coordinates, i along warp, j along weft
-struct PinCorner { std::string name; };     // "u0v0", "u1v0", "u0v1", "u1v1"
-struct PinRegion { double u0, u1, v0, v1; };  // fractions of the cloth size, 0..1, inclusive
-using PinSpec = std::variant<PinVertex, PinGrid, PinCorner, PinRegion>;
+struct PinGrid { Index i, j; };             // grid coordinates, i along warp, j along weft (a grid only)
+struct PinCorner { std::string name; };     // "u0v0", "u1v0", "u0v1", "u1v1" (a grid only)
+// Fractions of the cloth size, 0..1, inclusive: of the grid's extent, or of the bounding box
+// of the material coordinates on a mesh without a grid.
+struct PinRegion { double u0, u1, v0, v1; };
+// A box, inclusive, m: of material coordinates (u, v; the z bounds ignored), or of the start
+// positions in the world (ClothMesh::start()).
+struct PinBox {
+  Vec3 lo, hi;
+  bool world = false;
+};
+using PinSpec = std::variant<PinVertex, PinGrid, PinCorner, PinRegion, PinBox>;
 
 // The corner names, for error messages.
 const std::vector<std::string>& corner_names();

@@ -44,7 +44,7 @@ System make_system(const ClothMesh& mesh, const Material& material,
   system.terms = make_force_terms(mesh, material, settings.model,
                                   settings.projection.method == ProjectionMethod::none);
   if (settings.aero.enabled)
-    system.velocity_terms.push_back(std::make_shared<Aerodynamics>(mesh.quads, settings.aero));
+    system.velocity_terms.push_back(std::make_shared<Aerodynamics>(mesh.quads, mesh.faces, settings.aero));
   return system;
 }
 
@@ -71,7 +71,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   const Index n = m_mesh.vertex_count();
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
                                             Eigen::VectorXd::Ones(n));  // all of them
-  m_state.x = m_mesh.rest_positions;
+  m_state.x = m_mesh.start();
   m_state.v = Matrix3X::Zero(n, 3);
   m_initial_x = m_state.x;
   m_critical_step_s = critical_step_s(m_system);

@@ -36,6 +36,7 @@ int count_alternating_extremes(const std::vector<double>& values, double min_pro
 
 CurtainFolds count_curtain_folds(const ClothMesh& mesh, const Matrix3X& x,
                                  double prominence_fraction, double min_prominence_m) {
+  mesh.require_grid("counting curtain folds (down the grid's centre column)");
   if (mesh.nu < 2 || mesh.nv < 2)
     throw std::invalid_argument("count_curtain_folds: the grid needs at least 2 × 2 vertices");
   if (x.rows() != mesh.vertex_count())

@@ -108,6 +108,11 @@ double specimen_rest_area_m2(const ClothMesh& mesh) {
     const Vec3 d13 = mesh.rest_positions.row(q[3]) - mesh.rest_positions.row(q[1]);
     area += 0.5 * d02.cross(d13).norm();
   }
+  for (const auto& t : mesh.faces) {  // a mesh without a grid
+    const Vec3 d01 = mesh.rest_positions.row(t[1]) - mesh.rest_positions.row(t[0]);
+    const Vec3 d02 = mesh.rest_positions.row(t[2]) - mesh.rest_positions.row(t[0]);
+    area += 0.5 * d01.cross(d02).norm();
+  }
   return area;
 }
 

@@ -27,20 +27,48 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
   // What SelfCollision hands in: the mesh's own triangles and unique edges.
   WEFT_CHECK(cells_per_side >= 1,
              "surface patches: cells per side " + std::to_string(cells_per_side));
-  WEFT_CHECK(triangles.size() == 2 * mesh.quads.size(),
-             "surface patches: expected the mesh's " + std::to_string(2 * mesh.quads.size()) +
-                 " triangles, got " + std::to_string(triangles.size()));
-  const Index patches_u = (mesh.nu - 2) / cells_per_side + 1;
-  const Index patches_v = (mesh.nv - 2) / cells_per_side + 1;
+  // A grid: patches of cells_per_side² cells. A mesh without one: squares of side
+  // cells_per_side mean material edge lengths in material coordinates, each holding the
+  // triangles whose centroids lie in it.
+  std::vector<std::array<Index, 2>> cell_of(triangles.size());
+  Index patches_u = 0, patches_v = 0;
+  if (mesh.has_grid()) {
+    WEFT_CHECK(triangles.size() == 2 * mesh.quads.size(),
+               "surface patches: expected the mesh's " + std::to_string(2 * mesh.quads.size()) +
+                   " triangles, got " + std::to_string(triangles.size()));
+    patches_u = (mesh.nu - 2) / cells_per_side + 1;
+    patches_v = (mesh.nv - 2) / cells_per_side + 1;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const auto& quad = mesh.quads[t / 2];
+      WEFT_CHECK(triangles[t][0] == quad[0], "surface patches: triangle " + std::to_string(t) +
+                                                 " is not from grid cell " + std::to_string(t / 2));
+      cell_of[t] = {(quad[0] % mesh.nu) / cells_per_side, (quad[0] / mesh.nu) / cells_per_side};
+    }
+  } else {
+    m_cone_culling = false;
+    const auto uv = [&](Index v) { return mesh.material_coords[static_cast<std::size_t>(v)]; };
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    double edge_sum = 0.0;
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        lo = lo.cwiseMin(uv(t[k]));
+        hi = hi.cwiseMax(uv(t[k]));
+        edge_sum += (uv(t[(k + 1) % 3]) - uv(t[k])).norm();
+      }
+    const double side = cells_per_side * edge_sum / std::max<double>(1.0, 3.0 * triangles.size());
+    const auto bucket = [&](double d) { return static_cast<Index>(std::floor(d / side)); };
+    patches_u = bucket(hi.x() - lo.x()) + 1;
+    patches_v = bucket(hi.y() - lo.y()) + 1;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const Vec2 c = (uv(triangles[t][0]) + uv(triangles[t][1]) + uv(triangles[t][2])) / 3.0 - lo;
+      cell_of[t] = {std::min(bucket(c.x()), patches_u - 1), std::min(bucket(c.y()), patches_v - 1)};
+    }
+  }
   m_patches_u = patches_u;
   m_patch_of_grid.assign(static_cast<std::size_t>(patches_u * patches_v), -1);
   std::vector<Index> patch_of_triangle(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const auto& quad = mesh.quads[t / 2];
-    WEFT_CHECK(triangles[t][0] == quad[0], "surface patches: triangle " + std::to_string(t) +
-                                               " is not from grid cell " + std::to_string(t / 2));
-    const std::array<Index, 2> grid{(quad[0] % mesh.nu) / cells_per_side,
-                                    (quad[0] / mesh.nu) / cells_per_side};
+    const std::array<Index, 2> grid = cell_of[t];
     Index& p = m_patch_of_grid[static_cast<std::size_t>(grid[1] * patches_u + grid[0])];
     if (p < 0) {
       p = static_cast<Index>(m_patches.size());
@@ -224,7 +252,8 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCull
   std::vector<double> flat_angles_rad(m_patches.size());
   bool any_flat = false;
   for (std::size_t i = 0; i < m_patches.size(); ++i) {
-    flat_angles_rad[i] = culling.flat_angle_rad(reach_m, m_patches[i].least_stretch);
+    flat_angles_rad[i] =
+        m_cone_culling ? culling.flat_angle_rad(reach_m, m_patches[i].least_stretch) : 0.0;
     any_flat = any_flat || flat_angles_rad[i] > 0.0;
   }
   // The boxes in sweep order, one array per bound: the inner loop reads them in sequence.

@@ -25,6 +25,11 @@
 // also rules out a patch that winds like a spiral ramp, is not done: such a patch would need
 // a half turn within a few cells.
 //
+// On a mesh without a grid (a triangle mesh from a file) a patch is the triangles whose
+// centroids fall in one square of the material coordinates (cells_per_side mean edge lengths
+// a side), and nothing is culled by the normal cones: such a patch need not be convex or even
+// connected, which the argument above needs.
+//
 // Every vertex–triangle, edge–edge and vertex–vertex pair of features lies in exactly one
 // returned patch pair (by ownership), so a caller that expands the pairs sees each feature
 // pair at most once. Deterministic.
@@ -132,6 +137,7 @@ class SurfacePatches {
   std::vector<SurfacePatch> m_patches;
   Index m_patches_u = 0;              // patch grid columns
   std::vector<Index> m_patch_of_grid; // patch at grid (i, j): [j · m_patches_u + i], −1 if none
+  bool m_cone_culling = true;         // false on a mesh without a grid (see the top)
   std::vector<Vec3> m_normals;  // refit's scratch: each triangle's area-weighted normal
   // Per triangle: the inverse of its rest edge matrix in a frame of its own plane, for the
   // deformation gradient F = [x1 − x0, x2 − x0] · m_rest_inverse (3×2).

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sim/collision/self_intersection.h"  // unique_edges
 #include "sim/constraints/fast_projection.h"
 #include "sim/constraints/inextensibility.h"
 #include "sim/constraints/pairwise_projection.h"
@@ -15,6 +16,12 @@ std::vector<EdgeConstraint> make_edge_constraints(const ClothMesh& mesh, Constra
     if (inv_mass[a] == 0.0 && inv_mass[b] == 0.0) return;  // both pinned: nothing to solve
     out.push_back({a, b, (mesh.material_coords[b] - mesh.material_coords[a]).norm()});
   };
+  // A mesh without a grid: its triangles' edges stand in for both sets (make_projector refuses
+  // warp_weft on it; the strain diagnostic measures them).
+  if (!mesh.has_grid()) {
+    for (const auto& e : unique_edges(mesh.faces)) add(e[0], e[1]);
+    return out;
+  }
   // The edges of the kept cells only (ClothMesh).
   for (Index j = 0; j < mesh.nv; ++j)
     for (Index i = 0; i + 1 < mesh.nu; ++i)
@@ -50,6 +57,9 @@ std::unique_ptr<ConstraintProjector> make_projector(const ClothMesh& mesh,
                                                     const Eigen::VectorXd& inv_mass,
                                                     const ProjectionSettings& settings,
                                                     SparseBackend backend) {
+  if (settings.method != ProjectionMethod::none && settings.edges == ConstrainedEdges::warp_weft)
+    mesh.require_grid("projection onto inextensible warp/weft edges (simulation.constraints.edges "
+                      "warp_weft)");
   switch (settings.method) {
     case ProjectionMethod::none:
       return nullptr;

@@ -7,7 +7,7 @@
 namespace weft::sim {
 
 BwMembrane::BwMembrane(const ClothMesh& mesh, const Material& material, bool with_stretch)
-    : m_rest_positions(mesh.rest_positions) {
+    : m_rest_positions(mesh.rest_positions), m_grid(mesh.has_grid()) {
   m_k.warp_N_m = with_stretch ? material.stretch_warp_N_m : 0.0;
   m_k.weft_N_m = with_stretch ? material.stretch_weft_N_m : 0.0;
   m_k.shear_N_m = material.shear_N_m;
@@ -18,7 +18,7 @@ BwMembrane::BwMembrane(const ClothMesh& mesh, const Material& material, bool wit
       m_triangles.push_back(t);
       BwTriangleRest rest = bw_triangle_rest(mesh.material_coords[t[0]], mesh.material_coords[t[1]],
                                              mesh.material_coords[t[2]]);
-      rest.area_m2 *= kSplitWeight;
+      rest.area_m2 *= split_weight(mesh);
       m_rest.push_back(rest);
     }
   }
@@ -28,7 +28,7 @@ std::string BwMembrane::describe() const {
   std::ostringstream out;
   out << "Baraff–Witkin "
       << (m_k.warp_N_m > 0.0 || m_k.weft_N_m > 0.0 ? "stretch and shear" : "shear") << " on "
-      << m_triangles.size() << " triangles (both diagonals of each quad)";
+      << m_triangles.size() << " triangles" << (m_grid ? " (both diagonals of each quad)" : "");
   return out.str();
 }
 

@@ -34,6 +34,7 @@ class BwMembrane final : public ForceTerm {
   std::vector<BwTriangleRest> m_rest;
   BwRigidities m_k;
   Matrix3X m_rest_positions;  // for the rest stiffness bound
+  bool m_grid = true;  // built on a grid's two splits (describe())
 };
 
 }  // namespace weft::sim

@@ -19,7 +19,7 @@ double triangle_area(const ClothMesh& mesh, const std::array<Index, 3>& t) {
 }  // namespace
 
 HingeBending::HingeBending(const ClothMesh& mesh, const Material& material)
-    : m_rest_positions(mesh.rest_positions) {
+    : m_rest_positions(mesh.rest_positions), m_grid(mesh.has_grid()) {
   // Each directed triangle edge i → j with opposite k; the edge's other triangle runs j → i.
   struct Half {
     Index a, b, c;
@@ -54,7 +54,7 @@ HingeBending::HingeBending(const ClothMesh& mesh, const Material& material)
     if (B == 0.0) continue;
     Hinge h;
     h.v = {first.a, first.b, first.c, second.c};
-    h.k_Nm = kSplitWeight * B * len2 / (first.area + second.area);
+    h.k_Nm = split_weight(mesh) * B * len2 / (first.area + second.area);
     h.rest_angle = angle(mesh.rest_positions, h);
     m_hinges.push_back(h);
   }
@@ -62,7 +62,7 @@ HingeBending::HingeBending(const ClothMesh& mesh, const Material& material)
 
 std::string HingeBending::describe() const {
   std::ostringstream out;
-  out << "dihedral-angle bending on " << m_hinges.size() << " hinges (both diagonals of each quad)";
+  out << "dihedral-angle bending on " << m_hinges.size() << " hinges" << (m_grid ? " (both diagonals of each quad)" : "");
   return out.str();
 }
 

@@ -48,6 +48,7 @@ class HingeBending final : public ForceTerm {
 
   std::vector<Hinge> m_hinges;
   Matrix3X m_rest_positions;
+  bool m_grid = true;  // built on a grid's two splits (describe())
 };
 
 }  // namespace weft::sim

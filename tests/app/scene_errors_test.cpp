@@ -69,7 +69,7 @@ TEST(SceneErrors, UnknownKeyNestedNamesItsPath) {
   s["cloth"]["materal"] = Json::object();
   EXPECT_EQ(error_of(s),
             "scene.json: cloth.materal: unknown key; did you mean 'material'? (known keys here: "
-            "size, resolution, shape, origin, warp_axis, weft_axis, material, initial_shape, pins)");
+            "mesh, size, resolution, shape, origin, warp_axis, weft_axis, initial_shape, material, pins)");
   s = valid_scene();
   s["cloth"]["material"]["densty"] = 0.2;
   EXPECT_CONTAINS(error_of(s),
@@ -266,12 +266,12 @@ TEST(SceneErrors, PinsOutsideTheMesh) {
   EXPECT_CONTAINS(error_of(s), "cloth.pins[2].region.u[1]: expected a number in [0, 1], got 1.5");
   s["cloth"]["pins"][2] = {{"corner", "u0v0"}, {"vertex", 3}};
   EXPECT_EQ(error_of(s),
-            "scene.json: cloth.pins[2]: expected exactly one of 'corner', 'vertex', 'grid' or "
-            "'region', got both 'corner' and 'vertex'");
+            "scene.json: cloth.pins[2]: expected exactly one of 'corner', 'vertex', 'grid', "
+            "'region' or 'box', got both 'corner' and 'vertex'");
   s["cloth"]["pins"][2] = Json::object();
   EXPECT_CONTAINS(error_of(s),
                   "cloth.pins[2]: expected exactly one of 'corner', 'vertex', "
-                  "'grid' or 'region', got none of them");
+                  "'grid', 'region' or 'box', got none of them");
 }
 
 TEST(SceneErrors, Geometry) {

@@ -1,0 +1,244 @@
+// Cloth from a mesh file (issue 21 item 1): a rectangle written as an OBJ quad grid gives the
+// built-in grid's simulation to the bit, per model; a triangle mesh runs every model (a cloth
+// at its flat rest falls as a rigid body: no internal force at rest); bad meshes are errors
+// naming the file and the problem; pins by index, region and box.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/json_reader.h"
+#include "app/scene.h"
+#include "scene_test_support.h"
+
+namespace weft::app {
+namespace {
+
+namespace fs = std::filesystem;
+using test::scene_error_of;
+
+fs::path test_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(::testing::TempDir()) / "weft_cloth_mesh_test" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+// A size_u × size_v rectangle of nu × nv vertices at height z: vertex (i, j) at (i·du, j·dv, z)
+// with texture coordinates (i·du, j·dv) (metres); quads, or each quad cut into two triangles
+// along the other diagonal from the grid's (so no grid is found in it). The faces are listed
+// last row first, so the file's order is not the grid's.
+std::string rectangle_obj(int nu, int nv, double size_u, double size_v, double z, bool triangles) {
+  std::string s;
+  char line[160];
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double u = i * (size_u / (nu - 1)), v = j * (size_v / (nv - 1));
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\nvt %.17g %.17g\n", u, v, z, u, v);
+      s += line;
+    }
+  const auto id = [&](int i, int j) { return std::to_string(j * nu + i + 1); };
+  const auto corner = [&](int i, int j) { return " " + id(i, j) + "/" + id(i, j); };
+  for (int j = nv - 2; j >= 0; --j)
+    for (int i = 0; i + 1 < nu; ++i) {
+      if (triangles) {
+        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i, j + 1) + "\n";
+        s += "f" + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
+      } else {
+        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
+      }
+    }
+  return s;
+}
+
+// A 1 m × 0.5 m sheet hung from its far (v = 1) edge; sizes and spacings are powers of two, so
+// assimp's single-precision floats hold the file's coordinates exactly.
+Json sheet_scene(const std::string& model, const Json& cloth_shape) {
+  Json s = Json::parse(R"({
+    "description": "test sheet",
+    "cloth": {"material": {"density": "0.2 kg/m^2", "stretch_warp": "200 N/m",
+                           "stretch_weft": "150 N/m", "shear": "20 N/m",
+                           "bend_warp": "2e-4 N*m", "bend_weft": "1e-4 N*m"},
+              "pins": [{"region": {"u": [0, 1], "v": [1, 1]}}]},
+    "simulation": {"air_damping": "0.5 1/s"},
+    "output": {"fps": 24, "frames": 2}
+  })");
+  s["simulation"]["model"] = model;
+  for (auto it = cloth_shape.begin(); it != cloth_shape.end(); ++it) s["cloth"][it.key()] = it.value();
+  return s;
+}
+
+sim::Matrix3X simulate(const Json& scene, const fs::path& source, double seconds) {
+  const Scene parsed = parse_scene(scene.dump(), source.string());
+  const auto simulator = make_simulator(parsed);
+  simulator->advance(seconds);
+  return simulator->state().x;
+}
+
+class RectangleMesh : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RectangleMesh, GivesTheGridsSimulationToTheBit) {
+  const fs::path dir = test_dir();
+  write(dir / "rectangle.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, false));
+  const Json grid = {{"size", {"1 m", "0.5 m"}}, {"resolution", {9, 5}}};
+  const Json mesh = {{"mesh", "rectangle.obj"}};
+  const sim::Matrix3X a = simulate(sheet_scene(GetParam(), grid), dir / "scene.json", 0.25);
+  const sim::Matrix3X b = simulate(sheet_scene(GetParam(), mesh), dir / "scene.json", 0.25);
+  ASSERT_EQ(a.rows(), b.rows());
+  // It moved (the test compares motion, not two resting sheets), and moved the same.
+  EXPECT_GT((a.col(2).array() - 1.0).abs().maxCoeff(), 1e-3);
+  EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ((a - b).cwiseAbs().maxCoeff(), 0.0) << "not bit-identical";
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, RectangleMesh,
+                         ::testing::Values("mass_spring", "baraff_witkin", "rft3"));
+
+TEST(ClothMesh, AQuadGridInTheFileIsTheGrid) {
+  const fs::path dir = test_dir();
+  write(dir / "rectangle.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, false));
+  const Scene s = parse_scene(sheet_scene("mass_spring", {{"mesh", "rectangle.obj"}}).dump(),
+                              (dir / "scene.json").string());
+  ASSERT_TRUE(s.mesh);
+  EXPECT_TRUE(s.mesh->has_grid());
+  EXPECT_EQ(s.mesh->nu, 9);
+  EXPECT_EQ(s.mesh->nv, 5);
+  EXPECT_EQ(s.mesh->source, "rectangle.obj");
+}
+
+class TriangleClothMesh : public ::testing::TestWithParam<std::string> {};
+
+// A triangle mesh at its flat rest shape and unpinned: no internal force, so every vertex falls
+// ½ g t² whatever the model (air damping 0); its mass is the density times its area.
+TEST_P(TriangleClothMesh, FallsAsARigidBodyFromRest) {
+  const fs::path dir = test_dir();
+  write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
+  Json scene = sheet_scene(GetParam(), {{"mesh", "triangles.obj"}});
+  scene["cloth"].erase("pins");
+  scene["simulation"]["air_damping"] = "0 1/s";
+  scene["render"]["ground"]["collider"] = false;
+  const Scene parsed = parse_scene(scene.dump(), (dir / "scene.json").string());
+  ASSERT_TRUE(parsed.mesh);
+  EXPECT_FALSE(parsed.mesh->has_grid());
+  EXPECT_EQ(parsed.mesh->faces.size(), 2u * 6 * 4);
+  EXPECT_NEAR(parsed.mesh->vertex_area_m2.sum(), 0.6 * 0.4, 1e-7);
+  const auto simulator = make_simulator(parsed);
+  const double t = 0.2;
+  simulator->advance(t);
+  const sim::Matrix3X& x = simulator->state().x;
+  const double drop = 0.5 * 9.81 * t * t;
+  // Rigid: every vertex the same height (to rounding), the fall ½ g t² to the integrator's
+  // first-order error in the step.
+  EXPECT_LT(x.col(2).maxCoeff() - x.col(2).minCoeff(), 1e-9);
+  EXPECT_NEAR(x(0, 2), 1.0 - drop, 0.02 * drop);
+  for (sim::Index v = 0; v < x.rows(); ++v)
+    EXPECT_NEAR(x(v, 0), parsed.mesh->start()(v, 0), 1e-9) << "vertex " << v;
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, TriangleClothMesh,
+                         ::testing::Values("mass_spring", "baraff_witkin", "rft3", "rft6"));
+
+// A hanging triangle-mesh sheet stretches under its weight by about what the grid's does:
+// the models agree on the physics, not the bits (a different mesh).
+TEST(ClothMesh, TriangleMeshHangsLikeTheGrid) {
+  const fs::path dir = test_dir();
+  write(dir / "triangles.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, true));
+  const Json grid = {{"size", {"1 m", "0.5 m"}}, {"resolution", {9, 5}}};
+  const Json mesh = {{"mesh", "triangles.obj"}};
+  const sim::Matrix3X a = simulate(sheet_scene("baraff_witkin", grid), dir / "scene.json", 0.3);
+  const sim::Matrix3X b = simulate(sheet_scene("baraff_witkin", mesh), dir / "scene.json", 0.3);
+  // The meshes number their vertices differently: compare the lowest points.
+  EXPECT_NEAR(a.col(2).minCoeff(), b.col(2).minCoeff(), 0.05 * (1.0 - a.col(2).minCoeff()));
+}
+
+TEST(ClothMesh, PinsByIndexRegionAndBox) {
+  const fs::path dir = test_dir();
+  write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
+  const auto pinned = [&](const Json& pins) {
+    Json scene = sheet_scene("baraff_witkin", {{"mesh", "triangles.obj"}});
+    scene["cloth"]["pins"] = pins;
+    const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());
+    return sim::resolve_pins(s.pins, *s.mesh);
+  };
+  EXPECT_EQ(pinned(Json::parse(R"([{"vertex": 3}])")), std::vector<sim::Index>{3});
+  // The v = max edge: 7 vertices, by fractions, by a material box and by a world box.
+  EXPECT_EQ(pinned(Json::parse(R"([{"region": {"u": [0, 1], "v": [1, 1]}}])")).size(), 7u);
+  EXPECT_EQ(pinned(Json::parse(R"([{"box": {"min": ["0 m", "0.39 m"], "max": ["1 m", "1 m"]}}])")).size(), 7u);
+  EXPECT_EQ(pinned(Json::parse(R"([{"box": {"space": "world", "min": ["-1 m", "0.39 m", "0 m"],
+                                            "max": ["0.05 m", "1 m", "2 m"]}}])")).size(), 1u);
+  const std::string no_grid = scene_error_of(
+      [&] {
+        Json scene = sheet_scene("baraff_witkin", {{"mesh", "triangles.obj"}});
+        scene["cloth"]["pins"] = Json::parse(R"([{"corner": "u0v0"}])");
+        return scene;
+      }(),
+      dir / "scene.json");
+  EXPECT_CONTAINS(no_grid, "cloth.pins[0]");
+  EXPECT_CONTAINS(no_grid, "needs the cloth's warp/weft grid");
+  EXPECT_CONTAINS(no_grid, "triangles.obj");
+}
+
+// The scene error of the cloth read from `obj` (written as bad.obj), with `extra` cloth keys.
+std::string mesh_error(const std::string& obj, const Json& extra = Json::object()) {
+  const fs::path dir = test_dir();
+  write(dir / "bad.obj", obj);
+  Json cloth = {{"mesh", "bad.obj"}};
+  for (auto it = extra.begin(); it != extra.end(); ++it) cloth[it.key()] = it.value();
+  Json scene = sheet_scene("baraff_witkin", cloth);
+  scene["cloth"].erase("pins");
+  return scene_error_of(scene, dir / "scene.json");
+}
+
+TEST(ClothMeshErrors, NameTheFileAndTheProblem) {
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  {
+    const fs::path dir = test_dir();
+    Json scene = sheet_scene("baraff_witkin", {{"mesh", "missing.obj"}});
+    const std::string e = scene_error_of(scene, dir / "scene.json");
+    EXPECT_CONTAINS(e, "cloth.mesh");
+    EXPECT_CONTAINS(e, "missing.obj: cannot read mesh file");
+  }
+  const std::string no_uv = mesh_error(square + "f 1 2 3 4\n", {{"pattern", "uv"}});
+  EXPECT_CONTAINS(no_uv, "bad.obj: no texture coordinates");
+  const std::string fin = mesh_error(square + "v 0.5 0 0\nf 1 2 3\nf 1 3 4\nf 1 5 2\n");
+  EXPECT_CONTAINS(fin, "bad.obj");
+  EXPECT_CONTAINS(fin, "zero area");
+  const std::string shared =
+      mesh_error(square + "v 0.5 -1 0\nv 0.5 2 0\nf 1 2 3\nf 2 1 5\nf 1 2 6\n");
+  EXPECT_CONTAINS(shared, "bad.obj");
+  EXPECT_CONTAINS(shared, "more than two faces (a non-manifold mesh)");
+  const std::string bent = mesh_error(square + "v 0.5 0.5 0.3\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
+                                      {{"pattern", "plane"}});
+  EXPECT_CONTAINS(bent, "bad.obj: the mesh is not flat");
+  const std::string seam = mesh_error(square + "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 5 5\n"
+                                      "f 1/1 2/2 3/3\nf 1/5 3/3 4/4\n");
+  EXPECT_CONTAINS(seam, "bad.obj: vertex");
+  EXPECT_CONTAINS(seam, "UV seam");
+  const std::string grid_keys = mesh_error(square + "f 1 2 3 4\n", {{"size", {"1 m", "1 m"}}});
+  EXPECT_CONTAINS(grid_keys, "cloth.size: the cloth comes from the mesh file");
+}
+
+TEST(ClothMeshErrors, FastProjectionOnATriangleMeshNamesTheReason) {
+  const fs::path dir = test_dir();
+  write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
+  Json scene = sheet_scene("baraff_witkin", {{"mesh", "triangles.obj"}});
+  scene["simulation"]["constraints"] = {{"method", "fast_projection"}};
+  const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());
+  try {
+    make_simulator(s);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_CONTAINS(std::string(e.what()), "warp/weft edges");
+    EXPECT_CONTAINS(std::string(e.what()), "needs the cloth's warp/weft grid");
+    EXPECT_CONTAINS(std::string(e.what()), "triangles.obj");
+  }
+}
+
+}  // namespace
+}  // namespace weft::app
