@@ -83,9 +83,8 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
     if (settings.integrator != Integrator::implicit_euler ||
         settings.projection.method != ProjectionMethod::fast_projection)
       throw std::invalid_argument(
-          "simulation.time_step: \"adaptive\" follows the strain of fast projection's "
-          "prediction: it needs integrator implicit_euler and constraints.method "
-          "fast_projection");
+          "simulation.time_step: \"adaptive\" follows fast projection's iterations: it "
+          "needs integrator implicit_euler and constraints.method fast_projection");
     m_adaptive = std::make_unique<AdaptiveStep>(settings.adaptive_step);
     m_time_step_s = settings.adaptive_step.max_step_s;
   }

@@ -166,7 +166,7 @@ TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
     (void)make_simulator(scene);
     ADD_FAILURE() << "an adaptive step without fast projection was accepted";
   } catch (const SceneError& e) {
-    EXPECT_CONTAINS(std::string(e.what()), "\"adaptive\" follows the strain of fast projection");
+    EXPECT_CONTAINS(std::string(e.what()), "\"adaptive\" follows fast projection's iterations");
   }
 }
 
