@@ -157,7 +157,7 @@ TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   EXPECT_CONTAINS(error_of(j), "simulation.adaptive_step.max_step: expected at least min_step");
   j["simulation"]["adaptive_step"] = {{"max_prediction_strain", 0}};
   EXPECT_CONTAINS(error_of(j), "simulation.adaptive_step.max_prediction_strain");
-  // It follows fast projection's prediction: another method or integrator is refused when the
+  // It follows fast projection's iterations: another method or integrator is refused when the
   // simulator is made.
   j["simulation"].erase("adaptive_step");
   j["simulation"]["constraints"] = {{"method", "none"}};
