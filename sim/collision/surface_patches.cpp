@@ -55,7 +55,7 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
         hi = hi.cwiseMax(uv(t[k]));
         edge_sum += (uv(t[(k + 1) % 3]) - uv(t[k])).norm();
       }
-    const double side = cells_per_side * edge_sum / std::max<double>(1.0, 3.0 * triangles.size());
+    const double side = cells_per_side * edge_sum / std::max(1.0, 3.0 * static_cast<double>(triangles.size()));
     const auto bucket = [&](double d) { return static_cast<Index>(std::floor(d / side)); };
     patches_u = bucket(hi.x() - lo.x()) + 1;
     patches_v = bucket(hi.y() - lo.y()) + 1;
