@@ -420,10 +420,10 @@ std::optional<double> ObjectReader::quantity_or_keyword(const std::string& key, 
                                                         const Range& range) {
   const Json* v = find(key);
   if (!v) return std::nullopt;
-  std::string alternatives;
-  for (const std::string& word : keywords) {
-    if (v->is_string() && v->get<std::string>() == word) return std::nullopt;
-    alternatives += "'" + word + "' or ";
+  std::string alternatives;  // "'auto', 'adaptive' or "
+  for (std::size_t k = 0; k < keywords.size(); ++k) {
+    if (v->is_string() && v->get<std::string>() == keywords[k]) return std::nullopt;
+    alternatives += "'" + keywords[k] + (k + 1 < keywords.size() ? "', " : "' or ");
   }
   return read_quantity(*v, Where{m_file, path_of(key)}, kind, range, alternatives);
 }

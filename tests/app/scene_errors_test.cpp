@@ -148,7 +148,8 @@ TEST(SceneErrors, WrongDimension) {
   s = valid_scene();
   s["simulation"]["time_step"] = "fast";
   EXPECT_EQ(error_of(s),
-            "scene.json: simulation.time_step: expected 'auto' or a time such as s or ms, got "
+            "scene.json: simulation.time_step: expected 'auto', 'adaptive' or a time such as s or ms, "
+            "got "
             "'fast' (it does not start with a number)");
 }
 

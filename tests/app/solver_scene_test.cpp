@@ -147,7 +147,7 @@ TEST(SolverScene, AnAdaptiveTimeStepParsesWithItsSettings) {
 TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   Json j = solver_scene();
   j["simulation"]["time_step"] = "adaptve";
-  EXPECT_CONTAINS(error_of(j), "simulation.time_step: expected 'auto' or 'adaptive' or ");
+  EXPECT_CONTAINS(error_of(j), "simulation.time_step: expected 'auto', 'adaptive' or a time");
   j["simulation"]["time_step"] = "1 ms";
   j["simulation"]["adaptive_step"] = {{"max_step", "20 ms"}};
   EXPECT_EQ(error_of(j),
