@@ -49,11 +49,12 @@ struct EdgeTable {
   std::vector<Edge> edges;
   std::vector<std::array<std::uint32_t, 3>> triangle_edges;
   std::vector<int> face_count;  // per vertex: triangles on it
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_index;  // edge_key → index in edges
 };
 
 EdgeTable build_edges(const RenderMesh& mesh) {
   EdgeTable table;
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_index;
+  auto& edge_index = table.edge_index;
   edge_index.reserve(3 * mesh.triangles.size());
   table.triangle_edges.resize(mesh.triangles.size());
   table.face_count.assign(mesh.positions.size(), 0);
@@ -169,6 +170,19 @@ RenderMesh subdivide_once(const RenderMesh& mesh) {
     out.triangles.push_back({ab, t[1], bc});
     out.triangles.push_back({ca, bc, t[2]});
     out.triangles.push_back({ab, bc, ca});
+  }
+
+  // 5. Each wireframe edge ab becomes its two halves a–m, m–b through its edge point m.
+  out.edges.reserve(2 * mesh.edges.size());
+  for (std::size_t k = 0; k < mesh.edges.size(); ++k) {
+    const auto [a, b] = mesh.edges[k];
+    const auto it = table.edge_index.find(edge_key(a, b));
+    if (it == table.edge_index.end())
+      throw std::invalid_argument("loop_subdivide: edge " + std::to_string(k) + " (" +
+                                  std::to_string(a) + ", " + std::to_string(b) +
+                                  ") is no triangle's side");
+    out.edges.push_back({a, base + it->second});
+    out.edges.push_back({base + it->second, b});
   }
   return out;
 }

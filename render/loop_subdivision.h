@@ -16,7 +16,9 @@
 //     edges or on an edge shared by more than two triangles (non-manifold).
 // UVs (material coordinates): old vertices keep theirs, edge points take the mean of the
 // edge's two ends (linear interpolation, exact wherever the UVs are a linear map of the rest
-// mesh, as on the cloth grid). Normals are recomputed (compute_vertex_normals).
+// mesh, as on the cloth grid). Normals are recomputed (compute_vertex_normals). The wireframe
+// edges (RenderMesh::edges) are split at their edge points, so they stay sides of triangles
+// of the subdivided mesh and lie on its surface; an edge that is no triangle's side is an error.
 
 #include "render/render_mesh.h"
 

@@ -3,9 +3,11 @@
 #include "render/render_mesh.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 
 namespace weft::render {
 
@@ -58,6 +60,28 @@ void validate(const RenderMesh& mesh, const std::string& name) {
       }
     }
   }
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    for (std::uint32_t v : mesh.edges[e]) {
+      if (v >= vertex_count) {
+        throw std::invalid_argument(name + ": edge " + std::to_string(e) + " uses vertex " +
+                                    std::to_string(v) + " but the mesh has " +
+                                    std::to_string(vertex_count) + " vertices");
+      }
+    }
+  }
+}
+
+std::vector<std::array<std::uint32_t, 2>> triangle_edges(const RenderMesh& mesh) {
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::unordered_set<std::uint64_t> seen;
+  seen.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
+      if (seen.insert((std::uint64_t{a} << 32) | b).second) edges.push_back({a, b});
+    }
+  }
+  return edges;
 }
 
 const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
@@ -66,6 +90,7 @@ const RenderMesh& with_normals(const RenderMesh& mesh, RenderMesh& storage) {
   storage.triangles = mesh.triangles;
   storage.uvs = mesh.uvs;
   storage.strain = mesh.strain;
+  storage.edges = mesh.edges;
   compute_vertex_normals(storage);
   return storage;
 }

@@ -77,6 +77,10 @@ RenderMesh make_thickness_shell(const RenderMesh& input, double thickness_m) {
     shell.triangles.push_back({a, a + lower, b});
     shell.triangles.push_back({b, a + lower, b + lower});
   }
+  // The wireframe on both sheets.
+  shell.edges.reserve(2 * mesh.edges.size());
+  for (const auto& e : mesh.edges) shell.edges.push_back(e);
+  for (const auto& e : mesh.edges) shell.edges.push_back({e[0] + lower, e[1] + lower});
   compute_vertex_normals(shell);
   return shell;
 }

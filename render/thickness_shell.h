@@ -11,7 +11,8 @@
 // The lower sheet keeps the winding of the upper one, so that from outside it shows the
 // cloth's back side (RenderSettings::back_color) as the single sheet did: the shell is closed
 // (every edge in exactly two triangles when the input is a manifold with boundary) but not
-// consistently oriented, which two-sided renderers do not mind. UVs are copied to both sheets.
+// consistently oriented, which two-sided renderers do not mind. UVs and the wireframe edges
+// (RenderMesh::edges) are copied to both sheets.
 // Normals are recomputed over the whole shell. Folds tighter than t/2 make the offset sheets
 // cross each other; keep t well below the fold radius.
 

@@ -209,6 +209,48 @@ TEST(LoopSubdivision, BoundaryStaysOnARectanglesSidesCornersFixed) {
   }
 }
 
+// The wireframe's lines (RenderMesh::edges, issue 21 item 3) follow the surface: a grid's warp
+// and weft lines become chains of 2^level sides of subdivided triangles, running from the same
+// grid vertex to the same grid vertex through the edge points; a line that is no triangle's
+// side is an error.
+TEST(LoopSubdivision, WireframeEdgesBecomeSidesOfTheSubdividedTriangles) {
+  RenderMesh grid = make_grid_mesh(4, 3, [](double u, double v) {
+    return Eigen::Vector3d(u, v, 0.3 * u * u - 0.2 * v);
+  });
+  for (std::uint32_t j = 0; j < 3; ++j)
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      if (i + 1 < 4) grid.edges.push_back({j * 4 + i, j * 4 + i + 1});
+      if (j + 1 < 3) grid.edges.push_back({j * 4 + i, (j + 1) * 4 + i});
+    }
+  for (int level = 1; level <= 2; ++level) {
+    const RenderMesh out = loop_subdivide(grid, level);
+    const int pieces = 1 << level;
+    ASSERT_EQ(out.edges.size(), grid.edges.size() * pieces) << "level " << level;
+    const EdgeSet sides = edges_of(out);
+    for (std::size_t e = 0; e < grid.edges.size(); ++e) {
+      // Consecutive pieces chain from the edge's first end to its second.
+      EXPECT_EQ(out.edges[e * pieces][0], grid.edges[e][0]);
+      EXPECT_EQ(out.edges[e * pieces + pieces - 1][1], grid.edges[e][1]);
+      for (int k = 0; k < pieces; ++k) {
+        const auto [a, b] = out.edges[e * pieces + k];
+        EXPECT_TRUE(sides.count(std::minmax(a, b))) << "level " << level << " edge " << e;
+        if (k > 0) {
+          EXPECT_EQ(a, out.edges[e * pieces + k - 1][1]);
+        }
+        // Along a warp or weft line: one material coordinate stays.
+        const Eigen::Vector2f d = out.uvs[a] - out.uvs[b];
+        EXPECT_TRUE(d.x() == 0.0f || d.y() == 0.0f);
+      }
+    }
+  }
+  grid.edges.push_back({0, 5});  // a diagonal (0,0)-(1,1): a triangle side, accepted
+  EXPECT_NO_THROW(loop_subdivide(grid, 1));
+  grid.edges.push_back({0, 6});  // (0,0)-(2,1): no triangle's side
+  EXPECT_THROW(loop_subdivide(grid, 1), std::invalid_argument);
+  grid.edges.back() = {0, 12};  // out of range
+  EXPECT_THROW(loop_subdivide(grid, 1), std::invalid_argument);
+}
+
 TEST(LoopSubdivision, LevelZeroCopiesAndBadLevelsThrow) {
   RenderMesh mesh =
       make_grid_mesh(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });

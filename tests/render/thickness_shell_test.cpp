@@ -115,5 +115,21 @@ TEST(ThicknessShell, AppliedAfterSubdivisionByPrepareClothMesh) {
   EXPECT_THROW(make_thickness_shell(sheet, 0.0), std::invalid_argument);
 }
 
+// The wireframe's lines (issue 21 item 3) are drawn on both sheets: the upper sheet keeps the
+// indices, the lower one has them offset by V.
+TEST(ThicknessShell, WireframeEdgesOnBothSheets) {
+  RenderMesh sheet =
+      make_grid_mesh(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  sheet.edges = {{0, 1}, {1, 4}, {3, 4}};
+  const RenderMesh shell = make_thickness_shell(sheet, 0.01);
+  const auto v = static_cast<std::uint32_t>(sheet.positions.size());
+  ASSERT_EQ(shell.edges.size(), 2 * sheet.edges.size());
+  for (std::size_t e = 0; e < sheet.edges.size(); ++e) {
+    EXPECT_EQ(shell.edges[e], sheet.edges[e]);
+    EXPECT_EQ(shell.edges[sheet.edges.size() + e][0], sheet.edges[e][0] + v);
+    EXPECT_EQ(shell.edges[sheet.edges.size() + e][1], sheet.edges[e][1] + v);
+  }
+}
+
 }  // namespace
 }  // namespace weft::render
