@@ -28,6 +28,13 @@ void validate(const ClothSurface& surface) {
     if (!(r.minCoeff() > 0.0) || !r.allFinite())
       fail("texture.repeat_m must be finite and > 0 along warp and weft");
   }
+  if (surface.wireframe.enabled) {
+    const Wireframe& w = surface.wireframe;
+    if (!(w.width_px > 0.0) || !std::isfinite(w.width_px))
+      fail("wireframe.width_px must be finite and > 0, got " + std::to_string(w.width_px));
+    if (!(w.color.minCoeff() >= 0.0f && w.color.maxCoeff() <= 1.0f))
+      fail("wireframe.color must be within 0..1");
+  }
 }
 
 const RenderMesh& prepare_cloth_mesh(const RenderMesh& mesh, const ClothSurface& surface,

@@ -9,6 +9,7 @@
 #include "render/cloth_surface.h"
 #include "render/raster.h"
 #include "render/strain_colour.h"
+#include "render/wireframe_overlay.h"
 
 #ifdef WEFT_WITH_EMBREE_RT
 #include "render/raytrace/ray_tracer.h"
@@ -18,8 +19,18 @@ namespace weft::render {
 
 namespace {
 
+// `mesh`, or a copy in `storage` whose wireframe edges are its triangle sides when it has none,
+// taken before subdivision so that the lines stay those of the mesh given.
+const RenderMesh& wireframe_mesh(const RenderMesh& mesh, RenderMesh& storage) {
+  if (!mesh.edges.empty()) return mesh;
+  storage = mesh;
+  storage.edges = triangle_edges(mesh);
+  return storage;
+}
+
 // Either back-end behind the interface, the cloth's rendering aids (subdivision, thickness;
-// render/cloth_surface.h) applied first and the strain legend drawn last.
+// render/cloth_surface.h) applied first, then the wireframe overlay over the frame and the
+// strain legend last.
 template <class Backend>
 class WithClothSurface final : public Renderer {
  public:
@@ -27,9 +38,12 @@ class WithClothSurface final : public Renderer {
   explicit WithClothSurface(Args&&... args) : m_backend(std::forward<Args>(args)...) {}
   Image render(const RenderMesh& cloth, const RenderSettings& settings,
                const std::vector<RenderObject>& objects) override {
-    RenderMesh storage;
-    Image image = m_backend.render(prepare_cloth_mesh(cloth, settings.cloth_surface, storage),
-                                   settings, objects);
+    RenderMesh storage, with_edges;
+    const RenderMesh& drawn = prepare_cloth_mesh(
+        settings.cloth_surface.wireframe.enabled ? wireframe_mesh(cloth, with_edges) : cloth,
+        settings.cloth_surface, storage);
+    Image image = m_backend.render(drawn, settings, objects);
+    draw_wireframe(image, drawn, settings, objects);
     if (settings.shading == Shading::strain) draw_strain_legend(image, settings.strain_full_scale);
     return image;
   }
