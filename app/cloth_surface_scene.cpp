@@ -57,6 +57,20 @@ render::ClothTexture read_texture(ObjectReader r) {
   return texture;
 }
 
+// "wireframe": true (the defaults), false, or {"width": pixels, "color": [r, g, b]}.
+void read_wireframe(ObjectReader& render, render::Wireframe& wireframe) {
+  if (render.holds_boolean("wireframe")) {
+    wireframe.enabled = render.boolean("wireframe", required);
+    return;
+  }
+  ObjectReader r = render.object("wireframe");
+  wireframe.enabled = true;
+  wireframe.width_px =
+      r.number("width", wireframe.width_px, Range::gt(0.0).le(max_wireframe_width_px));
+  wireframe.color = read_color(r, "color", wireframe.color);
+  r.finish();
+}
+
 }  // namespace
 
 void read_cloth_surface(ObjectReader& render, render::ClothSurface& surface) {
@@ -65,6 +79,7 @@ void read_cloth_surface(ObjectReader& render, render::ClothSurface& surface) {
   surface.thickness_m =
       render.quantity("thickness", Quantity::length, surface.thickness_m, Range::ge(0.0));
   if (render.has("texture")) surface.texture = read_texture(render.object("texture"));
+  if (render.has("wireframe")) read_wireframe(render, surface.wireframe);
 }
 
 }  // namespace weft::app

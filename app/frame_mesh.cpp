@@ -48,6 +48,19 @@ render::RenderMesh to_render_mesh(const sim::ClothMesh& mesh, const sim::Matrix3
   for (const auto& t : mesh.triangles())
     out.triangles.push_back({slot[static_cast<std::size_t>(t[0])], slot[static_cast<std::size_t>(t[1])],
                              slot[static_cast<std::size_t>(t[2])]});
+  // The wireframe's lines: a grid's warp and weft edges (not the cells' diagonals); a mesh
+  // without a grid leaves them empty, so that every triangle side is drawn.
+  if (mesh.has_grid()) {
+    const auto line = [&](sim::Index a, sim::Index b) {
+      out.edges.push_back({slot[static_cast<std::size_t>(a)], slot[static_cast<std::size_t>(b)]});
+    };
+    for (sim::Index j = 0; j < mesh.nv; ++j) {
+      for (sim::Index i = 0; i < mesh.nu; ++i) {
+        if (mesh.warp_edge_cells(i, j) > 0) line(mesh.index(i, j), mesh.index(i + 1, j));
+        if (mesh.weft_edge_cells(i, j) > 0) line(mesh.index(i, j), mesh.index(i, j + 1));
+      }
+    }
+  }
   render::compute_vertex_normals(out);
   return out;
 }

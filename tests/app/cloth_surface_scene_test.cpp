@@ -90,5 +90,38 @@ TEST(ClothSurfaceScene, BadValuesNameTheirKey) {
                   "render.texture.colour");
 }
 
+// render.wireframe (issue 21 item 3): off by default, true for the defaults, an object for
+// width and colour; bad values name the key.
+TEST(ClothSurfaceScene, ReadsTheWireframe) {
+  const render::Wireframe defaults;
+  EXPECT_FALSE(test::parse_json_scene(test::scene_with_render(Json::object()))
+                   .render.cloth_surface.wireframe.enabled);
+  const render::Wireframe on = test::parse_json_scene(test::scene_with_render(Json::parse(
+                                   R"({"wireframe": true})"))).render.cloth_surface.wireframe;
+  EXPECT_TRUE(on.enabled);
+  EXPECT_EQ(on.width_px, defaults.width_px);
+  EXPECT_EQ(on.color, defaults.color);
+  EXPECT_FALSE(test::parse_json_scene(test::scene_with_render(Json::parse(
+                   R"({"wireframe": false})"))).render.cloth_surface.wireframe.enabled);
+  const render::Wireframe set = test::parse_json_scene(test::scene_with_render(Json::parse(
+      R"({"wireframe": {"width": 2.5, "color": [1, 0.5, 0]}})"))).render.cloth_surface.wireframe;
+  EXPECT_TRUE(set.enabled);
+  EXPECT_EQ(set.width_px, 2.5);
+  EXPECT_EQ(set.color, Eigen::Vector3f(1.0f, 0.5f, 0.0f));
+}
+
+TEST(ClothSurfaceScene, BadWireframeValuesNameTheirKey) {
+  const auto error_of = [](const char* render) {
+    return test::scene_error_of(test::scene_with_render(Json::parse(render)));
+  };
+  EXPECT_CONTAINS(error_of(R"({"wireframe": {"width": -1}})"), "render.wireframe.width");
+  EXPECT_CONTAINS(error_of(R"({"wireframe": {"width": 0}})"), "render.wireframe.width");
+  EXPECT_CONTAINS(error_of(R"({"wireframe": {"width": 100}})"), "render.wireframe.width");
+  EXPECT_CONTAINS(error_of(R"({"wireframe": {"color": [1, 0]}})"), "render.wireframe.color");
+  EXPECT_CONTAINS(error_of(R"({"wireframe": {"color": [1, 0, 2]}})"), "render.wireframe.color");
+  EXPECT_CONTAINS(error_of(R"({"wireframe": {"colour": [1, 0, 0]}})"), "render.wireframe.colour");
+  EXPECT_CONTAINS(error_of(R"({"wireframe": "thick"})"), "render.wireframe");
+}
+
 }  // namespace
 }  // namespace weft::app

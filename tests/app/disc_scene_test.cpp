@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include "app/frame_mesh.h"
@@ -97,6 +100,30 @@ TEST(DiscScene, TheRectangleIsDrawnWhole) {
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (std::size_t c = 0; c < 3; ++c)
       EXPECT_EQ(static_cast<sim::Index>(drawn.triangles[t][c]), triangles[t][c]);
+}
+
+// The wireframe's lines of a trimmed grid (issue 21 item 3): exactly the sides of the kept
+// cells, each once, in the drawn mesh's numbering; no cell diagonal among them.
+TEST(DiscScene, WireframeEdgesAreTheKeptCellsWarpAndWeftSides) {
+  const Scene scene = test::parse_json_scene(disc_scene());
+  const sim::ClothMesh mesh = sim::make_grid(scene.grid);
+  const render::RenderMesh drawn = to_render_mesh(mesh, mesh.rest_positions);
+  std::vector<std::uint32_t> slot(static_cast<std::size_t>(mesh.vertex_count()), 0);
+  for (std::uint32_t k = 0, v = 0; v < slot.size(); ++v)
+    if (mesh.is_used(v)) slot[v] = k++;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> expected, actual;
+  for (const auto& q : mesh.quads)
+    for (int k = 0; k < 4; ++k)
+      expected.insert(std::minmax(slot[static_cast<std::size_t>(q[k])],
+                                  slot[static_cast<std::size_t>(q[(k + 1) % 4])]));
+  for (const auto& [a, b] : drawn.edges) {
+    EXPECT_TRUE(actual.insert(std::minmax(a, b)).second) << "edge " << a << "-" << b << " twice";
+    // A warp or weft edge: its ends differ in one material coordinate only.
+    const Eigen::Vector2f d = drawn.uvs[a] - drawn.uvs[b];
+    EXPECT_TRUE((d.x() == 0.0f) != (d.y() == 0.0f)) << "edge " << a << "-" << b << " is diagonal";
+  }
+  EXPECT_EQ(actual, expected);
+  EXPECT_LT(drawn.edges.size(), 3 * drawn.triangles.size() / 2);  // fewer than all sides
 }
 
 // The Cusick drape scene: a Ø30 cm wool disc centred over a Ø18 cm support disc.
