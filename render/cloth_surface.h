@@ -17,7 +17,7 @@ namespace weft::render {
 // width on screen, antialiased, hidden where a surface is in front of them.
 struct Wireframe {
   bool enabled = false;
-  double width_px = 1.0;                     // line width in pixels, > 0
+  double width_px = 1.0;                       // line width in pixels, > 0
   Eigen::Vector3f color{0.08f, 0.08f, 0.08f};  // 0..1, as the image's other colours
 };
 

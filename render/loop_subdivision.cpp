@@ -49,7 +49,8 @@ struct EdgeTable {
   std::vector<Edge> edges;
   std::vector<std::array<std::uint32_t, 3>> triangle_edges;
   std::vector<int> face_count;  // per vertex: triangles on it
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_index;  // edge_key → index in edges
+  // edge_key → the edge's index in `edges`
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_index;
 };
 
 EdgeTable build_edges(const RenderMesh& mesh) {

@@ -21,7 +21,8 @@ constexpr float no_surface = std::numeric_limits<float>::infinity();
 // top first; no_surface where none.
 class DepthBuffer {
  public:
-  explicit DepthBuffer(const RenderSettings& s) : m_s(s), m_depth(std::size_t(s.width) * s.height, no_surface) {}
+  explicit DepthBuffer(const RenderSettings& s)
+      : m_s(s), m_depth(std::size_t(s.width) * s.height, no_surface) {}
 
   void add(const RenderMesh& mesh) {
     std::vector<Eigen::Vector3d> p(mesh.positions.size());
@@ -92,9 +93,8 @@ void draw_wireframe(Image& image, const RenderMesh& cloth, const RenderSettings&
   const double footprint = 2.0 * std::tan(0.5 * s.camera.fov_y_deg * base::kPi / 180.0) / s.height;
   const double half = 0.5 * std::max(w.width_px, 1.0), thin = std::min(w.width_px, 1.0);
   std::vector<float> coverage(std::size_t(s.width) * s.height, 0.0f);
-  const std::vector<std::array<std::uint32_t, 2>> own = cloth.edges.empty()
-                                                           ? triangle_edges(cloth)
-                                                           : std::vector<std::array<std::uint32_t, 2>>{};
+  const std::vector<std::array<std::uint32_t, 2>> own =
+      cloth.edges.empty() ? triangle_edges(cloth) : std::vector<std::array<std::uint32_t, 2>>{};
   for (const auto& [ia, ib] : cloth.edges.empty() ? own : cloth.edges) {
     const Eigen::Vector3d a = depth.project(cloth.positions[ia]);
     const Eigen::Vector3d b = depth.project(cloth.positions[ib]);

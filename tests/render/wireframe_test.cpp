@@ -25,11 +25,13 @@ namespace {
 
 using test::FailureEvidence;
 
-constexpr int cells = 4;           // per side
+constexpr int cells = 4;             // per side
 constexpr double half_side_m = 0.8;  // the cloth spans [−0.8, 0.8]² at z = 0.5
 const Eigen::Vector3f line_colour(0.1f, 0.9f, 0.2f);
 
-double grid_coordinate(int i) { return -half_side_m + 2.0 * half_side_m * i / cells; }
+double grid_coordinate(int i) {
+  return -half_side_m + 2.0 * half_side_m * i / cells;
+}
 
 // A flat cells×cells grid facing the camera, with its warp and weft lines as edges (not the
 // diagonals).
