@@ -69,9 +69,41 @@ sim::PinPath read_pin_path(ObjectReader& pin) {
   }
 }
 
-// One pin object: exactly one of "corner", "vertex", "grid", "region", and an optional "path".
-sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
-  const std::vector<std::string> selectors{"corner", "vertex", "grid", "region", "box"};
+// The cloth mesh file's vertex colours, for pins by colour: #V of the cloth, or empty.
+struct MeshColours {
+  std::string file;                      // cloth.mesh as given; empty: the built-in grid
+  std::vector<Eigen::Vector3d> colour;
+};
+
+// A pin {"color": [r, g, b], "tolerance": t}: the mesh file's vertices whose colour is within t
+// of it on every channel (docs/meshes.md).
+sim::PinVertexSet read_colour_pin(ObjectReader& r, const MeshColours& colours) {
+  if (colours.file.empty())
+    r.fail("color", "a pin by vertex color needs a cloth mesh file (cloth.mesh) with vertex "
+                    "colors; the built-in grid has none");
+  if (colours.colour.empty())
+    r.fail("color", "the mesh file " + colours.file + " has no vertex colors (on every mesh of "
+                    "it), so no vertex can be pinned by its color");
+  const auto c = r.numbers("color", 3, required, Range::closed(0, 1));
+  const double tolerance = r.number("tolerance", 0.01, Range::ge(0.0));
+  sim::PinVertexSet set;
+  char what[96];
+  std::snprintf(what, sizeof what, "color [%g, %g, %g] (tolerance %g)", c[0], c[1], c[2],
+                tolerance);
+  set.what = what;
+  const Eigen::Vector3d wanted(c[0], c[1], c[2]);
+  for (std::size_t v = 0; v < colours.colour.size(); ++v)
+    if ((colours.colour[v] - wanted).cwiseAbs().maxCoeff() <= tolerance)
+      set.indices.push_back(static_cast<sim::Index>(v));
+  if (set.indices.empty())
+    r.fail("color", "no vertex of " + colours.file + " has the " + set.what);
+  return set;
+}
+
+// One pin object: exactly one of "corner", "vertex", "grid", "region", "box", "color", and an
+// optional "path".
+sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path, const MeshColours& colours) {
+  const std::vector<std::string> selectors{"corner", "vertex", "grid", "region", "box", "color"};
   std::vector<std::string> given;
   for (const auto& s : selectors)
     if (r.has(s)) given.push_back(s);
@@ -79,7 +111,8 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
     const std::string got =
         given.empty() ? "none of them" : "both '" + given[0] + "' and '" + given[1] + "'";
     throw_scene_error(r.file(), r.path(),
-                      "expected exactly one of 'corner', 'vertex', 'grid', 'region' or 'box', got " +
+                      "expected exactly one of 'corner', 'vertex', 'grid', 'region', 'box' or "
+                      "'color', got " +
                           got);
   }
   const Range index_range = Range::closed(0, std::numeric_limits<sim::Index>::max());
@@ -100,6 +133,8 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path) {
     if (v[0] > v[1]) region.fail("v", "expected [min, max] with min ≤ max, got a reversed range");
     region.finish();
     pin = sim::PinRegion{u[0], u[1], v[0], v[1]};
+  } else if (given[0] == "color") {
+    pin = read_colour_pin(r, colours);
   } else {
     // A box in material coordinates (u, v: two values each) or in the world (x, y, z).
     ObjectReader box = r.required_object("box");
@@ -158,7 +193,7 @@ void check_pins(const std::vector<sim::PinSpec>& pins, const sim::ClothMesh& mes
 
 // "mesh": the cloth from a mesh file (app/cloth_mesh_file.h), its path relative to the scene
 // file; its placement from "origin", "warp_axis", "weft_axis" (default: as the file gives it).
-void read_cloth_mesh(ObjectReader& r, Scene& scene) {
+void read_cloth_mesh(ObjectReader& r, Scene& scene, MeshColours& colours) {
   for (const char* key : {"size", "resolution", "shape"})
     if (r.has(key))
       r.fail(key, "the cloth comes from the mesh file in cloth.mesh; a grid key does not apply");
@@ -180,7 +215,8 @@ void read_cloth_mesh(ObjectReader& r, Scene& scene) {
     r.fail("initial_shape", "the tension-field start needs the warp/weft grid of cloth.size and "
                             "cloth.resolution, not a mesh file");
   try {
-    scene.mesh = std::make_shared<const sim::ClothMesh>(load_cloth_mesh(spec));
+    scene.mesh = std::make_shared<const sim::ClothMesh>(load_cloth_mesh(spec, &colours.colour));
+    colours.file = file.string();
   } catch (const MeshFileError& e) {
     r.fail("mesh", e.what());
   }
@@ -221,15 +257,16 @@ void read_cloth_grid(ObjectReader& r, Scene& scene) {
 }  // namespace
 
 void read_cloth(ObjectReader r, Scene& scene) {
+  MeshColours colours;
   if (r.has("mesh")) {
-    read_cloth_mesh(r, scene);
+    read_cloth_mesh(r, scene, colours);
   } else {
     read_cloth_grid(r, scene);
   }
   scene.material = read_material(r.object("material"));
   for (ObjectReader& pin : r.objects("pins")) {
     sim::PinPath path;
-    scene.pins.push_back(read_pin(pin, path));
+    scene.pins.push_back(read_pin(pin, path, colours));
     scene.pin_paths.push_back(std::move(path));
   }
   r.finish();
