@@ -2,7 +2,9 @@
 
 #include "app/cloth_mesh_file.h"
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -48,9 +50,36 @@ std::vector<sim::Vec2> plane_coordinates(const PolygonMesh& mesh, const std::str
   return out;
 }
 
+// Each cloth vertex's colour: a triangle mesh keeps the file's numbering; a grid is renumbered
+// (sim/triangle_cloth.h), and its vertex takes its start position bit for bit from the file's
+// vertex, which finds it. Lattice points of no quad (unused) are NaN: they match no colour.
+// Empty: no colours.
+std::vector<Eigen::Vector3d> cloth_vertex_colours(const PolygonMesh& file,
+                                                  const sim::ClothPattern& pattern,
+                                                  const sim::ClothMesh& cloth) {
+  if (file.colour.empty()) return {};
+  if (!cloth.has_grid()) return file.colour;
+  std::map<std::array<double, 3>, sim::Index> file_vertex_at;
+  for (sim::Index v = 0; v < pattern.start_positions.rows(); ++v)
+    file_vertex_at.emplace(std::array<double, 3>{pattern.start_positions(v, 0),
+                                                 pattern.start_positions(v, 1),
+                                                 pattern.start_positions(v, 2)},
+                           v);
+  std::vector<Eigen::Vector3d> out(static_cast<std::size_t>(cloth.vertex_count()),
+                                   Eigen::Vector3d::Constant(NAN));
+  for (sim::Index v = 0; v < cloth.vertex_count(); ++v) {
+    if (!cloth.is_used(v)) continue;
+    const auto it = file_vertex_at.find(
+        {cloth.start()(v, 0), cloth.start()(v, 1), cloth.start()(v, 2)});
+    if (it != file_vertex_at.end())
+      out[static_cast<std::size_t>(v)] = file.colour[static_cast<std::size_t>(it->second)];
+  }
+  return out;
+}
+
 }  // namespace
 
-sim::ClothMesh load_cloth_mesh(const ClothMeshFileSpec& spec) {
+sim::ClothMesh load_cloth_mesh(const ClothMeshFileSpec& spec, std::vector<Eigen::Vector3d>* colour) {
   const std::string name = spec.path.string();
   const PolygonMesh mesh = load_polygon_mesh(spec.path);  // throws MeshFileError
   PatternSource source = spec.pattern;
@@ -92,11 +121,14 @@ sim::ClothMesh load_cloth_mesh(const ClothMeshFileSpec& spec) {
   }
   cloth.faces.reserve(mesh.faces.size());
   for (const auto& f : mesh.faces) cloth.faces.push_back(f);
+  sim::ClothMesh out;
   try {
-    return sim::make_pattern_cloth(cloth);
+    out = sim::make_pattern_cloth(cloth);
   } catch (const std::invalid_argument& e) {
     throw MeshFileError(name + ": " + e.what());
   }
+  if (colour) *colour = cloth_vertex_colours(mesh, cloth, out);
+  return out;
 }
 
 }  // namespace weft::app

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sim/grid.h"
 #include "sim/types.h"
@@ -42,6 +43,9 @@ struct ClothMeshFileSpec {
 // cloth cannot use: no texture coordinates when pattern is uv, a UV seam (a vertex with two
 // texture coordinates), not flat when pattern is plane, and what sim::make_pattern_cloth
 // rejects (zero-area or non-convex faces, non-manifold edges, overlaps in the pattern).
-sim::ClothMesh load_cloth_mesh(const ClothMeshFileSpec& spec);
+// `colour`, when given, receives each cloth vertex's RGB colour (0..1, the file's vertex colour
+// channel 0), #V of the returned mesh, or is left empty when the file has no vertex colours.
+sim::ClothMesh load_cloth_mesh(const ClothMeshFileSpec& spec,
+                               std::vector<Eigen::Vector3d>* colour = nullptr);
 
 }  // namespace weft::app

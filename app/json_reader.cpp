@@ -511,6 +511,19 @@ Eigen::Vector3d ObjectReader::vec3(const std::string& key, std::optional<Eigen::
   return {v[0], v[1], v[2]};
 }
 
+Eigen::Vector3d ObjectReader::unit_vec3(const std::string& key,
+                                        std::optional<Eigen::Vector3d> fallback) {
+  const Eigen::Vector3d axis = vec3(key, fallback);
+  const double length = axis.norm();
+  if (std::fabs(length - 1.0) > unit_tolerance) {
+    char got[96];
+    std::snprintf(got, sizeof got, "[%g, %g, %g] (length %.9g)", axis.x(), axis.y(), axis.z(),
+                  length);
+    fail(key, std::string("expected a unit vector, got ") + got);
+  }
+  return axis / length;
+}
+
 Eigen::Vector3d ObjectReader::quantity_vec3(const std::string& key, Quantity kind,
                                             std::optional<Eigen::Vector3d> fallback) {
   std::optional<std::vector<double>> f;

@@ -114,6 +114,9 @@ class ObjectReader {
                        const Range& range = {});
   Eigen::Vector3d quantity_vec3(const std::string& key, Quantity kind,
                                 std::optional<Eigen::Vector3d> fallback);
+  // A unit direction: normalised when within unit_tolerance of unit length, an error otherwise.
+  Eigen::Vector3d unit_vec3(const std::string& key, std::optional<Eigen::Vector3d> fallback);
+  static constexpr double unit_tolerance = 1e-6;  // how far from unit length an axis may be
 
   // A required rows × cols matrix written as an array of rows, each an array of numbers
   // ([[a, b], [c, d]]); element paths "key[i][j]".

@@ -106,6 +106,12 @@ std::vector<Index> select(const PinBox& p, const ClothMesh& mesh) {
   return out;
 }
 
+std::vector<Index> select(const PinVertexSet& p, const ClothMesh& mesh) {
+  if (p.indices.empty()) throw std::invalid_argument(p.what + " selects no vertex of the cloth");
+  for (const Index v : p.indices) select(PinVertex{v}, mesh);  // inside the mesh, and used
+  return p.indices;
+}
+
 }  // namespace
 
 const std::vector<std::string>& corner_names() {

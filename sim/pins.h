@@ -21,7 +21,13 @@ struct PinBox {
   Vec3 lo, hi;
   bool world = false;
 };
-using PinSpec = std::variant<PinVertex, PinGrid, PinCorner, PinRegion, PinBox>;
+// Vertices the scene chose by what the mesh file gives them (app/scene_cloth.cpp: a vertex
+// colour); `what` names the selection in errors.
+struct PinVertexSet {
+  std::vector<Index> indices;
+  std::string what;
+};
+using PinSpec = std::variant<PinVertex, PinGrid, PinCorner, PinRegion, PinBox, PinVertexSet>;
 
 // The corner names, for error messages.
 const std::vector<std::string>& corner_names();

@@ -1,7 +1,7 @@
 // Cloth from a mesh file (issue 21 item 1): a rectangle written as an OBJ quad grid gives the
 // built-in grid's simulation to the bit, per model; a triangle mesh runs every model (a cloth
 // at its flat rest falls as a rigid body: no internal force at rest); bad meshes are errors
-// naming the file and the problem; pins by index, region and box.
+// naming the file and the problem; pins by index, region, box and vertex colour.
 
 #include <gtest/gtest.h>
 
@@ -182,6 +182,73 @@ TEST(ClothMesh, PinsByIndexRegionAndBox) {
   EXPECT_CONTAINS(no_grid, "cloth.pins[0]");
   EXPECT_CONTAINS(no_grid, "needs the cloth's warp/weft grid");
   EXPECT_CONTAINS(no_grid, "triangles.obj");
+}
+
+// Pins by vertex color (OBJ "v x y z r g b", read by assimp): exactly the red vertices, on a
+// triangle mesh and on a quad grid (renumbered), and they stay put while the rest falls.
+TEST(ClothMesh, PinsByVertexColor) {
+  const fs::path dir = test_dir();
+  for (const bool triangles : {true, false}) {
+    // Red: the two vertices at u = 0 of the v = max edge and (2, 4); the rest white.
+    std::string obj = rectangle_obj(5, 5, 0.4, 0.4, 1.0, triangles);
+    std::string coloured;
+    std::size_t at = 0, v = 0;
+    std::vector<sim::Vec3> red_at;
+    for (std::size_t end; (end = obj.find('\n', at)) != std::string::npos; at = end + 1) {
+      std::string line = obj.substr(at, end - at);
+      if (line.rfind("v ", 0) == 0) {
+        const int i = static_cast<int>(v % 5), j = static_cast<int>(v / 5);
+        const bool red = (j == 4 && i <= 1) || (i == 2 && j == 4);
+        line += red ? " 1 0 0" : " 1 1 1";
+        if (red) red_at.emplace_back(i * 0.1, j * 0.1, 1.0);
+        ++v;
+      }
+      coloured += line + "\n";
+    }
+    write(dir / "coloured.obj", coloured);
+    Json scene = sheet_scene("baraff_witkin", {{"mesh", "coloured.obj"}});
+    scene["cloth"]["pins"] = Json::parse(R"([{"color": [1, 0, 0]}])");
+    const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());
+    ASSERT_EQ(s.mesh->has_grid(), !triangles);
+    const std::vector<sim::Index> pinned = sim::resolve_pins(s.pins, *s.mesh);
+    ASSERT_EQ(pinned.size(), red_at.size());
+    for (std::size_t k = 0; k < pinned.size(); ++k) {
+      const sim::Vec3 x = s.mesh->start().row(pinned[k]).transpose();
+      bool red = false;
+      for (const sim::Vec3& r : red_at) red = red || (x - r).norm() < 1e-6;
+      EXPECT_TRUE(red) << "vertex " << pinned[k] << " at " << x.transpose() << " is not red";
+    }
+    const auto simulator = make_simulator(s);
+    simulator->advance(0.2);
+    const sim::Matrix3X& x = simulator->state().x;
+    for (const sim::Index p : pinned)
+      EXPECT_EQ((x.row(p) - s.mesh->start().row(p)).norm(), 0.0) << "pinned vertex " << p;
+    EXPECT_LT(x.col(2).minCoeff(), 1.0 - 0.05) << "the rest did not fall";
+  }
+}
+
+TEST(ClothMeshErrors, PinByColorNamesTheFileAndTheColor) {
+  const fs::path dir = test_dir();
+  write(dir / "plain.obj", rectangle_obj(5, 5, 0.4, 0.4, 1.0, true));
+  write(dir / "coloured.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 1 0\nv 0 1 0 1 0 0\n"
+                              "f 1 2 3\nf 1 3 4\n");
+  const auto error = [&](const std::string& file, const std::string& pins) {
+    Json scene = sheet_scene("baraff_witkin", {{"mesh", file}});
+    scene["cloth"]["pins"] = Json::parse(pins);
+    return scene_error_of(scene, dir / "scene.json");
+  };
+  const std::string none = error("plain.obj", R"([{"color": [1, 0, 0]}])");
+  EXPECT_CONTAINS(none, "cloth.pins[0].color");
+  EXPECT_CONTAINS(none, "plain.obj has no vertex colors");
+  const std::string blue = error("coloured.obj", R"([{"vertex": 0}, {"color": [0, 0, 1]}])");
+  EXPECT_CONTAINS(blue, "cloth.pins[1].color");
+  EXPECT_CONTAINS(blue, "no vertex of coloured.obj has the color [0, 0, 1] (tolerance 0.01)");
+  // The green pair, within a tolerance; a tolerance without a color is an unknown key.
+  Json scene = sheet_scene("baraff_witkin", {{"mesh", "coloured.obj"}});
+  scene["cloth"]["pins"] = Json::parse(R"([{"color": [0.1, 0.9, 0], "tolerance": 0.2}])");
+  const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());
+  EXPECT_EQ(sim::resolve_pins(s.pins, *s.mesh), (std::vector<sim::Index>{1, 2}));
+  EXPECT_CONTAINS(error("coloured.obj", R"([{"vertex": 0, "tolerance": 0.1}])"), "tolerance");
 }
 
 // The scene error of the cloth read from `obj` (written as bad.obj), with `extra` cloth keys.
