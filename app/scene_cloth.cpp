@@ -19,6 +19,7 @@
 #include "app/tension_field_scene.h"
 #include "app/units.h"
 #include "base/constants.h"
+#include "base/enum_names.h"
 #include "sim/material_presets.h"
 
 namespace weft::app {
@@ -111,9 +112,7 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path, const MeshColours& col
     const std::string got =
         given.empty() ? "none of them" : "both '" + given[0] + "' and '" + given[1] + "'";
     throw_scene_error(r.file(), r.path(),
-                      "expected exactly one of 'corner', 'vertex', 'grid', 'region', 'box' or "
-                      "'color', got " +
-                          got);
+                      "expected exactly " + base::choices_text(selectors) + ", got " + got);
   }
   const Range index_range = Range::closed(0, std::numeric_limits<sim::Index>::max());
   sim::PinSpec pin;

@@ -51,24 +51,20 @@ void validate(const RenderMesh& mesh, const std::string& name) {
                                   " has a non-finite position");
     }
   }
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    for (std::uint32_t v : mesh.triangles[f]) {
-      if (v >= vertex_count) {
-        throw std::invalid_argument(name + ": triangle " + std::to_string(f) + " uses vertex " +
-                                    std::to_string(v) + " but the mesh has " +
-                                    std::to_string(vertex_count) + " vertices");
+  // Every index of every triangle or edge ("triangle", "edge") within the vertices.
+  const auto check_indices = [&](const auto& items, const char* what) {
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      for (std::uint32_t v : items[k]) {
+        if (v >= vertex_count) {
+          throw std::invalid_argument(name + ": " + what + " " + std::to_string(k) +
+                                      " uses vertex " + std::to_string(v) + " but the mesh has " +
+                                      std::to_string(vertex_count) + " vertices");
+        }
       }
     }
-  }
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    for (std::uint32_t v : mesh.edges[e]) {
-      if (v >= vertex_count) {
-        throw std::invalid_argument(name + ": edge " + std::to_string(e) + " uses vertex " +
-                                    std::to_string(v) + " but the mesh has " +
-                                    std::to_string(vertex_count) + " vertices");
-      }
-    }
-  }
+  };
+  check_indices(mesh.triangles, "triangle");
+  check_indices(mesh.edges, "edge");
 }
 
 std::vector<std::array<std::uint32_t, 2>> triangle_edges(const RenderMesh& mesh) {

@@ -268,11 +268,11 @@ TEST(SceneErrors, PinsOutsideTheMesh) {
   s["cloth"]["pins"][2] = {{"corner", "u0v0"}, {"vertex", 3}};
   EXPECT_EQ(error_of(s),
             "scene.json: cloth.pins[2]: expected exactly one of 'corner', 'vertex', 'grid', "
-            "'region', 'box' or 'color', got both 'corner' and 'vertex'");
+            "'region', 'box', 'color', got both 'corner' and 'vertex'");
   s["cloth"]["pins"][2] = Json::object();
   EXPECT_CONTAINS(error_of(s),
                   "cloth.pins[2]: expected exactly one of 'corner', 'vertex', "
-                  "'grid', 'region', 'box' or 'color', got none of them");
+                  "'grid', 'region', 'box', 'color', got none of them");
 }
 
 TEST(SceneErrors, Geometry) {

@@ -77,5 +77,25 @@ TEST(ComputeVertexNormals, BadIndexNamesTheTriangle) {
   }
 }
 
+TEST(ValidateRenderMesh, BadIndexNamesTheTriangleOrTheEdge) {
+  RenderMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 7}};
+  const auto message = [&mesh] {
+    try {
+      validate(mesh, "cloth");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  EXPECT_EQ(message(), "cloth: triangle 1 uses vertex 7 but the mesh has 3 vertices");
+  mesh.triangles.pop_back();
+  mesh.edges = {{0, 1}, {1, 2}, {3, 0}};  // the wireframe's lines: the last is out of range
+  EXPECT_EQ(message(), "cloth: edge 2 uses vertex 3 but the mesh has 3 vertices");
+  mesh.edges.pop_back();
+  EXPECT_EQ(message(), "no exception");
+}
+
 }  // namespace
 }  // namespace weft::render
