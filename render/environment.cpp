@@ -25,7 +25,7 @@ double luminance(const Eigen::Vector3f& c) {
 
 namespace {
 
-constexpr double pi = base::kPi;
+using base::kPi;
 
 // Map point (u, v) of direction d (unit), u, v ∈ [0, 1].
 Eigen::Vector2f map_point(const Eigen::Vector3f& d) {
@@ -76,7 +76,7 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Eigen::Vector3
   m_marginal.assign(static_cast<std::size_t>(height) + 1, 0.0);
   m_conditional.assign(static_cast<std::size_t>(height) * (width + 1), 0.0);
   for (int y = 0; y < height; ++y) {
-    const double sin_theta = std::sin(pi * (y + 0.5) / height);
+    const double sin_theta = std::sin(kPi * (y + 0.5) / height);
     double* row = &m_conditional[static_cast<std::size_t>(y) * (width + 1)];
     for (int x = 0; x < width; ++x) {
       const std::size_t k = static_cast<std::size_t>(y) * width + x;
@@ -99,14 +99,14 @@ EnvironmentMap::Sample EnvironmentMap::sample(float u1, float u2) const {
   const int x = find_interval(&m_conditional[static_cast<std::size_t>(y) * (m_width + 1)],
                               m_width, u2, du);
   const double u = (x + du) / m_width, v = (y + dv) / m_height;
-  const double theta = pi * v, phi = pi * (1.0 - 2.0 * u);
+  const double theta = kPi * v, phi = kPi * (1.0 - 2.0 * u);
   const double sin_theta = std::sin(theta);
   Sample s;
   s.direction = Eigen::Vector3d(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
                                 std::cos(theta)).cast<float>();
   const double p_uv = m_weight[static_cast<std::size_t>(y) * m_width + x] / m_total *
                       static_cast<double>(m_width) * m_height;
-  s.pdf = sin_theta > 0.0 ? static_cast<float>(p_uv / (2.0 * pi * pi * sin_theta)) : 0.0f;
+  s.pdf = sin_theta > 0.0 ? static_cast<float>(p_uv / (2.0 * kPi * kPi * sin_theta)) : 0.0f;
   return s;
 }
 
@@ -117,7 +117,7 @@ float EnvironmentMap::pdf(const Eigen::Vector3f& d) const {
   const int x = texel_index(p.x(), m_width), y = texel_index(p.y(), m_height);
   const double p_uv = m_weight[static_cast<std::size_t>(y) * m_width + x] / m_total *
                       static_cast<double>(m_width) * m_height;
-  return static_cast<float>(p_uv / (2.0 * pi * pi * sin_theta));
+  return static_cast<float>(p_uv / (2.0 * kPi * kPi * sin_theta));
 }
 
 EnvironmentMap read_environment_map(const std::filesystem::path& path) {

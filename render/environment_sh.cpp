@@ -15,13 +15,13 @@ namespace weft::render {
 
 namespace {
 
-constexpr double pi = base::kPi;
+using base::kPi;
 // Normalisation constants of the real basis (environment.h's order).
-const double c0 = 0.5 / std::sqrt(pi);             // 0.282095
-const double c1 = std::sqrt(3.0 / (4.0 * pi));     // 0.488603
-const double c2 = std::sqrt(15.0 / (4.0 * pi));    // 1.092548
-const double c3 = std::sqrt(5.0 / (16.0 * pi));    // 0.315392
-const double c4 = std::sqrt(15.0 / (16.0 * pi));   // 0.546274
+const double c0 = 0.5 / std::sqrt(kPi);             // 0.282095
+const double c1 = std::sqrt(3.0 / (4.0 * kPi));     // 0.488603
+const double c2 = std::sqrt(15.0 / (4.0 * kPi));    // 1.092548
+const double c3 = std::sqrt(5.0 / (16.0 * kPi));    // 0.315392
+const double c4 = std::sqrt(15.0 / (16.0 * kPi));   // 0.546274
 
 // ∫ f(θ) sin θ dθ over [a, b] for f = 1, cos, cos², sin, cos·sin, sin².
 struct ThetaIntegrals {
@@ -73,13 +73,13 @@ ShCoefficients project_sh(const Environment& environment) {
   // Column x spans map azimuths π (1 − 2(x+1)/W) … π (1 − 2x/W); the world's are turned by α.
   std::vector<PhiIntegrals> columns(static_cast<std::size_t>(w));
   for (int x = 0; x < w; ++x) {
-    columns[x] = phi_integrals(pi * (1.0 - 2.0 * (x + 1) / w) + rotation,
-                               pi * (1.0 - 2.0 * x / w) + rotation);
+    columns[x] = phi_integrals(kPi * (1.0 - 2.0 * (x + 1) / w) + rotation,
+                               kPi * (1.0 - 2.0 * x / w) + rotation);
   }
   std::array<Eigen::Vector3d, 9> sum;
   sum.fill(Eigen::Vector3d::Zero());
   for (int y = 0; y < h; ++y) {
-    const ThetaIntegrals row = theta_integrals(pi * y / h, pi * (y + 1) / h);
+    const ThetaIntegrals row = theta_integrals(kPi * y / h, kPi * (y + 1) / h);
     for (int x = 0; x < w; ++x) {
       const std::array<double, 9> integral = texel_integrals(row, columns[x]);
       const Eigen::Vector3d radiance = map.texel(x, y).cast<double>();

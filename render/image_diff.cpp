@@ -65,7 +65,7 @@ double ssim_term(double mx, double my, double vx, double vy, double cxy) {
   return ((2.0 * mx * my + c1) * (2.0 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
 }
 
-Rgb8 ramp(double t) {  // t in [0, 1]: black → blue → red → yellow → white
+Rgb8 heat_ramp(double t) {  // t in [0, 1]: black → blue → red → yellow → white
   static const double stops[5][3] = {{0, 0, 0}, {0, 0, 255}, {255, 0, 0}, {255, 255, 0}, {255, 255, 255}};
   const double s = std::clamp(t, 0.0, 1.0) * 4.0;
   const int i = std::min(3, static_cast<int>(s));
@@ -195,7 +195,7 @@ Image difference_heatmap(const Image& a, const Image& b, int pixel_threshold) {
         const auto grey = static_cast<std::uint8_t>(std::lround(0.25 * (0.299 * q.r + 0.587 * q.g + 0.114 * q.b)));
         out.set(x, y, {grey, grey, grey});
       } else {
-        out.set(x, y, ramp(std::sqrt(d / 255.0)));
+        out.set(x, y, heat_ramp(std::sqrt(d / 255.0)));
       }
     }
   return out;

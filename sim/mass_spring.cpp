@@ -16,8 +16,6 @@
 namespace weft::sim {
 namespace {
 
-Vec3 row(const Matrix3X& x, Index i) { return x.row(i).transpose(); }
-
 // Width of cloth an edge stands for: half a cell of `spacing` (m) across the edge for each of
 // the `cells` kept cells beside it — a whole cell inside, half a cell on a free edge.
 double tributary_width(int cells, double spacing) { return 0.5 * spacing * cells; }
@@ -124,8 +122,8 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
   }
   // Rest angles from the rest shape (zero for a flat grid, kept general).
   for (auto& b : bends) {
-    const Vec3 x0 = row(mesh.rest_positions, b.v0), x1 = row(mesh.rest_positions, b.v1);
-    b.rest_angle = turning_angle(x1 - x0, row(mesh.rest_positions, b.v2) - x1);
+    const Vec3 x0 = vertex(mesh.rest_positions, b.v0), x1 = vertex(mesh.rest_positions, b.v1);
+    b.rest_angle = turning_angle(x1 - x0, vertex(mesh.rest_positions, b.v2) - x1);
   }
   m_springs = std::make_shared<SpringTerm>(std::move(springs));
   m_bends = std::make_shared<AngularBendingTerm>(std::move(bends));
@@ -168,19 +166,19 @@ std::string SpringTerm::describe() const {
 
 Mat3 SpringTerm::pair_stiffness(const Matrix3X& x, std::size_t e, bool project_psd) const {
   const Spring& s = m_springs[e];
-  return project_psd ? spring_hessian_b_projected(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m)
-                     : spring_hessian_b(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+  return project_psd ? spring_hessian_b_projected(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m)
+                     : spring_hessian_b(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
 }
 
 double SpringTerm::energy(const Matrix3X& x) const {
   double e = 0.0;
-  for (const Spring& s : m_springs) e += spring_energy(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+  for (const Spring& s : m_springs) e += spring_energy(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
   return e;
 }
 
 void SpringTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
   for (const Spring& s : m_springs) {
-    const Vec3 g = spring_gradient_b(row(x, s.a), row(x, s.b), s.rest_m, s.k_N_m);
+    const Vec3 g = spring_gradient_b(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
     f.row(s.a) += g.transpose();
     f.row(s.b) -= g.transpose();
   }
@@ -206,13 +204,14 @@ void AngularBendingTerm::stencil(std::size_t e, Index* vertices) const {
 double AngularBendingTerm::energy(const Matrix3X& x) const {
   double e = 0.0;
   for (const AngularSpring& b : m_bends)
-    e += bend_angle_energy(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
+    e += bend_angle_energy(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle, b.k_Nm);
   return e;
 }
 
 void AngularBendingTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
   for (const AngularSpring& b : m_bends) {
-    const auto g = bend_angle_gradient(row(x, b.v0), row(x, b.v1), row(x, b.v2), b.rest_angle, b.k_Nm);
+    const auto g =
+        bend_angle_gradient(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle, b.k_Nm);
     f.row(b.v0) -= g[0].transpose();
     f.row(b.v1) -= g[1].transpose();
     f.row(b.v2) -= g[2].transpose();

@@ -16,4 +16,7 @@ using Mat3 = Eigen::Matrix3d;
 using Matrix3X = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Index = std::int32_t;
 
+// Vertex v of a #V×3 block, as a column vector.
+inline Vec3 vertex(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
+
 }  // namespace weft::sim

@@ -18,8 +18,6 @@
 namespace weft::sim {
 namespace {
 
-Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
-
 // Weights within this of 0 count as on the triangle's boundary, not over its face.
 constexpr double face_tolerance = 1e-9;
 
@@ -27,17 +25,17 @@ bool over_face(const Vec3& w) { return w.minCoeff() > face_tolerance; }
 
 // Distance from p to triangle t of x.
 double point_triangle_distance(const Matrix3X& x, Index p, const std::array<Index, 3>& t) {
-  const Vec3 a = row(x, t[0]), b = row(x, t[1]), c = row(x, t[2]);
-  const Vec3 w = closest_point_on_triangle_weights(row(x, p), a, b, c);
-  return (row(x, p) - (w[0] * a + w[1] * b + w[2] * c)).norm();
+  const Vec3 a = vertex(x, t[0]), b = vertex(x, t[1]), c = vertex(x, t[2]);
+  const Vec3 w = closest_point_on_triangle_weights(vertex(x, p), a, b, c);
+  return (vertex(x, p) - (w[0] * a + w[1] * b + w[2] * c)).norm();
 }
 
 
 // Which side of the plane of triangle t vertex p lies on in m: the sign of the result (its
 // size is the distance times twice the area).
 inline double side_of(const Matrix3X& m, Index p, const std::array<Index, 3>& t) {
-  const Vec3 a = row(m, t[0]);
-  return (row(m, p) - a).dot((row(m, t[1]) - a).cross(row(m, t[2]) - a));
+  const Vec3 a = vertex(m, t[0]);
+  return (vertex(m, p) - a).dot((vertex(m, t[1]) - a).cross(vertex(m, t[2]) - a));
 }
 
 // Whether vertex p is on the other side of the plane of triangle t at x than at x_start.
@@ -55,7 +53,7 @@ struct EdgeEdgeClosest {
 
 inline EdgeEdgeClosest edge_edge_closest(const Matrix3X& x, const std::array<Index, 2>& e,
                                   const std::array<Index, 2>& f) {
-  const Vec3 p0 = row(x, e[0]), p1 = row(x, e[1]), q0 = row(x, f[0]), q1 = row(x, f[1]);
+  const Vec3 p0 = vertex(x, e[0]), p1 = vertex(x, e[1]), q0 = vertex(x, f[0]), q1 = vertex(x, f[1]);
   const auto [s, u] = closest_segment_parameters(p0, p1, q0, q1);
   return {s, u, (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))};
 }
@@ -69,8 +67,8 @@ double edge_edge_distance(const Matrix3X& x, const std::array<Index, 2>& e,
 // the edges' sides swapped during the step when c.d · (this) < 0.
 inline Vec3 start_offset(const Matrix3X& x_start, const std::array<Index, 2>& e,
                   const std::array<Index, 2>& f, const EdgeEdgeClosest& c) {
-  return (row(x_start, e[0]) + c.s * (row(x_start, e[1]) - row(x_start, e[0]))) -
-         (row(x_start, f[0]) + c.u * (row(x_start, f[1]) - row(x_start, f[0])));
+  return (vertex(x_start, e[0]) + c.s * (vertex(x_start, e[1]) - vertex(x_start, e[0]))) -
+         (vertex(x_start, f[0]) + c.u * (vertex(x_start, f[1]) - vertex(x_start, f[0])));
 }
 
 // Whether the bounding boxes of point sets a and b of x come within limit_m of each other along
@@ -155,7 +153,7 @@ SelfCollision::SelfCollision(const ClothMesh& mesh, const SelfCollisionSettings&
   // more pairs active (a quarter of the contact distance cost 4 % more at 64²: measured with
   // bench/self_collision_bench).
   double edge_sum_m = 0.0;
-  for (const auto& e : m_edges) edge_sum_m += (row(m_rest, e[0]) - row(m_rest, e[1])).norm();
+  for (const auto& e : m_edges) edge_sum_m += (vertex(m_rest, e[0]) - vertex(m_rest, e[1])).norm();
   const double mean_edge_m = m_edges.empty() ? 0.0 : edge_sum_m / static_cast<double>(m_edges.size());
   const double contact_m = std::max(settings.thickness_m, 2.0 * m_marble_radius_m);
   m_neighbourhood_m = settings.neighbourhood_edges * mean_edge_m;
@@ -308,12 +306,12 @@ void SelfCollision::rebuild(const Matrix3X& x) {
     for (std::size_t t = base::share_begin(m_triangles.size(), box_shares, k); t < triangles_end; ++t) {
       const auto& tri = m_triangles[t];
       m_triangle_boxes[t] =
-          inflated(bounding_box(row(x, tri[0]), row(x, tri[1]), row(x, tri[2])), reach_m);
+          inflated(bounding_box(vertex(x, tri[0]), vertex(x, tri[1]), vertex(x, tri[2])), reach_m);
     }
     const std::size_t edges_end = base::share_begin(m_edges.size(), box_shares, k + 1);
     for (std::size_t e = base::share_begin(m_edges.size(), box_shares, k); e < edges_end; ++e)
       m_edge_boxes[e] =
-          inflated(bounding_box(row(x, m_edges[e][0]), row(x, m_edges[e][1])), 0.5 * reach_m);
+          inflated(bounding_box(vertex(x, m_edges[e][0]), vertex(x, m_edges[e][1])), 0.5 * reach_m);
   });
   const double patch_reach_m = std::max(reach_m, marble_reach_m);
   m_patches.pairs_within(m_watch_m, patch_reach_m, m_culling, m_watched, m_pool.get());
@@ -381,7 +379,7 @@ void SelfCollision::add_vertex_triangle_candidates(const SurfacePatch& a, const 
   const double exclusion_m = exclusion_radius_m();
   const Aabb target = inflated(b.box, reach_m);
   for (const Index v : a.owned_vertices) {
-    const Vec3 p = row(x, v);
+    const Vec3 p = vertex(x, v);
     if (!boxes_overlap(Aabb{p, p}, target)) continue;
     for (const Index k : b.triangles) {
       const auto& tri = m_triangles[static_cast<std::size_t>(k)];
@@ -476,7 +474,7 @@ double SelfCollision::project_vertex_triangle(const std::array<Index, 2>& pair,
   const double t = m_settings.thickness_m;
   const Index v = pair[0];
   const auto& tri = m_triangles[static_cast<std::size_t>(pair[1])];
-  const Vec3 p = row(x, v), a = row(x, tri[0]), b = row(x, tri[1]), c = row(x, tri[2]);
+  const Vec3 p = vertex(x, v), a = vertex(x, tri[0]), b = vertex(x, tri[1]), c = vertex(x, tri[2]);
   const Vec3 w = closest_point_on_triangle_weights(p, a, b, c);
   const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
   Vec3 n;
@@ -491,8 +489,9 @@ double SelfCollision::project_vertex_triangle(const std::array<Index, 2>& pair,
     // Whether it was over the face matters only when the two sides differ.
     const bool same_side = side0 == 0.0 || (side_now != 0.0 && (side0 > 0.0) == (side_now > 0.0));
     const bool was_over =
-        !same_side && over_face(closest_point_on_triangle_weights(
-                          row(x_start, v), row(x_start, tri[0]), row(x_start, tri[1]), row(x_start, tri[2])));
+        !same_side &&
+        over_face(closest_point_on_triangle_weights(vertex(x_start, v), vertex(x_start, tri[0]),
+                                                    vertex(x_start, tri[1]), vertex(x_start, tri[2])));
     const double side = was_over ? side0 : side_now;
     if (side < 0.0) n = -n;
     gap_m = (p - q).dot(n);
@@ -532,7 +531,7 @@ double SelfCollision::project_edge_edge(const std::array<Index, 2>& pair, const 
 
 double SelfCollision::project_marbles(const std::array<Index, 2>& pair,
                                       const Eigen::VectorXd& inv_mass, Matrix3X& x) {
-  const Vec3 d = row(x, pair[0]) - row(x, pair[1]);
+  const Vec3 d = vertex(x, pair[0]) - vertex(x, pair[1]);
   const double length = d.norm();
   if (!(length > 0.0)) return std::numeric_limits<double>::infinity();
   push_apart<2>(pair, {1.0, -1.0}, d / length, length, 2.0 * m_marble_radius_m, inv_mass, x,

@@ -15,8 +15,6 @@
 namespace weft::sim {
 namespace {
 
-Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
-
 // The barycentric weights of p's projection onto the plane of triangle abc (unclamped), or
 // none (NaN) for a degenerate triangle.
 Vec3 plane_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -30,11 +28,11 @@ Vec3 plane_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 Aabb swept_box(const Matrix3X& x0, const Matrix3X& x1, const Index* v, int count) {
-  Aabb box{row(x0, v[0]), row(x0, v[0])};
+  Aabb box{vertex(x0, v[0]), vertex(x0, v[0])};
   for (int k = 0; k < count; ++k) {
     for (const Matrix3X* x : {&x0, &x1}) {
-      box.lo = box.lo.cwiseMin(row(*x, v[k]));
-      box.hi = box.hi.cwiseMax(row(*x, v[k]));
+      box.lo = box.lo.cwiseMin(vertex(*x, v[k]));
+      box.hi = box.hi.cwiseMax(vertex(*x, v[k]));
     }
   }
   return box;
@@ -61,7 +59,7 @@ SelfContactRows::SelfContactRows(const ClothMesh& mesh, double distance_m,
     throw std::invalid_argument("self_collision.neighbourhood must be in 0..4 edges, got " +
                                 std::to_string(neighbourhood_edges));
   double sum = 0.0;
-  for (const auto& e : m_edges) sum += (row(m_rest, e[0]) - row(m_rest, e[1])).norm();
+  for (const auto& e : m_edges) sum += (vertex(m_rest, e[0]) - vertex(m_rest, e[1])).norm();
   m_mean_edge_m = m_edges.empty() ? 0.0 : sum / static_cast<double>(m_edges.size());
   m_exclusion_m = distance_m + neighbourhood_edges * m_mean_edge_m;
   for (const auto& t : m_triangles) m_vertices.insert(m_vertices.end(), t.begin(), t.end());
@@ -88,20 +86,20 @@ void SelfContactRows::gather(const Matrix3X& x_start, const Matrix3X& x_end,
     std::vector<Index> ids;
     for (const Index v : m_vertices) {
       hash.query(inflated(swept_box(x_start, x_end, &v, 1), reach_m), ids);
-      const Vec3 p = row(x_start, v);
+      const Vec3 p = vertex(x_start, v);
       for (const Index k : ids) {
         const auto& t = m_triangles[static_cast<std::size_t>(k)];
         if (v == t[0] || v == t[1] || v == t[2]) continue;
-        const Vec3 a = row(x_start, t[0]), b = row(x_start, t[1]), c = row(x_start, t[2]);
+        const Vec3 a = vertex(x_start, t[0]), b = vertex(x_start, t[1]), c = vertex(x_start, t[2]);
         const Vec3 w = plane_weights(p, a, b, c);
         if (!(w.minCoeff() > -over_face_margin)) continue;  // not over the (grown) face
         Vec3 n = (b - a).cross(c - a);
         const double side = (p - a).dot(n);
         if (!(std::abs(side) > 0.0) || !(n.squaredNorm() > 0.0)) continue;
-        const Vec3 r = row(m_rest, v);
-        const Vec3 wr = closest_point_on_triangle_weights(r, row(m_rest, t[0]), row(m_rest, t[1]),
-                                                          row(m_rest, t[2]));
-        const Vec3 qr = wr[0] * row(m_rest, t[0]) + wr[1] * row(m_rest, t[1]) + wr[2] * row(m_rest, t[2]);
+        const Vec3 r = vertex(m_rest, v);
+        const Vec3 ra = vertex(m_rest, t[0]), rb = vertex(m_rest, t[1]), rc = vertex(m_rest, t[2]);
+        const Vec3 wr = closest_point_on_triangle_weights(r, ra, rb, rc);
+        const Vec3 qr = wr[0] * ra + wr[1] * rb + wr[2] * rc;
         if ((r - qr).norm() < m_exclusion_m) continue;  // neighbours never touch
         n.normalize();
         if (side < 0.0) n = -n;
@@ -125,16 +123,16 @@ void SelfContactRows::gather(const Matrix3X& x_start, const Matrix3X& x_end,
       if (static_cast<std::size_t>(j) <= i) continue;
       const auto& f = m_edges[static_cast<std::size_t>(j)];
       if (e[0] == f[0] || e[0] == f[1] || e[1] == f[0] || e[1] == f[1]) continue;
-      const Vec3 p0 = row(x_start, e[0]), p1 = row(x_start, e[1]);
-      const Vec3 q0 = row(x_start, f[0]), q1 = row(x_start, f[1]);
+      const Vec3 p0 = vertex(x_start, e[0]), p1 = vertex(x_start, e[1]);
+      const Vec3 q0 = vertex(x_start, f[0]), q1 = vertex(x_start, f[1]);
       const auto [s, u] = closest_segment_parameters(p0, p1, q0, q1);
       if (!(s > 0.0 && s < 1.0 && u > 0.0 && u < 1.0)) continue;  // not inside both
       const Vec3 d = (p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0));
       if (!(d.squaredNorm() > 0.0)) continue;
-      const auto [sr, ur] = closest_segment_parameters(row(m_rest, e[0]), row(m_rest, e[1]),
-                                                       row(m_rest, f[0]), row(m_rest, f[1]));
-      const Vec3 dr = (row(m_rest, e[0]) + sr * (row(m_rest, e[1]) - row(m_rest, e[0]))) -
-                      (row(m_rest, f[0]) + ur * (row(m_rest, f[1]) - row(m_rest, f[0])));
+      const auto [sr, ur] = closest_segment_parameters(vertex(m_rest, e[0]), vertex(m_rest, e[1]),
+                                                       vertex(m_rest, f[0]), vertex(m_rest, f[1]));
+      const Vec3 dr = (vertex(m_rest, e[0]) + sr * (vertex(m_rest, e[1]) - vertex(m_rest, e[0]))) -
+                      (vertex(m_rest, f[0]) + ur * (vertex(m_rest, f[1]) - vertex(m_rest, f[0])));
       if (dr.norm() < m_exclusion_m) continue;  // neighbours never touch
       const SelfContactRow contact{{e[0], e[1], f[0], f[1]}, {1.0 - s, s, u - 1.0, -u}, d.normalized()};
       if (!all_pinned(contact.v)) m_rows.push_back(contact);

@@ -42,8 +42,6 @@ void check_indices(const Matrix3X& x, const std::vector<std::array<Index, 3>>& t
     for (const Index v : edges[e]) check(v, "edge", e);
 }
 
-Vec3 vertex(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
-
 bool edge_crosses(const Matrix3X& x, const std::array<Index, 2>& edge,
                   const std::array<Index, 3>& triangle) {
   return segment_crosses_triangle(vertex(x, edge[0]), vertex(x, edge[1]), vertex(x, triangle[0]),

@@ -14,8 +14,6 @@
 namespace weft::sim {
 namespace {
 
-Vec3 row(const Matrix3X& x, Index v) { return x.row(v).transpose(); }
-
 Aabb merged(const Aabb& a, const Aabb& b) { return {a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)}; }
 
 }  // namespace
@@ -117,8 +115,8 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
   m_rest_inverse.resize(m_triangles.size());
   for (std::size_t t = 0; t < m_triangles.size(); ++t) {
     const auto& tri = m_triangles[t];
-    const Vec3 e1 = row(mesh.rest_positions, tri[1]) - row(mesh.rest_positions, tri[0]);
-    const Vec3 e2 = row(mesh.rest_positions, tri[2]) - row(mesh.rest_positions, tri[0]);
+    const Vec3 e1 = vertex(mesh.rest_positions, tri[1]) - vertex(mesh.rest_positions, tri[0]);
+    const Vec3 e2 = vertex(mesh.rest_positions, tri[2]) - vertex(mesh.rest_positions, tri[0]);
     const Vec3 u = e1.normalized(), v = (e1.cross(e2)).cross(e1).normalized();
     Eigen::Matrix2d rest;
     rest << u.dot(e1), u.dot(e2), v.dot(e1), v.dot(e2);
@@ -142,7 +140,7 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
     for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
       const auto t = static_cast<std::size_t>(patch.triangles[k]);
       const auto& tri = m_triangles[t];
-      const Vec3 a = row(x, tri[0]), b = row(x, tri[1]), c = row(x, tri[2]);
+      const Vec3 a = vertex(x, tri[0]), b = vertex(x, tri[1]), c = vertex(x, tri[2]);
       const Aabb box = bounding_box(a, b, c);
       patch.box = k == 0 ? box : merged(patch.box, box);
       m_normals[t] = (b - a).cross(c - a);

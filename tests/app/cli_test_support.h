@@ -13,6 +13,8 @@
 #include <string>
 #include <utility>
 
+#include "tests/support/test_files.h"
+
 namespace weft::app::test {
 
 struct CommandResult {
@@ -45,14 +47,9 @@ inline std::string file_bytes(const std::filesystem::path& path) {
 }
 
 // A fresh, empty folder for the running test: WEFT_BINARY_DIR/test_output/<suite>/<test name>.
-// One per test, so tests that ctest runs at once never share (and clear) each other's output.
 inline std::filesystem::path fresh_test_directory(const std::string& suite) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir =
-      std::filesystem::path(WEFT_BINARY_DIR) / "test_output" / suite / info->name();
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  const std::filesystem::path root = std::filesystem::path(WEFT_BINARY_DIR) / "test_output";
+  return test_files::fresh_directory(root, suite);
 }
 
 // A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels.

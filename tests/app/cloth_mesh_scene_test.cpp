@@ -13,6 +13,7 @@
 #include "app/json_reader.h"
 #include "app/scene.h"
 #include "scene_test_support.h"
+#include "tests/support/test_files.h"
 
 namespace weft::app {
 namespace {
@@ -20,15 +21,12 @@ namespace {
 namespace fs = std::filesystem;
 using test::scene_error_of;
 
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(::testing::TempDir()) / "weft_cloth_mesh_test" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test_files::write_text;
 
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+// A folder of its own for each test's files.
+fs::path cloth_mesh_dir() {
+  return test_files::fresh_directory(::testing::TempDir(), "weft_cloth_mesh_test");
+}
 
 // A size_u × size_v rectangle of nu × nv vertices at height z: vertex (i, j) at (i·du, j·dv, z)
 // with texture coordinates (i·du, j·dv) (metres); quads, or each quad cut into two triangles
@@ -84,8 +82,8 @@ sim::Matrix3X simulate(const Json& scene, const fs::path& source, double seconds
 class RectangleMesh : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RectangleMesh, GivesTheGridsSimulationToTheBit) {
-  const fs::path dir = test_dir();
-  write(dir / "rectangle.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, false));
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "rectangle.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, false));
   const Json grid = {{"size", {"1 m", "0.5 m"}}, {"resolution", {9, 5}}};
   const Json mesh = {{"mesh", "rectangle.obj"}};
   const sim::Matrix3X a = simulate(sheet_scene(GetParam(), grid), dir / "scene.json", 0.25);
@@ -101,8 +99,8 @@ INSTANTIATE_TEST_SUITE_P(Models, RectangleMesh,
                          ::testing::Values("mass_spring", "baraff_witkin", "rft3"));
 
 TEST(ClothMesh, AQuadGridInTheFileIsTheGrid) {
-  const fs::path dir = test_dir();
-  write(dir / "rectangle.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, false));
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "rectangle.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, false));
   const Scene s = parse_scene(sheet_scene("mass_spring", {{"mesh", "rectangle.obj"}}).dump(),
                               (dir / "scene.json").string());
   ASSERT_TRUE(s.mesh);
@@ -117,8 +115,8 @@ class TriangleClothMesh : public ::testing::TestWithParam<std::string> {};
 // A triangle mesh at its flat rest shape and unpinned: no internal force, so every vertex falls
 // ½ g t² whatever the model (air damping 0); its mass is the density times its area.
 TEST_P(TriangleClothMesh, FallsAsARigidBodyFromRest) {
-  const fs::path dir = test_dir();
-  write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
   Json scene = sheet_scene(GetParam(), {{"mesh", "triangles.obj"}});
   scene["cloth"].erase("pins");
   scene["simulation"]["air_damping"] = "0 1/s";
@@ -147,8 +145,8 @@ INSTANTIATE_TEST_SUITE_P(Models, TriangleClothMesh,
 // A hanging triangle-mesh sheet stretches under its weight by about what the grid's does:
 // the models agree on the physics, not the bits (a different mesh).
 TEST(ClothMesh, TriangleMeshHangsLikeTheGrid) {
-  const fs::path dir = test_dir();
-  write(dir / "triangles.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, true));
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "triangles.obj", rectangle_obj(9, 5, 1.0, 0.5, 1.0, true));
   const Json grid = {{"size", {"1 m", "0.5 m"}}, {"resolution", {9, 5}}};
   const Json mesh = {{"mesh", "triangles.obj"}};
   const sim::Matrix3X a = simulate(sheet_scene("baraff_witkin", grid), dir / "scene.json", 0.3);
@@ -158,8 +156,8 @@ TEST(ClothMesh, TriangleMeshHangsLikeTheGrid) {
 }
 
 TEST(ClothMesh, PinsByIndexRegionAndBox) {
-  const fs::path dir = test_dir();
-  write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
   const auto pinned = [&](const Json& pins) {
     Json scene = sheet_scene("baraff_witkin", {{"mesh", "triangles.obj"}});
     scene["cloth"]["pins"] = pins;
@@ -187,7 +185,7 @@ TEST(ClothMesh, PinsByIndexRegionAndBox) {
 // Pins by vertex color (OBJ "v x y z r g b", read by assimp): exactly the red vertices, on a
 // triangle mesh and on a quad grid (renumbered), and they stay put while the rest falls.
 TEST(ClothMesh, PinsByVertexColor) {
-  const fs::path dir = test_dir();
+  const fs::path dir = cloth_mesh_dir();
   for (const bool triangles : {true, false}) {
     // Red: the two vertices at u = 0 of the v = max edge and (2, 4); the rest white.
     std::string obj = rectangle_obj(5, 5, 0.4, 0.4, 1.0, triangles);
@@ -205,7 +203,7 @@ TEST(ClothMesh, PinsByVertexColor) {
       }
       coloured += line + "\n";
     }
-    write(dir / "coloured.obj", coloured);
+    write_text(dir / "coloured.obj", coloured);
     Json scene = sheet_scene("baraff_witkin", {{"mesh", "coloured.obj"}});
     scene["cloth"]["pins"] = Json::parse(R"([{"color": [1, 0, 0]}])");
     const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());
@@ -228,9 +226,9 @@ TEST(ClothMesh, PinsByVertexColor) {
 }
 
 TEST(ClothMeshErrors, PinByColorNamesTheFileAndTheColor) {
-  const fs::path dir = test_dir();
-  write(dir / "plain.obj", rectangle_obj(5, 5, 0.4, 0.4, 1.0, true));
-  write(dir / "coloured.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 1 0\nv 0 1 0 1 0 0\n"
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "plain.obj", rectangle_obj(5, 5, 0.4, 0.4, 1.0, true));
+  write_text(dir / "coloured.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 1 0\nv 0 1 0 1 0 0\n"
                               "f 1 2 3\nf 1 3 4\n");
   const auto error = [&](const std::string& file, const std::string& pins) {
     Json scene = sheet_scene("baraff_witkin", {{"mesh", file}});
@@ -253,8 +251,8 @@ TEST(ClothMeshErrors, PinByColorNamesTheFileAndTheColor) {
 
 // The scene error of the cloth read from `obj` (written as bad.obj), with `extra` cloth keys.
 std::string mesh_error(const std::string& obj, const Json& extra = Json::object()) {
-  const fs::path dir = test_dir();
-  write(dir / "bad.obj", obj);
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "bad.obj", obj);
   Json cloth = {{"mesh", "bad.obj"}};
   for (auto it = extra.begin(); it != extra.end(); ++it) cloth[it.key()] = it.value();
   Json scene = sheet_scene("baraff_witkin", cloth);
@@ -265,7 +263,7 @@ std::string mesh_error(const std::string& obj, const Json& extra = Json::object(
 TEST(ClothMeshErrors, NameTheFileAndTheProblem) {
   const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   {
-    const fs::path dir = test_dir();
+    const fs::path dir = cloth_mesh_dir();
     Json scene = sheet_scene("baraff_witkin", {{"mesh", "missing.obj"}});
     const std::string e = scene_error_of(scene, dir / "scene.json");
     EXPECT_CONTAINS(e, "cloth.mesh");
@@ -292,8 +290,8 @@ TEST(ClothMeshErrors, NameTheFileAndTheProblem) {
 }
 
 TEST(ClothMeshErrors, FastProjectionOnATriangleMeshNamesTheReason) {
-  const fs::path dir = test_dir();
-  write(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
+  const fs::path dir = cloth_mesh_dir();
+  write_text(dir / "triangles.obj", rectangle_obj(7, 5, 0.6, 0.4, 1.0, true));
   Json scene = sheet_scene("baraff_witkin", {{"mesh", "triangles.obj"}});
   scene["simulation"]["constraints"] = {{"method", "fast_projection"}};
   const Scene s = parse_scene(scene.dump(), (dir / "scene.json").string());

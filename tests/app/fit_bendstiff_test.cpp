@@ -18,8 +18,7 @@
 namespace weft::app {
 namespace {
 
-const std::string kSource = WEFT_SOURCE_DIR;
-const std::string kData = kSource + "/tests/data/photos/bendstiff/";
+const std::string kData = std::string(WEFT_SOURCE_DIR) + "/tests/data/photos/bendstiff/";
 
 struct TableRow {
   double x_m, y_m, curvature_1_m, moment_N;  // moment per width: N·m/m
@@ -43,7 +42,7 @@ std::vector<TableRow> read_table() {
 
 // The bendstiff fit (assets/fits/bendstiff.json) on the 4× copy of the photo.
 std::string fit_text() {
-  return R"({"scene": ")" + kSource + R"(/assets/scenes/bendstiff_strip.json",
+  return R"({"scene": ")" + std::string(WEFT_SOURCE_DIR) + R"(/assets/scenes/bendstiff_strip.json",
     "set": {"render.size": [548, 323], "render.camera": {
       "intrinsics": {"fx": 113533.15, "fy": 113533.15, "cx": -0.5, "cy": 56.5, "size": [548, 323]},
       "position": [0, "-50 m", 0], "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]],

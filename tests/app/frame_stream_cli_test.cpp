@@ -27,20 +27,7 @@ class FrameStreamCli : public weft::app::test::CliDirectoryTest {
   FrameStreamCli() : CliDirectoryTest("frame_stream_cli") {}
 };
 
-// A 9×9 cloth pinned at two corners, 4 frames of 96×64 pixels; `simulation` is that block.
-std::string tiny_scene(const std::string& simulation = "{}") {
-  return R"({
-  "description": "tiny frame-stream test scene",
-  "cloth": {
-    "size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
-    "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}]
-  },
-  "simulation": )" + simulation + R"(,
-  "output": {"fps": 24, "frames": 4},
-  "render": {"size": [96, 64], "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]}}
-}
-)";
-}
+using weft::app::test::tiny_scene;
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -71,7 +58,7 @@ TEST_F(FrameStreamCli, OverridesAreInTheCopiedSceneJson) {
   EXPECT_EQ(copy["render"]["size"], nlohmann::json::array({40, 30}));
   EXPECT_EQ(copy["render"]["raytrace"]["samples"], 3);
   EXPECT_EQ(copy["simulation"]["integrator"], "velocity_verlet");
-  EXPECT_EQ(copy["description"], "tiny frame-stream test scene");
+  EXPECT_EQ(copy["description"], "tiny end-to-end test scene");
 
   const fs::path again = m_dir / "again";
   const CommandResult rerun = run_weft("run " + (out / "scene.json").string() + " --out " +
@@ -144,7 +131,8 @@ TEST_F(FrameStreamCli, ThreadsIsCheckedOnEveryCommandAndChangesNoBit) {
 // simulation.dynamics: false shows the initial shape in every frame: every run of a sweep is
 // then the same shape with no step taken, whatever its time step.
 TEST_F(FrameStreamCli, SweepHonoursDynamicsFalse) {
-  const fs::path scene = write_scene("still.json", tiny_scene(R"({"dynamics": false})"));
+  const fs::path scene =
+      write_scene("still.json", tiny_scene("", R"(, "simulation": {"dynamics": false})"));
   const fs::path out = m_dir / "out";
   const CommandResult r = run_weft("sweep " + scene.string() +
                                    " --set 'simulation.time_step=1 ms,2 ms' --out " + out.string());

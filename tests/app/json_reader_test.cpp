@@ -8,7 +8,7 @@ namespace weft::app {
 namespace {
 
 template <class F>
-std::string error_of(F&& f) {
+std::string reader_error_of(F&& f) {
   try {
     f();
   } catch (const SceneError& e) {
@@ -59,7 +59,7 @@ TEST(JsonReader, ReadsEachKindAndMarksKeysRead) {
   EXPECT_EQ(empty.path(), "absent_object");
   EXPECT_EQ(empty.number("x", 1.0), 1.0);
   empty.finish();
-  EXPECT_EQ(error_of([&] { r.finish(); }), "no error");  // list[i] need not be finished here
+  EXPECT_EQ(reader_error_of([&] { r.finish(); }), "no error");  // list[i] need not be finished here
 }
 
 TEST(JsonReader, FinishNamesTheFirstUnreadKeyInFileOrder) {
@@ -67,44 +67,44 @@ TEST(JsonReader, FinishNamesTheFirstUnreadKeyInFileOrder) {
   ObjectReader r = ObjectReader::root(j, "t.json");
   r.number("size", required);
   r.number("resolution", 2.0);
-  EXPECT_EQ(error_of([&] { r.finish(); }),
+  EXPECT_EQ(reader_error_of([&] { r.finish(); }),
             "t.json: zeta: unknown key (known keys here: size, resolution)");
   const Json k = parse_json(R"({"a": {"x": 1}})", "t.json");
   ObjectReader top = ObjectReader::root(k, "t.json");
   ObjectReader a = top.object("a");
-  EXPECT_EQ(error_of([&] { a.finish(); }), "t.json: a.x: unknown key (no keys are accepted here)");
+  EXPECT_EQ(reader_error_of([&] { a.finish(); }), "t.json: a.x: unknown key (no keys are accepted here)");
   ObjectReader b = ObjectReader::root(k, "t.json");
   EXPECT_TRUE(b.has("a"));
-  EXPECT_EQ(error_of([&] { b.finish(); }), "t.json: a: this key is not used here");
+  EXPECT_EQ(reader_error_of([&] { b.finish(); }), "t.json: a: this key is not used here");
 }
 
 TEST(JsonReader, IntegersMustBeWhole) {
   const Json j =
       parse_json(R"({"a": 3.5, "b": 1e300, "c": 18446744073709551615, "d": true})", "t.json");
   ObjectReader r = ObjectReader::root(j, "t.json");
-  EXPECT_EQ(error_of([&] { r.integer("a", required, Range{}); }),
+  EXPECT_EQ(reader_error_of([&] { r.integer("a", required, Range{}); }),
             "t.json: a: expected an integer, got 3.5");
-  EXPECT_EQ(error_of([&] { r.integer("b", required, Range{}); }),
+  EXPECT_EQ(reader_error_of([&] { r.integer("b", required, Range{}); }),
             "t.json: b: expected an integer, got 1e+300");
-  EXPECT_EQ(error_of([&] { r.integer("c", required, Range{}); }),
+  EXPECT_EQ(reader_error_of([&] { r.integer("c", required, Range{}); }),
             "t.json: c: expected an integer, got 18446744073709551615");
-  EXPECT_EQ(error_of([&] { r.integer("d", required, Range::ge(0)); }),
+  EXPECT_EQ(reader_error_of([&] { r.integer("d", required, Range::ge(0)); }),
             "t.json: d: expected an integer ≥ 0, got true");
 }
 
 TEST(JsonReader, MalformedJsonLineAndColumnCountCharacters) {
   // "é" is two bytes but one column.
-  EXPECT_EQ(error_of([] {
+  EXPECT_EQ(reader_error_of([] {
               parse_json("{\"a\": 1,\n \"é\": ?}", "u.json");
             }).rfind("u.json:2:7: malformed JSON: syntax error while parsing value", 0),
             0u);
-  EXPECT_EQ(error_of([] {
+  EXPECT_EQ(reader_error_of([] {
               parse_json("{\"a\": 1} x", "u.json");
             }).rfind("u.json:1:10: malformed JSON:", 0),
             0u);
-  EXPECT_EQ(error_of([] { parse_json("{\"a\": [1, {\"b\": 1, \"b\": 2}]}", "u.json"); }),
+  EXPECT_EQ(reader_error_of([] { parse_json("{\"a\": [1, {\"b\": 1, \"b\": 2}]}", "u.json"); }),
             "u.json: a[1].b: duplicate key (each key may appear once in an object)");
-  EXPECT_EQ(error_of([] { parse_json("[0, 1, 2e400]", "u.json"); }),
+  EXPECT_EQ(reader_error_of([] { parse_json("[0, 1, 2e400]", "u.json"); }),
             "u.json:1:8: [2]: expected a finite number, got 2e400 (too large for a double)");
 }
 
@@ -113,7 +113,7 @@ TEST(JsonReader, FailNamesTheKeyPath) {
   ObjectReader r = ObjectReader::root(j, "f.json");
   ObjectReader a = r.object("a");
   EXPECT_EQ(a.path_of("b"), "a.b");
-  EXPECT_EQ(error_of([&] { a.fail("b", "expected something else"); }),
+  EXPECT_EQ(reader_error_of([&] { a.fail("b", "expected something else"); }),
             "f.json: a.b: expected something else");
 }
 

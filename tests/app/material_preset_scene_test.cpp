@@ -26,7 +26,7 @@ sim::Material material_of(const Json& material) {
   return parse_scene(scene_with_material(material).dump(2), "scene.json").material;
 }
 
-std::string error_of(const Json& material) {
+std::string material_error_of(const Json& material) {
   return test::scene_error_of(scene_with_material(material));
 }
 
@@ -68,19 +68,19 @@ TEST(MaterialPresetScene, AGivenKeyOverridesThatValueOnly) {
 }
 
 TEST(MaterialPresetScene, AnUnknownPresetListsTheKnownNames) {
-  const std::string e = error_of({{"preset", "wool"}});
+  const std::string e = material_error_of({{"preset", "wool"}});
   EXPECT_CONTAINS(e, "scene.json: cloth.material.preset");
   EXPECT_CONTAINS(e, "'wool'");
   for (const std::string& name : sim::material_preset_names()) EXPECT_CONTAINS(e, "'" + name + "'");
 }
 
 TEST(MaterialPresetScene, APresetMustBeAString) {
-  EXPECT_CONTAINS(error_of({{"preset", 3}}), "cloth.material.preset");
+  EXPECT_CONTAINS(material_error_of({{"preset", 3}}), "cloth.material.preset");
 }
 
 TEST(MaterialPresetScene, OverridesAreStillCheckedAndMisspeltKeysStillFail) {
-  EXPECT_CONTAINS(error_of({{"preset", "wang2011_royal_target"}, {"shear", "-1 gf/cm"}}), "cloth.material.shear");
-  EXPECT_CONTAINS(error_of({{"presets", "wang2011_royal_target"}}), "did you mean 'preset'");
+  EXPECT_CONTAINS(material_error_of({{"preset", "wang2011_royal_target"}, {"shear", "-1 gf/cm"}}), "cloth.material.shear");
+  EXPECT_CONTAINS(material_error_of({{"presets", "wang2011_royal_target"}}), "did you mean 'preset'");
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
+#include "tests/support/test_files.h"
 
 namespace fs = std::filesystem;
 
@@ -20,6 +21,7 @@ namespace {
 
 using weft::app::test::CommandResult;
 using weft::app::test::run_weft;
+using weft::test_files::read_csv;
 
 class MeasureCli : public ::testing::Test {
  protected:
@@ -45,22 +47,6 @@ std::string small_scene(bool hang) {
   "simulation": {"air_damping": "5 1/s", "collision_friction": 0.5},
   "output": {"fps": 24, "frames": 12}
 })";
-}
-
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> fields(1);
-    for (char c : line) {
-      if (c == ',')
-        fields.emplace_back();
-      else
-        fields.back() += c;
-    }
-    rows.push_back(fields);
-  }
-  return rows;
 }
 
 TEST_F(MeasureCli, DrapeOverADiscWritesTheTableAndBothFiles) {

@@ -16,6 +16,7 @@
 #include "app/scene.h"
 #include "base/constants.h"
 #include "scene_test_support.h"
+#include "tests/support/test_files.h"
 #include "sim/collision/mesh_obstacle.h"
 #include "sim/collision/obstacle.h"
 
@@ -25,22 +26,16 @@ namespace {
 namespace fs = std::filesystem;
 using test::parse_json_scene;
 
+using test_files::write_text;
+
 // A folder of its own for each test's files.
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(::testing::TempDir()) / "weft_mesh_scene_test" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+fs::path mesh_scene_dir() {
+  return test_files::fresh_directory(::testing::TempDir(), "weft_mesh_scene_test");
 }
 
-void write(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-// The cube [−h, h]³: corner i has x = ±h by bit 0, y by bit 1, z by bit 2; six outward quads.
-constexpr double h = 0.5;
-double corner(int i, int axis) { return (i >> axis) & 1 ? h : -h; }
+// The cube [−cube_h, cube_h]³: corner i has x = ±cube_h by bit 0, y by bit 1, z by bit 2; six outward quads.
+constexpr double cube_h = 0.5;
+double corner(int i, int axis) { return (i >> axis) & 1 ? cube_h : -cube_h; }
 const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                          {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
 std::vector<std::array<int, 3>> cube_triangles() {
@@ -140,16 +135,16 @@ std::string cube_gltf() {
 }
 
 TEST(MeshFile, EveryFormatGivesTheSameClosedCube) {
-  const fs::path dir = test_dir();
+  const fs::path dir = mesh_scene_dir();
   const std::vector<std::pair<std::string, std::string>> files{{"cube.obj", cube_obj()},
                                                                {"cube.ply", cube_ply()},
                                                                {"cube.stl", cube_stl()},
                                                                {"cube.gltf", cube_gltf()}};
-  const sim::BoxObstacle box{sim::Vec3::Zero(), sim::Vec3(h, h, h), 0.0};
+  const sim::BoxObstacle box{sim::Vec3::Zero(), sim::Vec3(cube_h, cube_h, cube_h), 0.0};
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (const auto& [name, text] : files) {
-    write(dir / name, text);
+    write_text(dir / name, text);
     TriangleMesh mesh = load_triangle_mesh(dir / name);
     EXPECT_EQ(mesh.vertices.rows(), 8) << name;
     EXPECT_EQ(mesh.triangles.size(), 12u) << name;
@@ -174,27 +169,27 @@ std::string load_error(const fs::path& path) {
 }
 
 TEST(MeshFile, ErrorsNameTheFileAndTheReason) {
-  const fs::path dir = test_dir();
+  const fs::path dir = mesh_scene_dir();
   const std::string missing = load_error(dir / "no_such_mesh.obj");
   EXPECT_CONTAINS(missing, (dir / "no_such_mesh.obj").string() + ": cannot read mesh file: ");
   EXPECT_CONTAINS(missing, "Unable to open file");  // assimp's reason
 
-  write(dir / "garbage.bin", std::string("\x01\x02 this is not a mesh \x7f\xff\n", 25));
+  write_text(dir / "garbage.bin", std::string("\x01\x02 this is not a mesh \x7f\xff\n", 25));
   const std::string garbage = load_error(dir / "garbage.bin");
   EXPECT_CONTAINS(garbage, (dir / "garbage.bin").string() + ": cannot read mesh file: ");
 
-  write(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   const std::string empty = load_error(dir / "points.obj");
   EXPECT_CONTAINS(empty, (dir / "points.obj").string());
   EXPECT_CONTAINS(empty, "no triangles");
 
   // A NaN corner used to be joined to whichever vertex the map's broken ordering met (here
   // (0, 1, 0)), a duplicate triangle in place of the file's; 1e39 is infinite as a float.
-  write(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 1 nan\nf 1 2 3\nf 1 2 4\n");
+  write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 1 nan\nf 1 2 3\nf 1 2 4\n");
   const std::string nan = load_error(dir / "nan.obj");
   EXPECT_CONTAINS(nan, (dir / "nan.obj").string() + ": vertex 3 of mesh 0 is at (");
   EXPECT_CONTAINS(nan, "nan), not a finite position");
-  write(dir / "huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
+  write_text(dir / "huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_CONTAINS(load_error(dir / "huge.obj"), "vertex 1 of mesh 0 is at (inf, ");
 }
 
@@ -207,9 +202,9 @@ Json mesh_scene(const Json& obstacle) {
 }
 
 TEST(MeshScene, MeshKeysScaleTurnAndPlaceTheFileRelativeToTheScene) {
-  const fs::path dir = test_dir();
+  const fs::path dir = mesh_scene_dir();
   fs::create_directories(dir / "meshes");
-  write(dir / "meshes" / "cube.obj", cube_obj());
+  write_text(dir / "meshes" / "cube.obj", cube_obj());
   const Json obstacle = {{"mesh",
                           {{"file", "meshes/cube.obj"},
                            {"scale", 0.2},
@@ -230,7 +225,7 @@ TEST(MeshScene, MeshKeysScaleTurnAndPlaceTheFileRelativeToTheScene) {
 }
 
 TEST(MeshScene, BadMeshFilesAreSceneErrorsNamingTheKeyAndTheFile) {
-  const fs::path dir = test_dir();
+  const fs::path dir = mesh_scene_dir();
   const std::string source = (dir / "scene.json").string();
   const auto error = [&](const Json& obstacle) -> std::string {
     try {
@@ -243,9 +238,9 @@ TEST(MeshScene, BadMeshFilesAreSceneErrorsNamingTheKeyAndTheFile) {
   const std::string missing = error({{"mesh", {{"file", "gone.obj"}}}});
   EXPECT_CONTAINS(missing, source + ": obstacles[0].mesh.file: ");
   EXPECT_CONTAINS(missing, (dir / "gone.obj").string() + ": cannot read mesh file: ");
-  write(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
+  write_text(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
   EXPECT_CONTAINS(error({{"mesh", {{"file", "flat.obj"}}}}), "no triangles");
-  write(dir / "cube.obj", cube_obj());
+  write_text(dir / "cube.obj", cube_obj());
   EXPECT_CONTAINS(error({{"mesh", {{"file", "cube.obj"}, {"scale", 0}}}}),
                   "obstacles[0].mesh.scale");
   EXPECT_CONTAINS(error({{"mesh", {{"file", "cube.obj"}, {"rotate", 3}}}}), "rotate");

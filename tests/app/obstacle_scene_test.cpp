@@ -16,6 +16,9 @@
 namespace weft::app {
 namespace {
 
+using test::parse_json_scene;
+using test::scene_error_of;
+
 // A valid scene with a sphere above the ground plane, to be broken one key at a time.
 Json scene_with_obstacles() {
   return Json::parse(R"({
@@ -30,15 +33,8 @@ Json scene_with_obstacles() {
   })");
 }
 
-Scene parse(const Json& scene) {
-  return test::parse_json_scene(scene);
-}
-std::string error_of(const Json& scene) {
-  return test::scene_error_of(scene);
-}
-
 TEST(ObstacleScene, SpheresAndPlanesLandInSIUnits) {
-  const Scene s = parse(scene_with_obstacles());
+  const Scene s = parse_json_scene(scene_with_obstacles());
   ASSERT_EQ(s.sim.obstacles.size(), 2u);
   const auto& sphere = std::get<sim::SphereObstacle>(s.sim.obstacles[0]);
   EXPECT_EQ(sphere.center_m, Eigen::Vector3d(0.0, 0.1, 0.5));
@@ -55,18 +51,18 @@ TEST(ObstacleScene, DefaultsAreNoObstaclesAndTwoMillimetres) {
   j.erase("obstacles");
   j.erase("simulation");
   j.erase("render");
-  const Scene s = parse(j);
+  const Scene s = parse_json_scene(j);
   EXPECT_TRUE(s.sim.obstacles.empty());
   EXPECT_EQ(s.sim.collision_thickness_m, 2e-3);
   EXPECT_EQ(s.render.obstacle_color, render::RenderSettings{}.obstacle_color);
   j["obstacles"] = Json::array();
-  EXPECT_TRUE(parse(j).sim.obstacles.empty());
+  EXPECT_TRUE(parse_json_scene(j).sim.obstacles.empty());
 }
 
 TEST(ObstacleScene, NearlyUnitNormalIsNormalised) {
   Json j = scene_with_obstacles();
   j["obstacles"][1]["plane"]["normal"] = {0, 0.6, 0.8000004};
-  const Scene scene = parse(j);
+  const Scene scene = parse_json_scene(j);
   const auto& plane = std::get<sim::PlaneObstacle>(scene.sim.obstacles[1]);
   EXPECT_NEAR(plane.normal.norm(), 1.0, 1e-15);
   EXPECT_NEAR(plane.normal.y(), 0.6, 1e-6);
@@ -75,76 +71,76 @@ TEST(ObstacleScene, NearlyUnitNormalIsNormalised) {
 TEST(ObstacleScene, EachObstacleIsExactlyOneShape) {
   Json j = scene_with_obstacles();
   j["obstacles"][0] = Json::object();
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: obstacles[0]: expected exactly one of 'sphere', 'plane', 'box', "
             "'cylinder', 'capsule' or 'mesh', got none");
   j = scene_with_obstacles();
   j["obstacles"][1]["sphere"] = j["obstacles"][0]["sphere"];
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: obstacles[1]: expected exactly one of 'sphere', 'plane', 'box', "
             "'cylinder', 'capsule' or 'mesh', got 'sphere' and 'plane'");
   j = scene_with_obstacles();
   j["obstacles"][0]["capsule"] = j["obstacles"][0]["sphere"];
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0]: expected exactly one of");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0]: expected exactly one of");
   j = scene_with_obstacles();
   j["obstacles"][0]["spehre"] = j["obstacles"][0]["sphere"];
   j["obstacles"][0].erase("sphere");
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: obstacles[0].spehre: unknown key; did you mean 'sphere'?");
   j = scene_with_obstacles();
   j["obstacles"][0]["color"] = "red";
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].color: unknown key");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].color: unknown key");
 }
 
 TEST(ObstacleScene, WrongTypes) {
   Json j = scene_with_obstacles();
   j["obstacles"] = j["obstacles"][0];
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles: expected an array of objects");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles: expected an array of objects");
   j = scene_with_obstacles();
   j["obstacles"][1] = 5;
-  EXPECT_EQ(error_of(j), "scene.json: obstacles[1]: expected an object, got 5");
+  EXPECT_EQ(scene_error_of(j), "scene.json: obstacles[1]: expected an object, got 5");
   j = scene_with_obstacles();
   j["obstacles"][0]["sphere"] = 0.15;
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere: expected an object");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere: expected an object");
 }
 
 TEST(ObstacleScene, BadSphere) {
   Json j = scene_with_obstacles();
   j["obstacles"][0]["sphere"]["radius"] = 0;
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere.radius: expected a length > 0");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere.radius: expected a length > 0");
   j["obstacles"][0]["sphere"]["radius"] = "-15 cm";
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere.radius: expected a length > 0");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere.radius: expected a length > 0");
   j["obstacles"][0]["sphere"]["radius"] = "15 kg";
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere.radius: expected a length");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere.radius: expected a length");
   j["obstacles"][0]["sphere"].erase("radius");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere.radius: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere.radius: required key is missing");
   j = scene_with_obstacles();
   j["obstacles"][0]["sphere"]["center"] = {0, 0};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere.center: expected an array of 3");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere.center: expected an array of 3");
   j["obstacles"][0]["sphere"].erase("center");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].sphere.center: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].sphere.center: required key is missing");
   j = scene_with_obstacles();
   j["obstacles"][0]["sphere"]["centre"] = j["obstacles"][0]["sphere"]["center"];
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: obstacles[0].sphere.centre: unknown key; did you mean 'center'?");
 }
 
 TEST(ObstacleScene, BadPlane) {
   Json j = scene_with_obstacles();
   j["obstacles"][1]["plane"]["normal"] = {0, 0, 2};
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: obstacles[1].plane.normal: expected a unit vector, got [0, 0, 2] "
             "(length 2)");
   j["obstacles"][1]["plane"]["normal"] = {0, 0, 0};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].plane.normal: expected a unit vector");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].plane.normal: expected a unit vector");
   j["obstacles"][1]["plane"].erase("normal");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].plane.normal: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].plane.normal: required key is missing");
   j = scene_with_obstacles();
   j["obstacles"][1]["plane"].erase("point");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].plane.point: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].plane.point: required key is missing");
   j = scene_with_obstacles();
   j["obstacles"][1]["plane"]["point"] = {0, "1 s", 0};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].plane.point[1]: expected a length");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].plane.point[1]: expected a length");
 }
 
 // The box, cylinder and capsule of docs/scene.md, with units.
@@ -160,7 +156,7 @@ Json scene_with_shapes() {
 }
 
 TEST(ObstacleScene, BoxCylinderAndCapsuleLandInSIUnits) {
-  const Scene s = parse(scene_with_shapes());
+  const Scene s = parse_json_scene(scene_with_shapes());
   ASSERT_EQ(s.sim.obstacles.size(), 3u);
   const auto& box = std::get<sim::BoxObstacle>(s.sim.obstacles[0]);
   EXPECT_TRUE(box.center_m.isApprox(Eigen::Vector3d(0, 0, 0.05), 1e-15));
@@ -178,42 +174,42 @@ TEST(ObstacleScene, BoxCylinderAndCapsuleLandInSIUnits) {
   // Yaw defaults to 0; each shape is drawn, in the obstacle colour.
   Json j = scene_with_shapes();
   j["obstacles"][0]["box"].erase("yaw");
-  EXPECT_EQ(std::get<sim::BoxObstacle>(parse(j).sim.obstacles[0]).yaw_rad, 0.0);
+  EXPECT_EQ(std::get<sim::BoxObstacle>(parse_json_scene(j).sim.obstacles[0]).yaw_rad, 0.0);
   EXPECT_EQ(obstacle_render_objects(s.sim.obstacles, s.render).size(), 3u);
 }
 
 TEST(ObstacleScene, BadBoxCylinderAndCapsule) {
   Json j = scene_with_shapes();
   j["obstacles"][0]["box"]["half_size"] = {"5 cm", 0, "5 cm"};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.half_size[1]: expected a length > 0");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].box.half_size[1]: expected a length > 0");
   j["obstacles"][0]["box"]["half_size"] = {"5 cm", "5 cm"};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.half_size: expected an array of 3");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].box.half_size: expected an array of 3");
   j["obstacles"][0]["box"].erase("half_size");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.half_size: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].box.half_size: required key is missing");
   j = scene_with_shapes();
   j["obstacles"][0]["box"]["yaw"] = "30 cm";
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.yaw: expected an angle");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].box.yaw: expected an angle");
   j = scene_with_shapes();
   j["obstacles"][0]["box"]["size"] = 1;
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[0].box.size: unknown key");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[0].box.size: unknown key");
   j = scene_with_shapes();
   j["obstacles"][1]["cylinder"]["axis"] = {0, 0, 2};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].cylinder.axis: expected a unit vector");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].cylinder.axis: expected a unit vector");
   j = scene_with_shapes();
   j["obstacles"][1]["cylinder"]["height"] = "-1 cm";
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].cylinder.height: expected a length > 0");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].cylinder.height: expected a length > 0");
   j = scene_with_shapes();
   j["obstacles"][1]["cylinder"].erase("radius");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[1].cylinder.radius: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[1].cylinder.radius: required key is missing");
   j = scene_with_shapes();
   j["obstacles"][2]["capsule"]["radius"] = 0;
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[2].capsule.radius: expected a length > 0");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[2].capsule.radius: expected a length > 0");
   j = scene_with_shapes();
   j["obstacles"][2]["capsule"]["b"] = {0, "1 kg", 0};
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[2].capsule.b[1]: expected a length");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[2].capsule.b[1]: expected a length");
   j = scene_with_shapes();
   j["obstacles"][2]["capsule"].erase("a");
-  EXPECT_CONTAINS(error_of(j), "scene.json: obstacles[2].capsule.a: required key is missing");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: obstacles[2].capsule.a: required key is missing");
 }
 
 TEST(ObstacleScene, PedestalDrapeAssetParses) {
@@ -239,12 +235,12 @@ TEST(ObstacleScene, PedestalDrapeAssetParses) {
 TEST(ObstacleScene, BadThicknessAndColour) {
   Json j = scene_with_obstacles();
   j["simulation"]["collision_thickness"] = "-1 mm";
-  EXPECT_CONTAINS(error_of(j), "scene.json: simulation.collision_thickness: expected a length ≥ 0");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: simulation.collision_thickness: expected a length ≥ 0");
   j["simulation"]["collision_thickness"] = "1 s";
-  EXPECT_CONTAINS(error_of(j), "scene.json: simulation.collision_thickness: expected a length");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: simulation.collision_thickness: expected a length");
   j = scene_with_obstacles();
   j["render"]["colors"]["obstacle"] = {0.5, 1.5, 0.5};
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: render.colors.obstacle[1]: expected a number in [0, 1]");
 }
 

@@ -11,6 +11,8 @@
 namespace weft::app {
 namespace {
 
+using test::scene_error_of;
+
 Json scene_with_pins(const Json& pins) {
   Json j = Json::parse(R"({
     "description": "moving pins",
@@ -19,8 +21,6 @@ Json scene_with_pins(const Json& pins) {
   j["cloth"]["pins"] = pins;
   return j;
 }
-
-std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
 
 TEST(PinPathScene, KeyframesLandInThePinsPath) {
   const Json pins = Json::parse(R"([
@@ -39,21 +39,21 @@ TEST(PinPathScene, KeyframesLandInThePinsPath) {
 
 TEST(PinPathScene, MistakesNameTheKeyframe) {
   Json pins = Json::parse(R"([{"corner": "u0v1", "path": []}])");
-  EXPECT_EQ(error_of(scene_with_pins(pins)),
+  EXPECT_EQ(scene_error_of(scene_with_pins(pins)),
             "scene.json: cloth.pins[0].path: expected at least one keyframe, got an empty list");
   pins = Json::parse(R"([{"corner": "u0v1", "path": [{"time": "1 s", "offset": [0, 0, 0]},
                                                       {"time": "1 s", "offset": [0, 0, 1]}]}])");
-  EXPECT_EQ(error_of(scene_with_pins(pins)),
+  EXPECT_EQ(scene_error_of(scene_with_pins(pins)),
             "scene.json: cloth.pins[0].path: keyframe 1: time 1 s is not after keyframe 0's 1 s");
   pins = Json::parse(R"([{"corner": "u0v1", "path": [{"time": "1 s"}]}])");
-  EXPECT_NE(error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].offset"), std::string::npos)
-      << error_of(scene_with_pins(pins));
+  EXPECT_NE(scene_error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].offset"), std::string::npos)
+      << scene_error_of(scene_with_pins(pins));
   pins = Json::parse(R"([{"corner": "u0v1", "path": [{"time": "1 kg", "offset": [0, 0, 0]}]}])");
-  EXPECT_NE(error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].time"), std::string::npos)
-      << error_of(scene_with_pins(pins));
+  EXPECT_NE(scene_error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].time"), std::string::npos)
+      << scene_error_of(scene_with_pins(pins));
   pins = Json::parse(R"([{"corner": "u0v1", "path": [{"time": "1 s", "offset": [0, 0, 0], "speed": 2}]}])");
-  EXPECT_NE(error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].speed"), std::string::npos)
-      << error_of(scene_with_pins(pins));
+  EXPECT_NE(scene_error_of(scene_with_pins(pins)).find("cloth.pins[0].path[0].speed"), std::string::npos)
+      << scene_error_of(scene_with_pins(pins));
 }
 
 }  // namespace

@@ -10,15 +10,13 @@
 #include <sstream>
 
 #include "base/constants.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
 
-constexpr double gram_force = 9.80665e-3;  // N
-
-void expect_close(double actual, double expected) {
-  EXPECT_NEAR(actual, expected, 1e-12 * std::fabs(expected)) << "actual " << actual;
-}
+using test::expect_close;
+using test::gram_force;
 
 // Every key of the format, most in textile or non-SI units.
 const char* const complete_scene = R"({

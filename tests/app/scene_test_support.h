@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -13,6 +14,13 @@
   EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
 
 namespace weft::app::test {
+
+inline constexpr double gram_force = 9.80665e-3;  // N: one gram under standard gravity
+
+// Relative comparison at 1e-12.
+inline void expect_close(double actual, double expected) {
+  EXPECT_NEAR(actual, expected, 1e-12 * std::fabs(expected)) << "actual " << actual;
+}
 
 inline Scene parse_json_scene(const Json& scene) {
   return parse_scene(scene.dump(2), "scene.json");

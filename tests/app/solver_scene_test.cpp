@@ -15,6 +15,9 @@
 namespace weft::app {
 namespace {
 
+using test::parse_json_scene;
+using test::scene_error_of;
+
 // A valid scene with every solver key set, to be changed one key at a time.
 Json solver_scene() {
   return Json::parse(R"({
@@ -34,11 +37,8 @@ Json solver_scene() {
   })");
 }
 
-Scene parse(const Json& scene) { return test::parse_json_scene(scene); }
-std::string error_of(const Json& scene) { return test::scene_error_of(scene); }
-
 TEST(SolverScene, EveryKeyLandsInSimSettings) {
-  const sim::SimSettings s = parse(solver_scene()).sim;
+  const sim::SimSettings s = parse_json_scene(solver_scene()).sim;
   EXPECT_EQ(s.integrator, sim::Integrator::implicit_euler);
   EXPECT_EQ(s.sparse_backend, sim::SparseBackend::eigen_ldlt);
   EXPECT_EQ(s.implicit_solve, sim::ImplicitSolve::conjugate_gradient);
@@ -53,7 +53,7 @@ TEST(SolverScene, EveryKeyLandsInSimSettings) {
 TEST(SolverScene, OmittedKeysTakeTheStructDefaults) {
   Json j = solver_scene();
   j.erase("simulation");
-  const sim::SimSettings s = parse(j).sim;
+  const sim::SimSettings s = parse_json_scene(j).sim;
   const sim::SimSettings defaults;
   const sim::ProjectionSettings projection;
   EXPECT_EQ(s.integrator, sim::Integrator::symplectic_euler);
@@ -69,59 +69,59 @@ TEST(SolverScene, OmittedKeysTakeTheStructDefaults) {
   EXPECT_EQ(s.collision_friction, defaults.collision_friction);
   // A fast projection with only its method given keeps the other defaults.
   j["simulation"] = {{"constraints", {{"method", "fast_projection"}}}};
-  const sim::ProjectionSettings p = parse(j).sim.projection;
+  const sim::ProjectionSettings p = parse_json_scene(j).sim.projection;
   EXPECT_EQ(p.method, sim::ProjectionMethod::fast_projection);
   EXPECT_EQ(p.edges, sim::ConstrainedEdges::warp_weft);
   EXPECT_EQ(p.tolerance, projection.tolerance);
   EXPECT_EQ(p.max_iterations, projection.max_iterations);
   EXPECT_EQ(p.reuse_iterations, projection.reuse_iterations);
   j["simulation"]["constraints"]["reuse_iterations"] = 0;
-  EXPECT_EQ(parse(j).sim.projection.reuse_iterations, 0);
+  EXPECT_EQ(parse_json_scene(j).sim.projection.reuse_iterations, 0);
 }
 
 TEST(SolverScene, EachChoiceParses) {
   Json j = solver_scene();
   j["simulation"]["integrator"] = "symplectic_euler";
-  EXPECT_EQ(parse(j).sim.integrator, sim::Integrator::symplectic_euler);
+  EXPECT_EQ(parse_json_scene(j).sim.integrator, sim::Integrator::symplectic_euler);
   j["simulation"]["constraints"]["edges"] = "warp_weft";
-  EXPECT_EQ(parse(j).sim.projection.edges, sim::ConstrainedEdges::warp_weft);
+  EXPECT_EQ(parse_json_scene(j).sim.projection.edges, sim::ConstrainedEdges::warp_weft);
   j["simulation"]["constraints"] = {
       {"method", "pairwise"}, {"max_iterations", 8}, {"max_stretch", 0.1}, {"tolerance", 0.1}};
-  const sim::ProjectionSettings p = parse(j).sim.projection;
+  const sim::ProjectionSettings p = parse_json_scene(j).sim.projection;
   EXPECT_EQ(p.method, sim::ProjectionMethod::pairwise);
   EXPECT_EQ(p.max_iterations, 8);
   EXPECT_EQ(p.max_stretch, 0.1);
   EXPECT_EQ(p.tolerance, 0.1);
   j["simulation"]["constraints"] = {{"method", "none"}};
-  EXPECT_EQ(parse(j).sim.projection.method, sim::ProjectionMethod::none);
+  EXPECT_EQ(parse_json_scene(j).sim.projection.method, sim::ProjectionMethod::none);
   j["simulation"]["collision_friction"] = 0;
-  EXPECT_EQ(parse(j).sim.collision_friction, 0.0);
+  EXPECT_EQ(parse_json_scene(j).sim.collision_friction, 0.0);
   for (const sim::SparseBackend backend : sim::available_sparse_backends()) {
     j["simulation"]["linear_solver"] = sim::sparse_backend_name(backend);
-    EXPECT_EQ(parse(j).sim.sparse_backend, backend);
+    EXPECT_EQ(parse_json_scene(j).sim.sparse_backend, backend);
   }
 }
 
 TEST(SolverScene, WrongEnumsListTheChoices) {
   Json j = solver_scene();
   j["simulation"]["integrator"] = "rk9";
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.integrator: expected one of 'symplectic_euler', "
             "'implicit_euler', 'explicit_euler', 'rk4', 'velocity_verlet', 'central_difference', "
             "'dynamic_relaxation', got the string 'rk9'");
   j = solver_scene();
   j["simulation"]["linear_solver"] = "umfpack";
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.linear_solver: expected one of 'cholmod', 'eigen_ldlt', got "
             "the string 'umfpack'");
   j = solver_scene();
   j["simulation"]["constraints"]["method"] = "goldenthal";
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.method: expected one of 'none', "
             "'fast_projection', 'pairwise', got the string 'goldenthal'");
   j = solver_scene();
   j["simulation"]["constraints"]["edges"] = "all";
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.edges: expected one of 'warp_weft', "
             "'triangle_edges', got the string 'all'");
 }
@@ -130,38 +130,38 @@ TEST(SolverScene, WrongEnumsListTheChoices) {
 TEST(SolverScene, AnAdaptiveTimeStepParsesWithItsSettings) {
   Json j = solver_scene();
   j["simulation"]["time_step"] = "adaptive";
-  sim::SimSettings s = parse(j).sim;
+  sim::SimSettings s = parse_json_scene(j).sim;
   EXPECT_TRUE(s.adaptive_step.enabled);
   EXPECT_FALSE(s.time_step_s.has_value());
   EXPECT_EQ(s.adaptive_step.max_step_s, sim::AdaptiveStepSettings{}.max_step_s);
   j["simulation"]["adaptive_step"] = {
       {"min_step", "0.5 ms"}, {"max_step", "20 ms"}, {"max_prediction_strain", 0.02}};
-  s = parse(j).sim;
+  s = parse_json_scene(j).sim;
   EXPECT_DOUBLE_EQ(s.adaptive_step.min_step_s, 5e-4);
   EXPECT_DOUBLE_EQ(s.adaptive_step.max_step_s, 0.02);
   EXPECT_EQ(s.adaptive_step.max_prediction_strain, 0.02);
   j["simulation"]["time_step"] = "auto";
-  EXPECT_FALSE(parse(solver_scene()).sim.adaptive_step.enabled);
+  EXPECT_FALSE(parse_json_scene(solver_scene()).sim.adaptive_step.enabled);
 }
 
 TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   Json j = solver_scene();
   j["simulation"]["time_step"] = "adaptve";
-  EXPECT_CONTAINS(error_of(j), "simulation.time_step: expected 'auto', 'adaptive' or a time");
+  EXPECT_CONTAINS(scene_error_of(j), "simulation.time_step: expected 'auto', 'adaptive' or a time");
   j["simulation"]["time_step"] = "1 ms";
   j["simulation"]["adaptive_step"] = {{"max_step", "20 ms"}};
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.adaptive_step: applies only with time_step \"adaptive\"");
   j["simulation"]["time_step"] = "adaptive";
   j["simulation"]["adaptive_step"] = {{"min_step", "30 ms"}, {"max_step", "20 ms"}};
-  EXPECT_CONTAINS(error_of(j), "simulation.adaptive_step.max_step: expected at least min_step");
+  EXPECT_CONTAINS(scene_error_of(j), "simulation.adaptive_step.max_step: expected at least min_step");
   j["simulation"]["adaptive_step"] = {{"max_prediction_strain", 0}};
-  EXPECT_CONTAINS(error_of(j), "simulation.adaptive_step.max_prediction_strain");
+  EXPECT_CONTAINS(scene_error_of(j), "simulation.adaptive_step.max_prediction_strain");
   // It follows fast projection's iterations: another method or integrator is refused when the
   // simulator is made.
   j["simulation"].erase("adaptive_step");
   j["simulation"]["constraints"] = {{"method", "none"}};
-  const Scene scene = parse(j);
+  const Scene scene = parse_json_scene(j);
   try {
     (void)make_simulator(scene);
     ADD_FAILURE() << "an adaptive step without fast projection was accepted";
@@ -176,9 +176,9 @@ TEST(SolverScene, CholmodIsAnErrorOnlyWhenTheBuildLacksIt) {
   const auto available = sim::available_sparse_backends();
   if (std::find(available.begin(), available.end(), sim::SparseBackend::cholmod) !=
       available.end()) {
-    EXPECT_EQ(parse(j).sim.sparse_backend, sim::SparseBackend::cholmod);
+    EXPECT_EQ(parse_json_scene(j).sim.sparse_backend, sim::SparseBackend::cholmod);
   } else {
-    EXPECT_EQ(error_of(j),
+    EXPECT_EQ(scene_error_of(j),
               "scene.json: simulation.linear_solver: expected a back-end this build has "
               "('eigen_ldlt'), got 'cholmod', which it was built without");
   }
@@ -187,74 +187,74 @@ TEST(SolverScene, CholmodIsAnErrorOnlyWhenTheBuildLacksIt) {
 TEST(SolverScene, OutOfRange) {
   Json j = solver_scene();
   j["simulation"]["constraints"]["tolerance"] = -1e-3;
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.tolerance: expected a number > 0, got -0.001");
   j["simulation"]["constraints"]["tolerance"] = 0;
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.tolerance: expected a number > 0, got 0");
   j = solver_scene();
   j["simulation"]["constraints"]["max_iterations"] = 0;
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.max_iterations: expected an integer in [1, "
             "2147483647], got 0");
   j["simulation"]["constraints"]["max_iterations"] = 2.5;
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: simulation.constraints.max_iterations: expected an integer");
   j = solver_scene();
   j["simulation"]["constraints"] = {{"method", "pairwise"}, {"max_stretch", -0.1}};
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.max_stretch: expected a number ≥ 0, got -0.1");
   j = solver_scene();
   j["simulation"]["constraints"] = {{"method", "pairwise"}, {"reuse_iterations", 8}};
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.reuse_iterations: expected only with method "
             "'fast_projection' (it has no effect otherwise), got method 'pairwise'");
   j["simulation"]["constraints"] = {{"method", "fast_projection"}, {"reuse_iterations", -1}};
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.reuse_iterations: expected an integer in [0, "
             "1000], got -1");
   j = solver_scene();
   j["simulation"]["cg_tolerance"] = 1.0;
-  EXPECT_EQ(error_of(j), "scene.json: simulation.cg_tolerance: expected a number in (0, 1), got 1.0");
+  EXPECT_EQ(scene_error_of(j), "scene.json: simulation.cg_tolerance: expected a number in (0, 1), got 1.0");
   j["simulation"]["implicit_solver"] = "cg";
-  EXPECT_CONTAINS(error_of(j), "scene.json: simulation.implicit_solver:");
-  EXPECT_CONTAINS(error_of(j), "conjugate_gradient");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: simulation.implicit_solver:");
+  EXPECT_CONTAINS(scene_error_of(j), "conjugate_gradient");
   j = solver_scene();
   j["simulation"]["collision_friction"] = -0.5;
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.collision_friction: expected a number ≥ 0, got -0.5");
   j["simulation"]["collision_friction"] = "0.5 m";
-  EXPECT_CONTAINS(error_of(j), "scene.json: simulation.collision_friction: expected a number");
+  EXPECT_CONTAINS(scene_error_of(j), "scene.json: simulation.collision_friction: expected a number");
 }
 
 TEST(SolverScene, UnknownOrMisplacedKeysInConstraints) {
   Json j = solver_scene();
   j["simulation"]["constraints"]["tolerence"] = 1e-3;
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.tolerence: unknown key; did you mean "
             "'tolerance'? (known keys here: method, edges, tolerance, max_iterations, "
             "max_stretch, reuse_iterations)");
   j = solver_scene();
   j["simulation"]["constraints"] = {{"metod", "pairwise"}, {"max_stretch", 0.1}};
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: simulation.constraints.metod: unknown key; did you mean 'method'?");
   j = solver_scene();
   j["simulation"]["constraints"] = "fast_projection";
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: simulation.constraints: expected an object, got the string");
   j = solver_scene();
   j["simulation"]["constraint"] = j["simulation"]["constraints"];
   j["simulation"].erase("constraints");
-  EXPECT_CONTAINS(error_of(j),
+  EXPECT_CONTAINS(scene_error_of(j),
                   "scene.json: simulation.constraint: unknown key; did you mean 'constraints'?");
   // A key the method does not use is an error, not silently ignored.
   j = solver_scene();
   j["simulation"]["constraints"]["max_stretch"] = 0.05;
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.max_stretch: expected only with method "
             "'pairwise' (it has no effect otherwise), got method 'fast_projection'");
   j["simulation"]["constraints"] = {{"tolerance", 1e-3}};  // method defaults to 'none'
-  EXPECT_EQ(error_of(j),
+  EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.constraints.tolerance: expected only with method "
             "'fast_projection' or 'pairwise' (it has no effect otherwise), got method 'none'");
 }
@@ -265,7 +265,7 @@ TEST(SolverScene, ParsedSettingsDriveTheSimulator) {
   for (const char* method : {"fast_projection", "pairwise"}) {
     Json j = solver_scene();
     j["simulation"]["constraints"] = {{"method", method}, {"tolerance", 1e-2}};
-    const Scene scene = parse(j);
+    const Scene scene = parse_json_scene(j);
     const sim::ClothMesh mesh = sim::make_grid(scene.grid);
     sim::Simulator simulator(mesh, scene.material, sim::resolve_pins(scene.pins, mesh), scene.sim);
     EXPECT_NO_THROW(simulator.advance(0.1)) << method;

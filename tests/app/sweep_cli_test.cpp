@@ -12,38 +12,17 @@
 
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
+#include "tests/support/test_files.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 using SweepResult = weft::app::test::CommandResult;
+using weft::test_files::read_csv;
 
 SweepResult run_sweep_command(const std::string& args) {
   return weft::app::test::run_weft("sweep " + args);
-}
-
-// A CSV line's fields; "quoted, fields" keep their commas.
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) rows.push_back(csv_fields(line));
-  return rows;
 }
 
 fs::path scratch(const std::string& name) {

@@ -54,7 +54,7 @@ class TurntableCli : public ::testing::Test {
 };
 
 // A 9×9 cloth pinned at two corners, 2 frames; images of 64×48 pixels.
-const char* const tiny_scene = R"({
+const char* const turntable_scene = R"({
   "description": "tiny turntable test scene",
   "cloth": {"size": ["20 cm", "20 cm"], "resolution": [9, 9], "origin": [-0.1, 0, 0.5],
             "pins": [{"corner": "u0v1"}, {"corner": "u1v1"}]},
@@ -71,7 +71,7 @@ int differing_pixels(const Image& a, const Image& b) {
 }
 
 TEST_F(TurntableCli, SceneGivesFourFramesFromFourSidesAndAContactSheet) {
-  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path scene = write_file("tiny.json", turntable_scene);
   const fs::path out = m_dir / "out";
   const CommandResult r =
       run_weft("turntable " + scene.string() + " --frames 4 --out " + out.string(), path_env(-1));
@@ -137,7 +137,7 @@ TEST_F(TurntableCli, MeshFileIsFramedAndTurned) {
 }
 
 TEST_F(TurntableCli, FfmpegMakesTheMp4AndGifAndItsFailureIsReported) {
-  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path scene = write_file("tiny.json", turntable_scene);
   const fs::path out = m_dir / "out";
   const std::string args = "turntable " + scene.string() + " --frames 2 --out " + out.string();
   const CommandResult ok = run_weft(args, path_env(0));
@@ -169,7 +169,7 @@ TEST_F(TurntableCli, FfmpegMakesTheMp4AndGifAndItsFailureIsReported) {
 
 TEST_F(TurntableCli, BadInputIsAnErrorWithNothingWritten) {
   const fs::path out = m_dir / "out";
-  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path scene = write_file("tiny.json", turntable_scene);
   const CommandResult missing =
       run_weft("turntable " + (m_dir / "nope.json").string() + " --out " + out.string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
@@ -198,7 +198,7 @@ TEST_F(TurntableCli, BadInputIsAnErrorWithNothingWritten) {
 }
 
 TEST_F(TurntableCli, RunExportsOneMeshPerFrame) {
-  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path scene = write_file("tiny.json", turntable_scene);
   const fs::path out = m_dir / "out";
   const CommandResult r =
       run_weft("run " + scene.string() + " --export-meshes ply --out " + out.string());
@@ -224,7 +224,7 @@ TEST_F(TurntableCli, RunExportsOneMeshPerFrame) {
 // Issue 20 item 5: a later run clears every file of the earlier run's meshes, the OBJs'
 // mesh_NNNN.mtl included.
 TEST_F(TurntableCli, ARerunLeavesNoStaleMaterialFiles) {
-  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path scene = write_file("tiny.json", turntable_scene);
   const fs::path out = m_dir / "out";
   const CommandResult r =
       run_weft("run " + scene.string() + " --frames 2 --export-meshes obj --out " + out.string());
@@ -249,7 +249,7 @@ std::string orbit_centre(const std::string& output) {
 // scene's own turntable (the cloth stands; read in the file's frame it would lie on its side,
 // its centre at z ≈ 0). A --up z export is read with --up z. A scene, or a glTF, refuses --up z.
 TEST_F(TurntableCli, WeftsOwnExportStandsUpInTheTurntable) {
-  const fs::path scene = write_file("tiny.json", tiny_scene);
+  const fs::path scene = write_file("tiny.json", turntable_scene);
   const CommandResult own = run_weft("turntable " + scene.string() + " --frames 1 --size 32x24 --out " +
                                      (m_dir / "scene_tt").string(), path_env(-1));
   ASSERT_EQ(own.exit_code, 0) << own.output;

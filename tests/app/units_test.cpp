@@ -6,19 +6,16 @@
 #include <string>
 
 #include "base/constants.h"
+#include "tests/app/scene_test_support.h"
 
 namespace weft::app {
 namespace {
 
 constexpr double g0 = 9.80665;             // standard gravity, m/s²
-constexpr double gram_force = 9.80665e-3;  // N
+using test::expect_close;
+using test::gram_force;
 
-// Relative comparison at 1e-12.
-void expect_close(double actual, double expected) {
-  EXPECT_NEAR(actual, expected, 1e-12 * std::fabs(expected)) << "actual " << actual;
-}
-
-std::string error_of(const std::string& text, Quantity kind) {
+std::string quantity_error_of(const std::string& text, Quantity kind) {
   try {
     const double value = parse_quantity(text, kind);
     return "no error, got " + std::to_string(value);
@@ -99,53 +96,53 @@ TEST(Units, ExpressionGrammar) {
 }
 
 TEST(Units, WrongDimensionListsTheAcceptedUnits) {
-  EXPECT_EQ(error_of("0.019 gf/cm", Quantity::areal_density),
+  EXPECT_EQ(quantity_error_of("0.019 gf/cm", Quantity::areal_density),
             "expected an areal density such as kg/m^2, g/m^2 or gf/cm^2, got '0.019 gf/cm' "
             "(that is a force per length)");
-  EXPECT_EQ(error_of("5 s", Quantity::length),
+  EXPECT_EQ(quantity_error_of("5 s", Quantity::length),
             "expected a length such as m, cm or mm, got '5 s' (that is a time)");
-  EXPECT_EQ(error_of("1118.2 gf", Quantity::force_per_length),
+  EXPECT_EQ(quantity_error_of("1118.2 gf", Quantity::force_per_length),
             "expected a force per length such as N/m or gf/cm, got '1118.2 gf' (that is a force)");
-  EXPECT_NE(error_of("0.083 gf/cm", Quantity::bending_rigidity)
+  EXPECT_NE(quantity_error_of("0.083 gf/cm", Quantity::bending_rigidity)
                 .find("expected a bending rigidity such as N*m, uN*m or gf*cm"),
             std::string::npos);
-  EXPECT_NE(error_of("9.81 m/s", Quantity::acceleration).find("(that is a speed)"),
+  EXPECT_NE(quantity_error_of("9.81 m/s", Quantity::acceleration).find("(that is a speed)"),
             std::string::npos);
-  EXPECT_NE(error_of("5 kg^2", Quantity::length).find("(that is a quantity in kg^2)"),
+  EXPECT_NE(quantity_error_of("5 kg^2", Quantity::length).find("(that is a quantity in kg^2)"),
             std::string::npos);
   // The g0 conversion is for areal density only: a pressure is not a force per length.
-  EXPECT_NE(error_of("3 Pa", Quantity::force_per_length).find("weight per area"),
+  EXPECT_NE(quantity_error_of("3 Pa", Quantity::force_per_length).find("weight per area"),
             std::string::npos);
 }
 
 TEST(Units, MalformedAndNonFiniteNumbers) {
-  EXPECT_EQ(error_of("nan", Quantity::length),
+  EXPECT_EQ(quantity_error_of("nan", Quantity::length),
             "expected a length such as m, cm or mm, got 'nan' (not a finite number)");
-  EXPECT_NE(error_of("inf m", Quantity::length).find("(not a finite number)"), std::string::npos);
-  EXPECT_NE(error_of("-Infinity m", Quantity::length).find("(not a finite number)"),
+  EXPECT_NE(quantity_error_of("inf m", Quantity::length).find("(not a finite number)"), std::string::npos);
+  EXPECT_NE(quantity_error_of("-Infinity m", Quantity::length).find("(not a finite number)"),
             std::string::npos);
-  EXPECT_NE(error_of("1e999 m", Quantity::length).find("out of the range of a double"),
+  EXPECT_NE(quantity_error_of("1e999 m", Quantity::length).find("out of the range of a double"),
             std::string::npos);
-  EXPECT_NE(error_of("1e300 km^3", Quantity::length).find("that is"), std::string::npos);
-  EXPECT_NE(error_of("mm", Quantity::length).find("(it does not start with a number)"),
+  EXPECT_NE(quantity_error_of("1e300 km^3", Quantity::length).find("that is"), std::string::npos);
+  EXPECT_NE(quantity_error_of("mm", Quantity::length).find("(it does not start with a number)"),
             std::string::npos);
-  EXPECT_NE(error_of("", Quantity::length).find("(an empty string)"), std::string::npos);
-  EXPECT_NE(error_of("5", Quantity::length).find("the unit is missing"), std::string::npos);
-  EXPECT_NE(error_of("5 furlong", Quantity::length).find("unknown unit 'furlong'; known units: m"),
+  EXPECT_NE(quantity_error_of("", Quantity::length).find("(an empty string)"), std::string::npos);
+  EXPECT_NE(quantity_error_of("5", Quantity::length).find("the unit is missing"), std::string::npos);
+  EXPECT_NE(quantity_error_of("5 furlong", Quantity::length).find("unknown unit 'furlong'; known units: m"),
             std::string::npos);
-  EXPECT_NE(error_of("5 Nm", Quantity::bending_rigidity).find("unknown unit 'Nm'"),
+  EXPECT_NE(quantity_error_of("5 Nm", Quantity::bending_rigidity).find("unknown unit 'Nm'"),
             std::string::npos);
-  EXPECT_NE(error_of("2.5.3 m", Quantity::length).find("expected a unit name at '.3 m'"),
+  EXPECT_NE(quantity_error_of("2.5.3 m", Quantity::length).find("expected a unit name at '.3 m'"),
             std::string::npos);
-  EXPECT_NE(error_of("5 m^", Quantity::length).find("integer exponent"), std::string::npos);
-  EXPECT_NE(error_of("5 (m", Quantity::length).find("missing ')'"), std::string::npos);
-  EXPECT_NE(error_of("5 m)", Quantity::length).find("unexpected ')'"), std::string::npos);
-  EXPECT_NE(error_of("5 2/s", Quantity::inverse_time).find("only '1'"), std::string::npos);
-  EXPECT_NE(error_of("5 m*", Quantity::length).find("a unit is missing at the end"),
+  EXPECT_NE(quantity_error_of("5 m^", Quantity::length).find("integer exponent"), std::string::npos);
+  EXPECT_NE(quantity_error_of("5 (m", Quantity::length).find("missing ')'"), std::string::npos);
+  EXPECT_NE(quantity_error_of("5 m)", Quantity::length).find("unexpected ')'"), std::string::npos);
+  EXPECT_NE(quantity_error_of("5 2/s", Quantity::inverse_time).find("only '1'"), std::string::npos);
+  EXPECT_NE(quantity_error_of("5 m*", Quantity::length).find("a unit is missing at the end"),
             std::string::npos);
-  EXPECT_NE(error_of("+-5 m", Quantity::length).find("does not start with a number"),
+  EXPECT_NE(quantity_error_of("+-5 m", Quantity::length).find("does not start with a number"),
             std::string::npos);
-  EXPECT_NE(error_of("1e308 km", Quantity::length).find("not finite in SI units"),
+  EXPECT_NE(quantity_error_of("1e308 km", Quantity::length).find("not finite in SI units"),
             std::string::npos);
 }
 

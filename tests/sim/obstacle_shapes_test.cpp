@@ -24,12 +24,13 @@
 
 namespace weft::sim {
 namespace {
-constexpr double tolerance = 1e-12;  // m
+constexpr double tol_m = 1e-12;  // m
 
 // A turned box off the origin and its world point from local coordinates (its x, y, z axes).
-const BoxObstacle box{Vec3(0.1, -0.2, 0.3), Vec3(0.05, 0.1, 0.02), base::kPi / 6.0};
+const BoxObstacle tilted_box{Vec3(0.1, -0.2, 0.3), Vec3(0.05, 0.1, 0.02), base::kPi / 6.0};
 Vec3 box_point(double x, double y, double z) {
-  return box.center_m + x * box_axis_x(box) + y * box_axis_y(box) + z * Vec3::UnitZ();
+  return tilted_box.center_m + x * box_axis_x(tilted_box) + y * box_axis_y(tilted_box) +
+         z * Vec3::UnitZ();
 }
 
 // A tilted disc (radius 9 cm, 2 cm high) and a world point from its axial coordinates.
@@ -60,8 +61,8 @@ TEST(ObstacleShapes, BoxSignedDistanceMatchesHandValues) {
   };
   for (const Case& c : cases) {
     const Vec3 p = box_point(c.local.x(), c.local.y(), c.local.z());
-    EXPECT_NEAR(signed_distance(box, p), c.expected_m, tolerance) << c.local.transpose();
-    EXPECT_NEAR(signed_distance(Obstacle{box}, p), c.expected_m, tolerance);
+    EXPECT_NEAR(signed_distance(tilted_box, p), c.expected_m, tol_m) << c.local.transpose();
+    EXPECT_NEAR(signed_distance(Obstacle{tilted_box}, p), c.expected_m, tol_m);
   }
 }
 
@@ -83,19 +84,19 @@ TEST(ObstacleShapes, CylinderSignedDistanceMatchesHandValues) {
   for (const Case& c : cases) {
     for (const double azimuth : {0.0, 1.0, 4.0}) {
       const Vec3 p = disc_point(c.r, c.z, azimuth);
-      EXPECT_NEAR(signed_distance(disc, p), c.expected_m, tolerance) << c.r << " " << c.z;
+      EXPECT_NEAR(signed_distance(disc, p), c.expected_m, tol_m) << c.r << " " << c.z;
     }
   }
 }
 
 TEST(ObstacleShapes, CapsuleSignedDistanceMatchesHandValues) {
-  EXPECT_NEAR(signed_distance(capsule, Vec3(0.1, 0.1, 0.1)), 0.05, tolerance);    // beside
-  EXPECT_NEAR(signed_distance(capsule, Vec3(0.0, 0.3, 0.1)), 0.05, tolerance);    // beyond b
-  EXPECT_NEAR(signed_distance(capsule, Vec3(0.03, -0.04, 0.1)), 0.0, tolerance);  // on a's cap
-  EXPECT_NEAR(signed_distance(capsule, Vec3(0.0, 0.05, 0.1)), -0.05, tolerance);  // on the axis
-  EXPECT_NEAR(signed_distance(capsule, Vec3(0.0, 0.15, 0.13)), -0.02, tolerance);
+  EXPECT_NEAR(signed_distance(capsule, Vec3(0.1, 0.1, 0.1)), 0.05, tol_m);    // beside
+  EXPECT_NEAR(signed_distance(capsule, Vec3(0.0, 0.3, 0.1)), 0.05, tol_m);    // beyond b
+  EXPECT_NEAR(signed_distance(capsule, Vec3(0.03, -0.04, 0.1)), 0.0, tol_m);  // on a's cap
+  EXPECT_NEAR(signed_distance(capsule, Vec3(0.0, 0.05, 0.1)), -0.05, tol_m);  // on the axis
+  EXPECT_NEAR(signed_distance(capsule, Vec3(0.0, 0.15, 0.13)), -0.02, tol_m);
   const CapsuleObstacle ball{Vec3(1, 2, 3), Vec3(1, 2, 3), 0.5};  // a = b: a sphere
-  EXPECT_NEAR(signed_distance(ball, Vec3(1, 2, 4)), 0.5, tolerance);
+  EXPECT_NEAR(signed_distance(ball, Vec3(1, 2, 4)), 0.5, tol_m);
 }
 
 // Finite differences of the signed distance against the closest surface point's normal, and
@@ -136,8 +137,8 @@ void expect_normal_is_gradient(const Shape& shape, const Vec3& lo, const Vec3& h
 }
 
 TEST(ObstacleShapes, NormalIsTheFiniteDifferenceGradientOfTheSignedDistance) {
-  expect_normal_is_gradient(box, box.center_m - Vec3(0.15, 0.15, 0.08),
-                            box.center_m + Vec3(0.15, 0.15, 0.08));
+  expect_normal_is_gradient(tilted_box, tilted_box.center_m - Vec3(0.15, 0.15, 0.08),
+                            tilted_box.center_m + Vec3(0.15, 0.15, 0.08));
   expect_normal_is_gradient(disc, disc.center_m - Vec3(0.15, 0.15, 0.06),
                             disc.center_m + Vec3(0.15, 0.15, 0.06));
   expect_normal_is_gradient(capsule, Vec3(-0.1, -0.1, 0.0), Vec3(0.1, 0.3, 0.2));
@@ -145,16 +146,16 @@ TEST(ObstacleShapes, NormalIsTheFiniteDifferenceGradientOfTheSignedDistance) {
 
 // Inside: out through the nearest face, cap or side, at its outward normal.
 TEST(ObstacleShapes, InsidePointsLeaveThroughTheNearestFace) {
-  SurfacePoint q = closest_surface_point(box, box_point(0.01, 0.09, 0.0));
-  EXPECT_LT((q.point_m - box_point(0.01, 0.1, 0.0)).norm(), tolerance);
-  EXPECT_LT((q.normal - box_axis_y(box)).norm(), tolerance);
-  q = closest_surface_point(box, box_point(0.01, 0.0, -0.015));
-  EXPECT_LT((q.normal + Vec3::UnitZ()).norm(), tolerance);
+  SurfacePoint q = closest_surface_point(tilted_box, box_point(0.01, 0.09, 0.0));
+  EXPECT_LT((q.point_m - box_point(0.01, 0.1, 0.0)).norm(), tol_m);
+  EXPECT_LT((q.normal - box_axis_y(tilted_box)).norm(), tol_m);
+  q = closest_surface_point(tilted_box, box_point(0.01, 0.0, -0.015));
+  EXPECT_LT((q.normal + Vec3::UnitZ()).norm(), tol_m);
   q = closest_surface_point(disc, disc_point(0.085, 0.002, 2.0));
-  EXPECT_LT((q.point_m - disc_point(0.09, 0.002, 2.0)).norm(), tolerance);
+  EXPECT_LT((q.point_m - disc_point(0.09, 0.002, 2.0)).norm(), tol_m);
   q = closest_surface_point(disc, disc_point(0.02, 0.006, 2.0));
-  EXPECT_LT((q.point_m - disc_point(0.02, 0.01, 2.0)).norm(), tolerance);
-  EXPECT_LT((q.normal - disc.axis).norm(), tolerance);
+  EXPECT_LT((q.point_m - disc_point(0.02, 0.01, 2.0)).norm(), tol_m);
+  EXPECT_LT((q.normal - disc.axis).norm(), tol_m);
 }
 
 // 500 random vertices within ±spread_m (per axis) of `centre`, pushed out of the one shape with a 3
@@ -191,7 +192,7 @@ void expect_push_out_to_thickness(const Shape& shape, const Vec3& centre, const 
 }
 
 TEST(ObstacleShapes, PushOutLeavesEveryVertexAtTheThickness) {
-  expect_push_out_to_thickness(box, box.center_m, Vec3(0.1, 0.15, 0.04), 11);
+  expect_push_out_to_thickness(tilted_box, tilted_box.center_m, Vec3(0.1, 0.15, 0.04), 11);
   expect_push_out_to_thickness(disc, disc.center_m, Vec3(0.12, 0.12, 0.04), 12);
   expect_push_out_to_thickness(capsule, Vec3(0.0, 0.1, 0.1), Vec3(0.08, 0.2, 0.08), 13);
 }
@@ -229,9 +230,9 @@ TEST(ObstacleShapes, PedestalOnTheGroundClearsTheWedge) {
 // the slide by μ·depth = 0.5 mm.
 TEST(ObstacleShapes, FrictionStopsAVertexSlidingOnABoxTop) {
   const double t = 0.002;
-  const std::vector<Obstacle> obstacles = {box};
+  const std::vector<Obstacle> obstacles = {tilted_box};
   const Vec3 start = box_point(0.0, 0.0, 0.02 + t);
-  const Vec3 along = (box_axis_x(box) + box_axis_y(box)).normalized();
+  const Vec3 along = (box_axis_x(tilted_box) + box_axis_y(tilted_box)).normalized();
   const Matrix3X x_start = start.transpose();
   const Matrix3X predicted = (start + 0.001 * along - 0.002 * Vec3::UnitZ()).transpose();
   const Eigen::VectorXd free = Eigen::VectorXd::Ones(1);
@@ -269,7 +270,7 @@ TEST(ObstacleShapes, CheckObstaclesNamesTheObstacleAndTheProblem) {
             "obstacle 1: capsule endpoints must be finite");
   EXPECT_EQ(error_of(CapsuleObstacle{Vec3::Zero(), Vec3::UnitX(), 0.0}),
             "obstacle 1: capsule radius must be finite and > 0, got 0.000000 m");
-  EXPECT_EQ(error_of(box), "no error");
+  EXPECT_EQ(error_of(tilted_box), "no error");
 }
 
 // 10×10 cm of cloth (9×9 vertices) dropped from 3 cm onto a 6×6 cm pedestal standing on the

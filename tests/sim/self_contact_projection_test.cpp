@@ -35,7 +35,7 @@ Matrix3X folded(const ClothMesh& mesh, double gap_m) {
   return x;
 }
 
-ClothMesh sheet(Index n, double z_m) {
+ClothMesh sheet_at_height(Index n, double z_m) {
   GridSpec grid;
   grid.nu = grid.nv = n;
   grid.origin = Vec3(-0.5, -0.5, z_m);
@@ -53,9 +53,9 @@ Index crossings(const Matrix3X& x, const ClothMesh& mesh) {
 // contact distance, no crossing and every edge within the tolerance; the projection without
 // them leaves the crossings.
 TEST(ContactProjection, ALayerPushedThroughWithinAStepGoesBackWithEdgesAtLength) {
-  const ClothMesh mesh = sheet(17, 0.0);
+  const ClothMesh mesh = sheet_at_height(17, 0.0);
   const Eigen::VectorXd inv_mass = Eigen::VectorXd::Ones(mesh.vertex_count());
-  const double distance_m = 2e-3, tolerance = 1e-3;
+  const double distance_m = 2e-3, edge_tolerance = 1e-3;
   const Matrix3X x_start = folded(mesh, 6e-3);
   Matrix3X x_end = x_start;
   for (Index j = 4; j <= 12; ++j)
@@ -75,14 +75,14 @@ TEST(ContactProjection, ALayerPushedThroughWithinAStepGoesBackWithEdgesAtLength)
   EXPECT_TRUE(plain_result.converged);
   EXPECT_GT(crossings(plain, mesh), 0) << "the projection alone already undoes the crossing";
 
-  ContactProjection projection(edges, tolerance, 100, default_sparse_backend());
+  ContactProjection projection(edges, edge_tolerance, 100, default_sparse_backend());
   Matrix3X x = x_end;
   const ContactProjectionResult r = projection.project(x, inv_mass, rows.rows(), distance_m, rows.lateral_m());
   std::printf("%zu rows, %d active, %d iterations, strain %.2e, closest row %.3f mm\n",
               rows.rows().size(), r.active_rows, r.projection.iterations, r.projection.max_strain,
               1e3 * r.worst_gap_m);
   EXPECT_TRUE(r.projection.converged);
-  EXPECT_LE(max_edge_strain(edges, x), tolerance);
+  EXPECT_LE(max_edge_strain(edges, x), edge_tolerance);
   EXPECT_GE(rows.worst_violation(x), -ContactProjection::contact_tolerance * distance_m);
   EXPECT_EQ(crossings(x, mesh), 0);
   // Mass-weighted projection with equal masses keeps the centre of mass.
@@ -91,7 +91,7 @@ TEST(ContactProjection, ALayerPushedThroughWithinAStepGoesBackWithEdgesAtLength)
 
 // No row is violated, so the rows change nothing: the result is plain fast projection's.
 TEST(ContactProjection, RowsNotViolatedLeaveTheProjectionAlone) {
-  const ClothMesh mesh = sheet(9, 0.0);
+  const ClothMesh mesh = sheet_at_height(9, 0.0);
   const Eigen::VectorXd inv_mass = Eigen::VectorXd::Ones(mesh.vertex_count());
   const Matrix3X x_start = folded(mesh, 20e-3);
   SelfContactRows rows(mesh, 2e-3, 0.0);
