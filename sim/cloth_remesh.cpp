@@ -23,7 +23,13 @@ void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings) {
     throw std::invalid_argument(
         key + "not with simulation.model \"mass_spring\": on a triangle mesh its springs' "
               "stiffness comes from the triangles' edge directions, so each remesh would change "
-              "the cloth's rigidity; use baraff_witkin, rft3 or rft6");
+              "the cloth's rigidity; use baraff_witkin");
+  if (settings.model == ClothModel::rft3 || settings.model == ClothModel::rft6)
+    throw std::invalid_argument(
+        key + "not with simulation.model \"" + cloth_model_name(settings.model) +
+        "\": RFT bending needs a non-degenerate six-node patch around every triangle, which a "
+        "Delaunay remesh does not guarantee (a remeshed drape stopped on a degenerate patch); "
+        "use baraff_witkin");
   if (settings.integrator != Integrator::implicit_euler &&
       settings.integrator != Integrator::dynamic_relaxation)
     throw std::invalid_argument(

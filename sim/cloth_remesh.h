@@ -29,7 +29,7 @@ bool remesh_available();
 // Throws std::invalid_argument "simulation.remesh: …" naming what the combination lacks when
 // settings.remesh is enabled and the cloth or settings cannot be remeshed: a warp/weft grid
 // (its models run on quads), the mass-spring model (its springs on triangle edges depend on
-// the triangulation), an explicit integrator (its step is fixed from the first mesh's critical
+// the triangulation), RFT (its bending patches may be degenerate on a Delaunay mesh), an explicit integrator (its step is fixed from the first mesh's critical
 // step), constraints (projection) or the adaptive step, a build without CGAL.
 void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings);
 

@@ -95,7 +95,10 @@ TEST(RemeshScene, WhatCannotBeRemeshedIsASceneErrorNamingTheReason) {
   springs["simulation"]["model"] = "mass_spring";
   const std::string model = simulator_error(springs, dir);
   EXPECT_CONTAINS(model, "scene.json: simulation.remesh: not with simulation.model \"mass_spring\"");
-  EXPECT_CONTAINS(model, "use baraff_witkin, rft3 or rft6");
+  EXPECT_CONTAINS(model, "use baraff_witkin");
+  Json rft = remeshed_hang(dir);
+  rft["simulation"]["model"] = "rft3";
+  EXPECT_CONTAINS(simulator_error(rft, dir), "simulation.remesh: not with simulation.model \"rft3\"");
 
   Json grid = remeshed_hang(dir);
   grid["cloth"].erase("mesh");

@@ -192,6 +192,10 @@ TEST(SimulatorRemesh, WhatCannotBeRemeshedIsAnErrorNamingTheReason) {
   SimSettings springs = s;
   springs.model = ClothModel::mass_spring;
   EXPECT_NE(remesh_error(triangles, springs).find("mass_spring"), std::string::npos);
+  SimSettings rft = s;
+  rft.model = ClothModel::rft6;
+  EXPECT_NE(remesh_error(triangles, rft).find("not with simulation.model \"rft6\": RFT bending"),
+            std::string::npos);
   SimSettings explicit_step = s;
   explicit_step.integrator = Integrator::symplectic_euler;
   EXPECT_NE(remesh_error(triangles, explicit_step).find("implicit_euler or dynamic_relaxation"),
