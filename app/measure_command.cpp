@@ -153,7 +153,6 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
   const sim::ClothMesh& mesh = simulator.mesh();
   m.support = scene_support(scene, mesh, require_drape);
   m.specimen_m2 = sim::specimen_rest_area_m2(mesh);
-  const auto triangles = mesh.triangles();
   const sim::DrapeMeasureSettings settings;
 
   const auto record = [&](int frame, double time_s) {
@@ -164,7 +163,9 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
     row.kinetic_energy_J = d.kinetic_energy_J;
     row.max_speed_m_s = d.max_speed_m_s;
     if (m.support) {
-      m.final_drape = sim::measure_drape(mesh, triangles, simulator.state().x, *m.support, settings);
+      // The frame's own triangles: with simulation.remesh the mesh changes between frames.
+      m.final_drape =
+          sim::measure_drape(mesh, mesh.triangles(), simulator.state().x, *m.support, settings);
       row.drape_coefficient = m.final_drape->drape_coefficient;
       row.folds = m.final_drape->folds;
     }
@@ -185,6 +186,7 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
     speed_m_s.push_back(r.max_speed_m_s);
   }
   m.settle_time_s = sim::settle_time_s(time_s, speed_m_s, m.settle_threshold_m_s);
+  const auto triangles = mesh.triangles();
   m.self_intersections = sim::count_edge_triangle_crossings(simulator.state().x, triangles,
                                                             sim::unique_edges(triangles));
   return m;

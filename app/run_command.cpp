@@ -157,7 +157,6 @@ class FrameWriter {
               sim::Simulator& simulator, render::Renderer& renderer)
       : m_scene(scene), m_options(options), m_dir(dir), m_simulator(simulator),
         m_stats(dir / "stats.csv"), m_painter(scene, renderer, simulator.mesh()),
-        m_triangles(simulator.mesh().triangles()), m_edges(sim::unique_edges(m_triangles)),
         m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {}
 
   void write(const Frame& frame) {
@@ -175,8 +174,12 @@ class FrameWriter {
     row.sim_ms = 1e3 * frame.sim_s;
     row.steps = m_simulator.take_step_statistics();
     row.diagnostics = m_simulator.diagnostics();
-    row.self_intersections =
-        sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
+    // The frame's own mesh: with simulation.remesh it changes from frame to frame.
+    const sim::ClothMesh& mesh = m_simulator.mesh();
+    const std::vector<std::array<sim::Index, 3>> triangles = mesh.triangles();
+    row.self_intersections = sim::count_edge_triangle_crossings(m_simulator.state().x, triangles,
+                                                                sim::unique_edges(triangles));
+    row.vertices = mesh.used_vertex_count();
     const auto start = std::chrono::steady_clock::now();
     if (m_options.selection.selects(frame.index, m_scene.frames)) render_frame(frame.index);
     row.render_ms =
@@ -234,9 +237,7 @@ class FrameWriter {
   fs::path m_dir;
   sim::Simulator& m_simulator;
   StatsCsv m_stats;
-  FramePainter m_painter;
-  std::vector<std::array<sim::Index, 3>> m_triangles;
-  std::vector<std::array<sim::Index, 2>> m_edges;
+  FramePainter m_painter;  // draws the simulator's mesh as it is at each frame
   Progress m_progress;
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
@@ -325,6 +326,19 @@ int run_scene(const RunOptions& options) {
     throw SceneError("--export-cache: not with --checkpoint-every or --resume (the point cache "
                      "holds every frame and is not checkpointed; export meshes per frame with "
                      "--export-meshes)");
+  if (scene.sim.remesh.enabled) {
+    // What assumes one mesh for the whole run (docs/remeshing.md).
+    const char* option = every > 0          ? "--checkpoint-every"
+                          : resumed          ? "--resume"
+                          : options.save_states ? "--save-states"
+                          : !options.export_cache.empty() ? "--export-cache"
+                                                          : nullptr;
+    if (option)
+      throw SceneError(std::string(option) + ": not with simulation.remesh (" + scene.source +
+                       "): a remeshed cloth's vertices change from frame to frame, and the "
+                       "checkpoints, saved states and point caches hold one mesh's; export each "
+                       "frame's mesh with --export-meshes");
+  }
   if (resumed && resumed->frame >= scene.frames)
     throw SceneError("--resume " + options.resume->string() + ": the checkpoint is of frame " +
                      std::to_string(resumed->frame) + ", the scene's last: nothing to resume");

@@ -250,6 +250,24 @@ void read_adaptive_step(ObjectReader r, sim::AdaptiveStepSettings& a) {
   r.finish();
 }
 
+// "simulation.remesh" (sim::RemeshSettings, docs/remeshing.md): present means enabled. Whether
+// the cloth and the other settings allow it is the simulator's check (make_simulator names the
+// key).
+sim::RemeshSettings read_remesh(ObjectReader r) {
+  sim::RemeshSettings m;
+  m.enabled = true;
+  m.every_steps = r.integer("every", m.every_steps, Range::closed(1, 1e9));
+  m.c_m = r.quantity("c", Quantity::length, m.c_m, Range::gt(0.0));
+  m.h_min_m = r.quantity("h_min", Quantity::length, m.h_min_m, Range::gt(0.0));
+  m.h_max_m = r.quantity("h_max", Quantity::length, m.h_max_m, Range::gt(0.0));
+  m.max_vertices = r.integer("max_vertices", m.max_vertices, Range::closed(3, 2e6));
+  if (m.h_max_m < m.h_min_m)
+    r.fail("h_max", "expected at least h_min (" + std::to_string(m.h_min_m) + " m), got " +
+                        std::to_string(m.h_max_m) + " m");
+  r.finish();
+  return m;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
                      Scene::CrossingPolicy& crossings) {
@@ -285,6 +303,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   if (r.has("aerodynamics")) s.aero = read_aerodynamics(r.object("aerodynamics"));
   if (r.has("self_collision"))
     s.self_collision = read_self_collision(r.object("self_collision"), crossings);
+  if (r.has("remesh")) s.remesh = read_remesh(r.object("remesh"));
   r.finish();
 }
 

@@ -20,6 +20,7 @@ struct FrameStats {
   sim::StepStatistics steps;  // what this frame's time steps did (count, projection, solves)
   sim::Diagnostics diagnostics;
   int self_intersections = 0;  // edge–triangle crossings of the cloth at the frame's end
+  long vertices = 0;  // the cloth's (used) vertices at the frame's end: changes with remeshing
 };
 
 class StatsCsv {

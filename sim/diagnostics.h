@@ -35,12 +35,16 @@ struct StepStatistics {
   long max_self_contacts = 0;         // self-collision contacts in any one step
   double min_step_s = 0.0, max_step_s = 0.0;  // the shortest and longest step (0: none taken)
   long rejected_steps = 0;  // adaptive steps redone shorter (sim/adaptive_step.h)
+  long remeshes = 0;        // adaptive remeshing steps (simulation.remesh)
+  double remesh_energy_J = 0.0;  // the total energy's change by those remeshes (the transfer's)
 };
 
-enum class Phase { forces, integrate, project, collide, check, pins, obstacles, filter, count };
+enum class Phase {
+  forces, integrate, project, collide, check, pins, obstacles, filter, remesh, count
+};
 
 inline constexpr std::array<std::string_view, static_cast<int>(Phase::count)> phase_names{
-    "forces", "integrate", "project", "collide", "check", "pins", "obstacles", "filter"};
+    "forces", "integrate", "project", "collide", "check", "pins", "obstacles", "filter", "remesh"};
 
 // Accumulated wall time per phase, seconds. Exclusive: time spent in a phase timed inside
 // another (forces inside integrate) counts for the inner phase only.

@@ -30,6 +30,19 @@ struct AdaptiveStepSettings {
   double max_prediction_strain = 0.25;  // ε_max
 };
 
+// simulation.remesh (docs/remeshing.md): every every_steps steps the cloth is meshed anew in
+// material space, graded by its curvature (seed 002 eq. 29: h = clamp(√(c/|κ|), h_min, h_max)),
+// positions and velocities interpolated onto the new mesh, the boundary and pins kept exactly
+// (sim/cloth_remesh.h). Off unless enabled; a triangle-mesh cloth only (Simulator checks).
+struct RemeshSettings {
+  bool enabled = false;
+  long every_steps = 100;
+  double c_m = 1e-3;       // eq. 29's constant |κ| h², metres
+  double h_min_m = 0.005;  // the finest edge, metres
+  double h_max_m = 0.05;   // the coarsest edge (flat cloth), metres
+  long max_vertices = 200'000;  // a mesh finer than this is an error, not a frozen run
+};
+
 struct SimSettings {
   ClothModel model = ClothModel::mass_spring;  // the forces (sim/cloth_model.h)
   Integrator integrator = Integrator::symplectic_euler;
@@ -85,6 +98,8 @@ struct SimSettings {
   // Air drag on every triangle and an optional wind field (sim/aerodynamics.h); off unless
   // enabled. The existing air_damping is separate (a mass-proportional damping).
   AeroSettings aero;
+  // Adaptive remeshing during the run; off unless enabled.
+  RemeshSettings remesh;
 };
 
 }  // namespace weft::sim

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sim/cloth_remesh.h"
 #include "sim/constraints/inextensibility.h"
 
 
@@ -64,10 +65,12 @@ double critical_step_s(const System& system) {
 Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index> pinned,
                      const SimSettings& settings)
     : m_mesh(std::move(mesh)),
+      m_material(material),
       m_settings(settings),
       m_pinned(std::move(pinned)),
       m_system(make_system(m_mesh, material, m_pinned, settings)) {
   m_system.timers = &m_timers;
+  check_remesh_settings(m_mesh, settings);
   const Index n = m_mesh.vertex_count();
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
                                             Eigen::VectorXd::Ones(n));  // all of them
@@ -249,7 +252,42 @@ bool Simulator::attempt_step(double h_s, bool may_reject) {
   m_stats.max_step_s = std::max(m_stats.max_step_s, h_s);
   ++m_stats.steps;
   m_timers.time(Phase::check, [&] { check_finite(); });
+  if (m_settings.remesh.enabled && m_steps % m_settings.remesh.every_steps == 0)
+    m_timers.time(Phase::remesh, [&] { remesh_now(); });
   return true;
+}
+
+void Simulator::remesh_now() {
+  check_remesh_settings(m_mesh, m_settings);
+  if (!m_settings.remesh.enabled)
+    throw std::invalid_argument("remesh_now: simulation.remesh is not enabled");
+  const double energy_before_J = diagnostics().total_energy_J();
+  RemeshedCloth cloth = remesh_cloth(m_mesh, m_state.x, m_state.v, m_initial_x, m_pinned,
+                                     m_settings.remesh);
+  const auto renumber = [&](Index& v) {
+    v = cloth.old_to_new[static_cast<std::size_t>(v)];  // pins are kept: never −1
+  };
+  for (Index& p : m_pinned) renumber(p);
+  for (MovingPin& p : m_moving_pins) renumber(p.vertex);
+  m_mesh = std::move(cloth.mesh);
+  m_state.x = std::move(cloth.x);
+  m_state.v = std::move(cloth.v);
+  m_initial_x = std::move(cloth.initial_x);
+  m_system = make_system(m_mesh, m_material, m_pinned, m_settings);
+  m_system.timers = &m_timers;
+  m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
+                                            Eigen::VectorXd::Ones(m_mesh.vertex_count()));
+  m_critical_step_s = critical_step_s(m_system);
+  m_taut = {};  // none without fast projection
+  build_solvers();
+  // The energy guard (check_growth) watches what the dynamics gain; the transfer's own change of
+  // energy (new vertices on the old mesh's flat facets: edges shorter than their rest length
+  // where the cloth is curved, docs/remeshing.md) is the remesh's, so the reference moves by it.
+  const double jump_J = diagnostics().total_energy_J() - energy_before_J;
+  if (m_start_energy_J) *m_start_energy_J += jump_J;
+  m_stats.remesh_energy_J += jump_J;
+  ++m_remeshes;
+  ++m_stats.remeshes;
 }
 
 // Every integrator leaves a pinned vertex's velocity as it is (zero acceleration), so the

@@ -61,7 +61,8 @@ class Simulator {
   // simulated time). Throws std::invalid_argument naming a vertex that is not pinned.
   void set_pin_path(const std::vector<Index>& vertices, const PinPath& path);
   // One step of h seconds, as named, timed phases: drive pins → integrate → place pins → move
-  // obstacles → contacts and constraints → velocity filter → check. With the adaptive step, the
+  // obstacles → contacts and constraints → velocity filter → check → remesh (with
+  // simulation.remesh, after every every_steps-th step). With the adaptive step, the
   // step is never rejected here, but its prediction still sets the next planned step.
   void step(double h_s);
   // Starts the cloth from these positions (#V×3, m) instead of its flat rest state, at rest:
@@ -70,7 +71,18 @@ class Simulator {
   // after the first step, for a wrong size, or naming a vertex with a non-finite position.
   void set_initial_positions(const Matrix3X& x);
 
+  // Remeshes the cloth now (sim/cloth_remesh.h) and rebuilds everything made from the mesh:
+  // masses, force terms, pins' and moving pins' vertex indices, the contacts and constraints
+  // (self-collision's structures included) and the integrator, whose memory starts afresh.
+  // The vertex count changes: state(), mesh(), pinned() and masses_kg() are the new mesh's.
+  // Throws std::invalid_argument as check_remesh_settings unless simulation.remesh is enabled
+  // and applies, and from the remesher.
+  void remesh_now();
+  long remesh_count() const { return m_remeshes; }
+
   const State& state() const { return m_state; }
+  // The cloth's current mesh: the scene's until the first remesh. The object stays the same
+  // (a reference to it stays valid) while its contents change with each remesh.
   const ClothMesh& mesh() const { return m_mesh; }
   // The physical system stepped: masses, gravity, damping, every force term.
   const System& system() const { return m_system; }
@@ -102,7 +114,8 @@ class Simulator {
   // taken, the integrator's, projector's, carried tension's and self-collision's memory. A
   // Simulator made from the same scene and restored from it continues with the same bits as
   // the one saved. restore_state() throws StateArchiveError when the bytes do not fit this
-  // simulation (another mesh, integrator or setting).
+  // simulation (another mesh, integrator or setting). A remeshed simulation's state is not
+  // saved (its mesh is no longer the scene's): save_state() throws std::logic_error.
   void save_state(StateWriter& out) const;
   void restore_state(StateReader& in);
 
@@ -133,6 +146,7 @@ class Simulator {
   void build_solvers();
 
   ClothMesh m_mesh;
+  Material m_material;  // to rebuild the force terms after a remesh
   SimSettings m_settings;
   std::vector<Index> m_pinned;
   System m_system;
@@ -156,6 +170,7 @@ class Simulator {
   double m_critical_step_s = 0.0;
   double m_time_step_s = 0.0;
   long m_steps = 0;
+  long m_remeshes = 0;
   StepStatistics m_stats;
   PhaseTimers m_timers;
 };

@@ -13,8 +13,19 @@ std::vector<std::string> Simulator::explain() const {
     pins << "; " << m_taut.vertices.size() << " vertices held on " << m_taut.chains
          << (m_taut.chains == 1 ? " chain" : " chains")
          << " pulled straight between still pins at its rest length (inextensible: no other shape)";
-  return {explain_integrate(), explain_forces(), m_contacts->explain_project(),
-          m_contacts->explain_collide(), pins.str()};
+  std::vector<std::string> lines{explain_integrate(), explain_forces(),
+                                 m_contacts->explain_project(), m_contacts->explain_collide(),
+                                 pins.str()};
+  if (m_settings.remesh.enabled) {
+    const RemeshSettings& r = m_settings.remesh;
+    std::ostringstream remesh;
+    remesh << "remesh: every " << r.every_steps << " steps, h = clamp(sqrt(" << 1e3 * r.c_m
+           << " mm / |curvature|), " << 1e3 * r.h_min_m << " mm, " << 1e3 * r.h_max_m
+           << " mm) (CGAL Delaunay refinement, boundary and pins kept); now "
+           << m_mesh.vertex_count() << " vertices, " << m_mesh.faces.size() << " triangles";
+    lines.push_back(remesh.str());
+  }
+  return lines;
 }
 
 std::string Simulator::explain_integrate() const {

@@ -5,9 +5,16 @@
 
 #include "sim/simulator.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace weft::sim {
 
 void Simulator::save_state(StateWriter& out) const {
+  if (m_remeshes > 0)
+    throw std::logic_error("the simulation has been remeshed " + std::to_string(m_remeshes) +
+                           " times: its mesh is no longer the scene's, and a state of a "
+                           "remeshed cloth cannot be saved (docs/remeshing.md)");
   out.section("simulator");
   out.pod(m_steps);
   out.pod(m_state.time_s);

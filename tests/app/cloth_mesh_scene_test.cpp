@@ -19,6 +19,7 @@ namespace weft::app {
 namespace {
 
 namespace fs = std::filesystem;
+using test::rectangle_obj;
 using test::scene_error_of;
 
 using test_files::write_text;
@@ -26,33 +27,6 @@ using test_files::write_text;
 // A folder of its own for each test's files.
 fs::path cloth_mesh_dir() {
   return test_files::fresh_directory(::testing::TempDir(), "weft_cloth_mesh_test");
-}
-
-// A size_u × size_v rectangle of nu × nv vertices at height z: vertex (i, j) at (i·du, j·dv, z)
-// with texture coordinates (i·du, j·dv) (metres); quads, or each quad cut into two triangles
-// along the other diagonal from the grid's (so no grid is found in it). The faces are listed
-// last row first, so the file's order is not the grid's.
-std::string rectangle_obj(int nu, int nv, double size_u, double size_v, double z, bool triangles) {
-  std::string s;
-  char line[160];
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      const double u = i * (size_u / (nu - 1)), v = j * (size_v / (nv - 1));
-      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\nvt %.17g %.17g\n", u, v, z, u, v);
-      s += line;
-    }
-  const auto id = [&](int i, int j) { return std::to_string(j * nu + i + 1); };
-  const auto corner = [&](int i, int j) { return " " + id(i, j) + "/" + id(i, j); };
-  for (int j = nv - 2; j >= 0; --j)
-    for (int i = 0; i + 1 < nu; ++i) {
-      if (triangles) {
-        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i, j + 1) + "\n";
-        s += "f" + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
-      } else {
-        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
-      }
-    }
-  return s;
 }
 
 // A 1 m × 0.5 m sheet hung from its far (v = 1) edge; sizes and spacings are powers of two, so

@@ -1,9 +1,14 @@
 // A cloth mesh file through the real `weft run` (issue 21 item 1): a triangle mesh with two
-// corners painted red and pinned by colour writes its frames and stats.csv.
+// corners painted red and pinned by colour writes its frames and stats.csv; remeshed as it runs
+// (simulation.remesh, item 2), each frame's vertex count is in stats.csv, and the options that
+// keep one mesh for the whole run are errors.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 #include <string>
 
 #include "render/image.h"
@@ -16,14 +21,9 @@ namespace {
 using weft::app::test::CliDirectoryTest;
 using weft::app::test::run_weft;
 
-class MeshCli : public CliDirectoryTest {
- protected:
-  MeshCli() : CliDirectoryTest("mesh_cli") {}
-};
-
-TEST_F(MeshCli, RunWritesFramesAndStatsForAColourPinnedTriangleMesh) {
-  // A 0.4 m square of 5 × 5 vertices at z = 1 m cut into triangles; the corners (0, 0.4) and
-  // (0.4, 0.4) red, the rest white.
+// A 0.4 m square of 5 × 5 vertices at z = 1 m cut into triangles; the corners (0, 0.4) and
+// (0.4, 0.4) red, the rest white.
+std::string red_cornered_square_obj() {
   std::string obj;
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 5; ++i)
@@ -36,7 +36,16 @@ TEST_F(MeshCli, RunWritesFramesAndStatsForAColourPinnedTriangleMesh) {
              "\nf " + std::to_string(a + 1) + " " + std::to_string(a + 6) + " " +
              std::to_string(a + 5) + "\n";
     }
-  std::ofstream(m_dir / "square.obj") << obj;
+  return obj;
+}
+
+class MeshCli : public CliDirectoryTest {
+ protected:
+  MeshCli() : CliDirectoryTest("mesh_cli") {}
+};
+
+TEST_F(MeshCli, RunWritesFramesAndStatsForAColourPinnedTriangleMesh) {
+  std::ofstream(m_dir / "square.obj") << red_cornered_square_obj();
   const fs::path scene = write_scene("scene.json", R"({
     "description": "a triangle-mesh square hung from its two red corners",
     "cloth": {"mesh": "square.obj", "pattern": "plane",
@@ -64,6 +73,68 @@ TEST_F(MeshCli, RunWritesFramesAndStatsForAColourPinnedTriangleMesh) {
   EXPECT_EQ(line.rfind("frame,time_s,", 0), 0u) << line;
   while (std::getline(stats, line)) rows += line.empty() ? 0 : 1;
   EXPECT_EQ(rows, 3);
+}
+
+// stats.csv's column `name`, one value per frame.
+std::vector<double> stats_column(const fs::path& csv, const std::string& name) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream header(line);
+  int column = -1;
+  for (std::string cell; std::getline(header, cell, ',');) {
+    ++column;
+    if (cell == name) break;
+  }
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::stringstream cells(line);
+    std::string cell;
+    for (int c = 0; c <= column; ++c) std::getline(cells, cell, ',');
+    values.push_back(std::stod(cell));
+  }
+  return values;
+}
+
+TEST_F(MeshCli, ARemeshedRunWritesEachFramesMeshAndVertexCount) {
+  std::ofstream(m_dir / "square.obj") << red_cornered_square_obj();
+  const fs::path scene = write_scene("scene.json", R"({
+    "description": "a triangle-mesh square hung from its two red corners, remeshed as it falls",
+    "cloth": {"mesh": "square.obj", "pattern": "plane",
+              "material": {"density": "0.2 kg/m^2", "stretch_warp": "200 N/m",
+                           "stretch_weft": "150 N/m", "shear": "20 N/m",
+                           "bend_warp": "2e-4 N*m", "bend_weft": "1e-4 N*m"},
+              "pins": [{"color": [1, 0, 0]}]},
+    "simulation": {"model": "baraff_witkin", "integrator": "implicit_euler",
+                   "remesh": {"every": 6, "c": "1 mm", "h_min": "1 cm", "h_max": "4 cm"}},
+    "output": {"fps": 20, "frames": 4},
+    "render": {"size": [64, 48], "wireframe": true}
+  })");
+  const fs::path out = m_dir / "remeshed";
+  const auto r = run_weft("run " + scene.string() + " --out " + out.string() +
+                          " --export-meshes obj --explain");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "remesh: every 6 steps");
+  // 6 steps of 1/120 s per frame: a remesh at the end of each.
+  EXPECT_EQ(stats_column(out / "stats.csv", "remeshes"), (std::vector<double>{1, 1, 1, 1}));
+  const std::vector<double> vertices = stats_column(out / "stats.csv", "vertices");
+  ASSERT_EQ(vertices.size(), 4u);
+  EXPECT_NE(vertices.front(), 25.0) << "the first frame's mesh is the remeshed one";
+  // Each exported mesh is its frame's: as many vertices as stats.csv says.
+  for (int k = 1; k <= 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "mesh_%04d.obj", k);
+    std::ifstream obj(out / name);
+    int count = 0;
+    for (std::string line; std::getline(obj, line);) count += line.rfind("v ", 0) == 0;
+    EXPECT_EQ(count, vertices[static_cast<std::size_t>(k - 1)]) << name;
+  }
+  for (const char* option : {"--checkpoint-every 2", "--save-states", "--export-cache pc2"}) {
+    const auto refused = run_weft("run " + scene.string() + " --out " +
+                                  (m_dir / "refused").string() + " " + option);
+    EXPECT_NE(refused.exit_code, 0) << option;
+    EXPECT_CONTAINS(refused.output, "not with simulation.remesh");
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -47,6 +48,32 @@ inline std::string scene_error_of(const Json& scene, const std::filesystem::path
   return scene_error_of_text(scene.dump(), source.string());
 }
 
+// A size_u × size_v rectangle of nu × nv vertices at height z: vertex (i, j) at (i·du, j·dv, z)
+// with texture coordinates (i·du, j·dv) (metres); quads, or each quad cut into two triangles
+// along the other diagonal from the grid's (so no grid is found in it). The faces are listed
+// last row first, so the file's order is not the grid's.
+inline std::string rectangle_obj(int nu, int nv, double size_u, double size_v, double z, bool triangles) {
+  std::string s;
+  char line[160];
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double u = i * (size_u / (nu - 1)), v = j * (size_v / (nv - 1));
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\nvt %.17g %.17g\n", u, v, z, u, v);
+      s += line;
+    }
+  const auto id = [&](int i, int j) { return std::to_string(j * nu + i + 1); };
+  const auto corner = [&](int i, int j) { return " " + id(i, j) + "/" + id(i, j); };
+  for (int j = nv - 2; j >= 0; --j)
+    for (int i = 0; i + 1 < nu; ++i) {
+      if (triangles) {
+        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i, j + 1) + "\n";
+        s += "f" + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
+      } else {
+        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
+      }
+    }
+  return s;
+}
 
 // A small test scene (a 1 m sheet, 9 × 9 vertices, 2 frames) with `render` as its render block.
 inline Json scene_with_render(const Json& render) {

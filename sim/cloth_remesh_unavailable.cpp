@@ -1,0 +1,23 @@
+// A build without CGAL (sim/remesh/CMakeLists.txt): no remeshing; a scene asking for it is an
+// error naming the reason (see cloth_remesh.h).
+
+#include <stdexcept>
+
+#include "sim/cloth_remesh.h"
+
+namespace weft::sim {
+
+bool remesh_available() { return false; }
+
+void check_remesh_settings(const ClothMesh&, const SimSettings& settings) {
+  if (settings.remesh.enabled)
+    throw std::invalid_argument("simulation.remesh: this build of weft has no remesher (it was "
+                                "built without CGAL: install libcgal-dev, scripts/setup)");
+}
+
+RemeshedCloth remesh_cloth(const ClothMesh&, const Matrix3X&, const Matrix3X&, const Matrix3X&,
+                           const std::vector<Index>&, const RemeshSettings&) {
+  throw std::invalid_argument("remesh_cloth: this build of weft has no remesher (no CGAL)");
+}
+
+}  // namespace weft::sim
