@@ -4,15 +4,16 @@
 // keep one mesh for the whole run are errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
+#include "tests/support/test_files.h"
 
 namespace fs = std::filesystem;
 
@@ -39,6 +40,22 @@ std::string red_cornered_square_obj() {
   return obj;
 }
 
+// The square of red_cornered_square_obj() as square.obj, hung from its red corners, on the
+// Baraff–Witkin model's material; `simulation`, `output` and `render` are those blocks.
+std::string hung_square_scene(const std::string& simulation, const std::string& output,
+                              const std::string& render) {
+  return R"({
+    "description": "a triangle-mesh square hung from its two red corners",
+    "cloth": {"mesh": "square.obj", "pattern": "plane",
+              "material": {"density": "0.2 kg/m^2", "stretch_warp": "200 N/m",
+                           "stretch_weft": "150 N/m", "shear": "20 N/m",
+                           "bend_warp": "2e-4 N*m", "bend_weft": "1e-4 N*m"},
+              "pins": [{"color": [1, 0, 0]}]},
+    "simulation": )" + simulation + R"(,
+    "output": )" + output + R"(,
+    "render": )" + render + "\n}";
+}
+
 class MeshCli : public CliDirectoryTest {
  protected:
   MeshCli() : CliDirectoryTest("mesh_cli") {}
@@ -46,17 +63,9 @@ class MeshCli : public CliDirectoryTest {
 
 TEST_F(MeshCli, RunWritesFramesAndStatsForAColourPinnedTriangleMesh) {
   std::ofstream(m_dir / "square.obj") << red_cornered_square_obj();
-  const fs::path scene = write_scene("scene.json", R"({
-    "description": "a triangle-mesh square hung from its two red corners",
-    "cloth": {"mesh": "square.obj", "pattern": "plane",
-              "material": {"density": "0.2 kg/m^2", "stretch_warp": "200 N/m",
-                           "stretch_weft": "150 N/m", "shear": "20 N/m",
-                           "bend_warp": "2e-4 N*m", "bend_weft": "1e-4 N*m"},
-              "pins": [{"color": [1, 0, 0]}]},
-    "simulation": {"model": "baraff_witkin"},
-    "output": {"fps": 10, "frames": 3},
-    "render": {"size": [64, 48]}
-  })");
+  const fs::path scene = write_scene(
+      "scene.json", hung_square_scene(R"({"model": "baraff_witkin"})", R"({"fps": 10, "frames": 3})",
+                                      R"({"size": [64, 48]})"));
   const fs::path out = m_dir / "out";
   const auto r = run_weft("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -77,39 +86,23 @@ TEST_F(MeshCli, RunWritesFramesAndStatsForAColourPinnedTriangleMesh) {
 
 // stats.csv's column `name`, one value per frame.
 std::vector<double> stats_column(const fs::path& csv, const std::string& name) {
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  std::stringstream header(line);
-  int column = -1;
-  for (std::string cell; std::getline(header, cell, ',');) {
-    ++column;
-    if (cell == name) break;
-  }
+  const auto rows = weft::test_files::read_csv(csv);
   std::vector<double> values;
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::string cell;
-    for (int c = 0; c <= column; ++c) std::getline(cells, cell, ',');
-    values.push_back(std::stod(cell));
-  }
+  if (rows.empty()) return values;
+  const auto column = std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin();
+  for (std::size_t r = 1; r < rows.size(); ++r)
+    values.push_back(std::stod(rows[r].at(static_cast<std::size_t>(column))));
   return values;
 }
 
 TEST_F(MeshCli, ARemeshedRunWritesEachFramesMeshAndVertexCount) {
   std::ofstream(m_dir / "square.obj") << red_cornered_square_obj();
-  const fs::path scene = write_scene("scene.json", R"({
-    "description": "a triangle-mesh square hung from its two red corners, remeshed as it falls",
-    "cloth": {"mesh": "square.obj", "pattern": "plane",
-              "material": {"density": "0.2 kg/m^2", "stretch_warp": "200 N/m",
-                           "stretch_weft": "150 N/m", "shear": "20 N/m",
-                           "bend_warp": "2e-4 N*m", "bend_weft": "1e-4 N*m"},
-              "pins": [{"color": [1, 0, 0]}]},
-    "simulation": {"model": "baraff_witkin", "integrator": "implicit_euler",
-                   "remesh": {"every": 6, "c": "1 mm", "h_min": "1 cm", "h_max": "4 cm"}},
-    "output": {"fps": 20, "frames": 4},
-    "render": {"size": [64, 48], "wireframe": true}
-  })");
+  const fs::path scene = write_scene(
+      "scene.json",
+      hung_square_scene(R"({"model": "baraff_witkin", "integrator": "implicit_euler",
+                            "remesh": {"every": 6, "c": "1 mm", "h_min": "1 cm",
+                                       "h_max": "4 cm"}})",
+                        R"({"fps": 20, "frames": 4})", R"({"size": [64, 48], "wireframe": true})"));
   const fs::path out = m_dir / "remeshed";
   const auto r = run_weft("run " + scene.string() + " --out " + out.string() +
                           " --export-meshes obj --explain");
