@@ -30,8 +30,8 @@ Json setting_json(const std::string& value);
 struct Setting {
   std::string key;
   std::string value;
-  std::string option;  // the command-line option that made it, for messages ("--samples 0");
-                       // empty: "--set KEY=VALUE"
+  std::string option{};  // the command-line option that made it, for messages ("--samples 0");
+                         // empty: "--set KEY=VALUE"
 };
 
 // `document` with each setting written at its dotted key path; missing objects on the way are

@@ -111,12 +111,14 @@ TEST_P(Extremes, FinishesPhysicallyOrStopsAsDiverged) {
     EXPECT_GE(frame[4], 1.0) << row.name << ": a frame without a step";  // steps
     fastest = std::max(fastest, frame[10]);                            // max_speed_m_s
   }
-  if (row.moves) EXPECT_GT(fastest, 0.0) << row.name << ": a frozen cloth";
+  if (row.moves) {
+    EXPECT_GT(fastest, 0.0) << row.name << ": a frozen cloth";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Rows, Extremes, ::testing::ValuesIn(rows()),
-                         [](const ::testing::TestParamInfo<Row>& info) {
-                           return std::string(info.param.name);
+                         [](const ::testing::TestParamInfo<Row>& test) {
+                           return std::string(test.param.name);
                          });
 
 // The finest grid of the table (256², about 2 minutes per 1/24 s frame on one core, so one

@@ -50,7 +50,7 @@ TEST_P(Golden, MatchesItsGoldenImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Golden, ::testing::ValuesIn(cases()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const auto& test) { return test.param.name; });
 
 TEST(GoldenSuite, AClothTenPercentHeavierFailsWithItsEvidence) {
   const char* update = std::getenv("WEFT_REGRESSION_UPDATE");

@@ -97,12 +97,13 @@ TEST_P(SimulatorState, ARestoredSimulatorGoesOnWithTheSameBits) {
   if (first.relaxation()) {
     EXPECT_EQ(first.relaxation()->status().kinetic_peaks, second.relaxation()->status().kinetic_peaks);
   }
-  if (s.projection.method == ProjectionMethod::fast_projection && s.projection.reuse_iterations > 0)
+  if (s.projection.method == ProjectionMethod::fast_projection && s.projection.reuse_iterations > 0) {
     EXPECT_GT(a.projection_reuse_iterations, 0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Settings, SimulatorState, ::testing::ValuesIn(cases()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const auto& test) { return test.param.name; });
 
 TEST(SimulatorStateErrors, AStateOfAnotherSimulationIsRefusedNamingTheSection) {
   SimSettings s;
