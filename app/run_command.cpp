@@ -174,12 +174,16 @@ class FrameWriter {
     row.sim_ms = 1e3 * frame.sim_s;
     row.steps = m_simulator.take_step_statistics();
     row.diagnostics = m_simulator.diagnostics();
-    // The frame's own mesh: with simulation.remesh it changes from frame to frame.
-    const sim::ClothMesh& mesh = m_simulator.mesh();
-    const std::vector<std::array<sim::Index, 3>> triangles = mesh.triangles();
-    row.self_intersections = sim::count_edge_triangle_crossings(m_simulator.state().x, triangles,
-                                                                sim::unique_edges(triangles));
-    row.vertices = mesh.used_vertex_count();
+    // The frame's own mesh: with simulation.remesh it changes from frame to frame, so its
+    // triangles and edges are taken anew after each remesh (and only then).
+    if (m_triangles.empty() || m_topology_remeshes != m_simulator.remesh_count()) {
+      m_triangles = m_simulator.mesh().triangles();
+      m_edges = sim::unique_edges(m_triangles);
+      m_topology_remeshes = m_simulator.remesh_count();
+    }
+    row.self_intersections =
+        sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
+    row.vertices = m_simulator.mesh().used_vertex_count();
     const auto start = std::chrono::steady_clock::now();
     if (m_options.selection.selects(frame.index, m_scene.frames)) render_frame(frame.index);
     row.render_ms =
@@ -238,6 +242,10 @@ class FrameWriter {
   sim::Simulator& m_simulator;
   StatsCsv m_stats;
   FramePainter m_painter;  // draws the simulator's mesh as it is at each frame
+  // The current mesh's triangles and edges (crossings), of the mesh after this many remeshes.
+  std::vector<std::array<sim::Index, 3>> m_triangles;
+  std::vector<std::array<sim::Index, 2>> m_edges;
+  long m_topology_remeshes = 0;
   Progress m_progress;
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far

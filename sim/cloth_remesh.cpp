@@ -9,8 +9,6 @@
 
 namespace weft::sim {
 
-bool remesh_available() { return true; }
-
 void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings) {
   if (!settings.remesh.enabled) return;
   const std::string key = "simulation.remesh: ";
@@ -50,7 +48,8 @@ namespace {
 remesh::Triangles remesh_triangle_rows(const ClothMesh& mesh) {
   remesh::Triangles t(static_cast<Eigen::Index>(mesh.faces.size()), 3);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int c = 0; c < 3; ++c) t(static_cast<Eigen::Index>(f), c) = mesh.faces[f][static_cast<std::size_t>(c)];
+    for (int c = 0; c < 3; ++c)
+      t(static_cast<Eigen::Index>(f), c) = mesh.faces[f][static_cast<std::size_t>(c)];
   return t;
 }
 
@@ -86,7 +85,8 @@ RemeshedCloth remesh_cloth(const ClothMesh& mesh, const Matrix3X& x, const Matri
   pattern.start_positions = remesh::transfer(out.transfer, in.triangles, mesh.start());
   pattern.faces.reserve(static_cast<std::size_t>(out.mesh.triangles.rows()));
   for (Eigen::Index f = 0; f < out.mesh.triangles.rows(); ++f)
-    pattern.faces.push_back({out.mesh.triangles(f, 0), out.mesh.triangles(f, 1), out.mesh.triangles(f, 2)});
+    pattern.faces.push_back(
+        {out.mesh.triangles(f, 0), out.mesh.triangles(f, 1), out.mesh.triangles(f, 2)});
   pattern.source = mesh.source;
 
   RemeshedCloth cloth;

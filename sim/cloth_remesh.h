@@ -23,9 +23,6 @@ struct RemeshedCloth {
   std::vector<Index> old_to_new;  // #V_old: the new index of a kept old vertex, or −1
 };
 
-// Whether this build has the remesher (CGAL: sim/remesh/CMakeLists.txt).
-bool remesh_available();
-
 // Throws std::invalid_argument "simulation.remesh: …" naming what the combination lacks when
 // settings.remesh is enabled and the cloth or settings cannot be remeshed: a warp/weft grid
 // (its models run on quads), the mass-spring model (its springs on triangle edges depend on

@@ -7,8 +7,6 @@
 
 namespace weft::sim {
 
-bool remesh_available() { return false; }
-
 void check_remesh_settings(const ClothMesh&, const SimSettings& settings) {
   if (settings.remesh.enabled)
     throw std::invalid_argument("simulation.remesh: this build of weft has no remesher (it was "
