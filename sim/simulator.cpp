@@ -146,7 +146,7 @@ long Simulator::substeps(double dt_s) const {
          << " s, more than the limit of " << max_substeps;
     throw std::invalid_argument(what.str());
   }
-  return std::max(1L, static_cast<long>(std::ceil(ratio - 1e-9)));
+  return std::max(1L, static_cast<long>(std::ceil(ratio / (1.0 + substep_slack))));
 }
 
 void Simulator::advance(double dt_s) {

@@ -39,6 +39,8 @@ class DivergenceError : public std::runtime_error {
 
 // The most steps one advance() takes (a frame, for the commands).
 inline constexpr double max_substeps = 1e6;
+// The relative excess over time_step() that Simulator::substeps() allows a step (10 µs in 1 s).
+inline constexpr double substep_slack = 1e-5;
 
 // A cloth simulation: the System (masses, gravity, damping, force terms, pins) of a mesh and
 // material, the TimeIntegrator the settings name, and the contacts-and-constraints phase.
@@ -54,6 +56,8 @@ class Simulator {
   // std::invalid_argument as substeps().
   void advance(double dt_s);
   // The number of equal steps, each at most time_step(), that advance(dt_s) takes: at least 1.
+  // A step up to substep_slack longer than time_step() counts as fitting, so that a step typed
+  // in decimals (0.0208333 s for 1/48 s) splits a 1/24 s frame into 2 steps, not 3.
   // Throws std::invalid_argument when that is more than max_substeps (a time step of 1e-300 s,
   // or the automatic step of an absurd density), rather than overflowing to none.
   long substeps(double dt_s) const;

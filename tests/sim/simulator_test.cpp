@@ -53,6 +53,24 @@ TEST(Simulator, FreeFallMatchesTheIntegratorsClosedFormAndConvergesAtFirstOrder)
   }
 }
 
+// A frame splits into the fewest equal steps no longer than the time step, where a step typed in
+// decimals (1/48 s as 0.0208333 s) may be longer by up to substep_slack: 2 steps, not 3.
+TEST(Simulator, AFrameSplitsIntoTheFewestStepsNoLongerThanTheStepTyped) {
+  const auto substeps_of = [](double step_s) {
+    SimSettings settings;
+    settings.time_step_s = step_s;
+    return Simulator(square(5), fabric(500.0), {}, settings).substeps(1.0 / 24.0);
+  };
+  EXPECT_EQ(substeps_of(1.0 / 48.0), 2);
+  EXPECT_EQ(substeps_of(0.0208333), 2);     // 1.6e-6 short of 1/48 s
+  EXPECT_EQ(substeps_of(0.0208333333), 2);  // 1.6e-9 short
+  EXPECT_EQ(substeps_of(0.0083333), 5);
+  EXPECT_EQ(substeps_of(0.02), 3);          // 4 % short: a third step
+  EXPECT_EQ(substeps_of(0.02083), 3);       // 1.6e-4 short: beyond the slack
+  EXPECT_EQ(substeps_of(0.001), 42);        // 41.7 steps of 1 ms
+  EXPECT_EQ(substeps_of(1.0), 1);
+}
+
 TEST(Simulator, PinnedVerticesDoNotMoveAtAll) {
   const ClothMesh mesh = square(11);
   const auto pinned = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}, PinGrid{5, 10}}, mesh);
