@@ -9,9 +9,10 @@
 // free vertex — analysed once; each iteration refills its values in place. It is solved by
 // conjugate gradients preconditioned by the last factorization — an earlier iterate's or an
 // earlier step's matrix, which differs little — to a relative residual (max norm, as the
-// strain) proportional to the current strain (an inexact Newton method with a forcing term that keeps the order quadratic,
-// Dembo, Eisenstat & Steihaug 1982); when that takes more than `reuse_iterations` iterations
-// the matrix is refactorized and solved directly.
+// strain) proportional to the current strain (an inexact Newton method with a forcing term that
+// keeps the order quadratic, Dembo, Eisenstat & Steihaug 1982), relaxed near the tolerance to
+// what lands the step below half of it; when that takes more than `reuse_iterations`
+// iterations the matrix is refactorized and solved directly.
 // Robustness: a full step that does not halve Σ C² is shortened to the exact minimiser of Σ C²
 // along it (C is quadratic, so that is a quartic in the step length: no extra factorization);
 // a factorization that fails (redundant constraints make the matrix singular) is retried with
