@@ -184,7 +184,7 @@ TEST(InextensibleCloth, LiftedPinsCarryTheSheetUpByTheirOffset) {
     EXPECT_LT((lifted.state().x.row(p) - expected).norm(), 1e-12) << "pin " << p << " at t = 0.5 s";
   }
   // After the lift, the swing it started dies out (air damping 1/s: e^-7 by 8 s; at 5 s the
-  // sheet was still 1 mm low of its rest, moving).
+  // sheet was still 1 mm short of the full lift, moving).
   fixed.advance(8.0);
   lifted.advance(7.5);
   const Eigen::RowVector3d shift =
