@@ -19,7 +19,9 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
                                 " vertices, expected one of each per vertex");
   RemeshOutput out;
   base::Stopwatch phase;
-  out.old_curvature = vertex_curvature(input.material, input.triangles, input.positions);
+  const std::vector<VertexPatch> patches =
+      vertex_patches(input.material, input.triangles, input.positions);
+  out.old_curvature = patch_curvatures(patches);
   out.old_target_size = target_sizes(out.old_curvature, params.size);
 
   // The size field between the old vertices: barycentric interpolation, as the kinematics.
@@ -37,7 +39,19 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
   out.mesher_s = phase.seconds();
   phase.restart();
   out.transfer = make_transfer_map(old_mesh, out.mesh.material, out.mesh.new_to_old);
-  out.positions = transfer(out.transfer, input.triangles, input.positions);
+  if (params.positions == PositionTransfer::quadratic) {
+    SecondDerivatives second(static_cast<Eigen::Index>(patches.size()), 9);
+    for (size_t v = 0; v < patches.size(); ++v) {
+      const VertexPatch& p = patches[v];
+      const Vec3 zero = Vec3::Zero();  // no fitted patch: no correction
+      second.row(static_cast<Eigen::Index>(v)) << (p.valid ? p.x_uu : zero).transpose(),
+          (p.valid ? p.x_uv : zero).transpose(), (p.valid ? p.x_vv : zero).transpose();
+    }
+    out.positions =
+        transfer_quadratic(out.transfer, input.material, input.triangles, input.positions, second);
+  } else {
+    out.positions = transfer(out.transfer, input.triangles, input.positions);
+  }
   out.velocities = transfer(out.transfer, input.triangles, input.velocities);
   out.transfer_s = phase.seconds();
   return out;
