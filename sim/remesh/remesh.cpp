@@ -9,6 +9,15 @@
 
 namespace weft::sim::remesh {
 
+SecondDerivatives patch_second_derivatives(const std::vector<VertexPatch>& patches) {
+  SecondDerivatives second = SecondDerivatives::Zero(static_cast<Eigen::Index>(patches.size()), 9);
+  for (size_t v = 0; v < patches.size(); ++v)
+    if (const VertexPatch& p = patches[v]; p.valid)
+      second.row(static_cast<Eigen::Index>(v)) << p.x_uu.transpose(), p.x_uv.transpose(),
+          p.x_vv.transpose();
+  return second;
+}
+
 RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
   check_size_field_params(params.size);
   const auto rows = input.material.rows();
@@ -40,15 +49,8 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
   phase.restart();
   out.transfer = make_transfer_map(old_mesh, out.mesh.material, out.mesh.new_to_old);
   if (params.positions == PositionTransfer::quadratic) {
-    SecondDerivatives second(static_cast<Eigen::Index>(patches.size()), 9);
-    for (size_t v = 0; v < patches.size(); ++v) {
-      const VertexPatch& p = patches[v];
-      const Vec3 zero = Vec3::Zero();  // no fitted patch: no correction
-      second.row(static_cast<Eigen::Index>(v)) << (p.valid ? p.x_uu : zero).transpose(),
-          (p.valid ? p.x_uv : zero).transpose(), (p.valid ? p.x_vv : zero).transpose();
-    }
-    out.positions =
-        transfer_quadratic(out.transfer, input.material, input.triangles, input.positions, second);
+    out.positions = transfer_quadratic(out.transfer, input.material, input.triangles,
+                                       input.positions, patch_second_derivatives(patches));
   } else {
     out.positions = transfer(out.transfer, input.triangles, input.positions);
   }

@@ -11,6 +11,7 @@
 #include "sim/remesh/curvature.h"
 #include "sim/remesh/mesher.h"
 #include "sim/remesh/point_locator.h"
+#include "sim/remesh/remesh.h"
 #include "sim/remesh/transfer.h"
 #include "tests/sim/remesh/test_meshes.h"
 
@@ -19,17 +20,6 @@ namespace {
 
 using testing::grid_mesh;
 using testing::PlainMesh;
-
-// The second derivatives of the fitted patches, as transfer_quadratic takes them.
-SecondDerivatives fitted_second_derivatives(const PlainMesh& m, const Matrix3X& x) {
-  const std::vector<VertexPatch> patches = vertex_patches(m.material, m.triangles, x);
-  SecondDerivatives H = SecondDerivatives::Zero(x.rows(), 9);
-  for (std::size_t v = 0; v < patches.size(); ++v)
-    if (patches[v].valid)
-      H.row(static_cast<Eigen::Index>(v)) << patches[v].x_uu.transpose(),
-          patches[v].x_uv.transpose(), patches[v].x_vv.transpose();
-  return H;
-}
 
 struct Transferred {
   Matrix2X material;  // the new mesh's
@@ -48,7 +38,8 @@ Transferred transfer_both_ways(const PlainMesh& old,
       make_transfer_map(PointLocator(old.material, old.triangles), r.material, r.new_to_old);
   return {r.material, r.triangles, transfer(tm, old.triangles, x),
           transfer_quadratic(tm, old.material, old.triangles, x,
-                             fitted_second_derivatives(old, x))};
+                             patch_second_derivatives(
+                                 vertex_patches(old.material, old.triangles, x)))};
 }
 
 TEST(QuadraticTransfer, AnAffineFieldAndAFlatClothAtRestAreReproduced) {
