@@ -261,6 +261,17 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
   m.h_min_m = r.quantity("h_min", Quantity::length, m.h_min_m, Range::gt(0.0));
   m.h_max_m = r.quantity("h_max", Quantity::length, m.h_max_m, Range::gt(0.0));
   m.max_vertices = r.integer("max_vertices", m.max_vertices, Range::closed(3, 2e6));
+  if (r.has("indicator")) {
+    m.indicator = r.number("indicator", std::nullopt, Range::gt(0.0).lt(1e6));
+    if (m.indicator <= 1.0)
+      r.fail("indicator", "expected a multiple of c above 1 (max |κ|h² is about c where a "
+                          "remeshed cloth is curved, so a threshold at c or below would remesh "
+                          "at every check), got " + std::to_string(m.indicator));
+  }
+  m.transfer = r.enumeration<sim::RemeshTransfer>(
+      "transfer",
+      {{"quadratic", sim::RemeshTransfer::quadratic}, {"linear", sim::RemeshTransfer::linear}},
+      m.transfer);
   if (m.h_max_m < m.h_min_m)
     r.fail("h_max", "expected at least h_min (" + std::to_string(m.h_min_m) + " m), got " +
                         std::to_string(m.h_max_m) + " m");

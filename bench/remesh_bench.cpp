@@ -9,7 +9,8 @@
 // 2. The mesher alone at a uniform size giving about 10 000 triangles.
 // 3. The curvature estimate's error against h/R: a 30 × 30 cm sheet rolled on a cylinder of
 //    radius 10 cm (interior vertices, three rings from the boundary, and all vertices).
-// 4. A cloth at rest remeshed, flat and rolled on cylinders: the spring energy of its edges
+// 4. A cloth at rest remeshed, flat and rolled on cylinders, by the linear and the quadratic
+//    transfer: the spring energy of its edges
 //    before and after, the most negative edge strain after, and the velocities (zero).
 // Medians over --repeats runs (default 3); the uniform mesh at h_min (~0.5 M triangles) once.
 // --svg FILE draws the adaptive mesh around the middle fold, (u, v) ∈ [0.35, 0.65] × [0, 0.2] m,
@@ -228,15 +229,22 @@ int main(int argc, char** argv) {
       }
     }
     rest.velocities = Matrix3X::Zero(rest.material.rows(), 3);
-    const RemeshOutput out = weft::sim::remesh::remesh(rest, params);
-    const auto before = spring_energy_and_min_strain(rest.material, rest.triangles, rest.positions);
-    const auto after =
-        spring_energy_and_min_strain(out.mesh.material, out.mesh.triangles, out.positions);
-    std::printf(
-        "  R = %-5g m %6ld triangles; spring energy %.2e -> %.2e J; min edge strain %.2e; "
-        "max |v| %.1e m/s\n",
-        R, static_cast<long>(out.mesh.triangles.rows()), before[0], after[0], after[1],
-        out.velocities.cwiseAbs().maxCoeff());
+    for (const auto transfer : {weft::sim::remesh::PositionTransfer::linear,
+                                weft::sim::remesh::PositionTransfer::quadratic}) {
+      RemeshParams rest_params = params;
+      rest_params.positions = transfer;
+      const RemeshOutput out = weft::sim::remesh::remesh(rest, rest_params);
+      const auto before =
+          spring_energy_and_min_strain(rest.material, rest.triangles, rest.positions);
+      const auto after =
+          spring_energy_and_min_strain(out.mesh.material, out.mesh.triangles, out.positions);
+      std::printf(
+          "  R = %-5g m %-9s %6ld triangles; spring energy %.2e -> %.2e J; min edge strain "
+          "%.2e; max |v| %.1e m/s\n",
+          R, transfer == weft::sim::remesh::PositionTransfer::linear ? "linear" : "quadratic",
+          static_cast<long>(out.mesh.triangles.rows()), before[0], after[0], after[1],
+          out.velocities.cwiseAbs().maxCoeff());
+    }
   }
 
   std::printf("curvature on a cylinder of R = 0.1 m, max relative error of |kappa|:\n");

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "sim/remesh/curvature.h"
 #include "sim/remesh/remesh.h"
 #include "sim/triangle_cloth.h"
 
@@ -53,7 +54,31 @@ remesh::Triangles remesh_triangle_rows(const ClothMesh& mesh) {
   return t;
 }
 
+remesh::Matrix2X remesh_material_rows(const ClothMesh& mesh) {
+  remesh::Matrix2X m(mesh.vertex_count(), 2);
+  for (Index k = 0; k < mesh.vertex_count(); ++k)
+    m.row(k) = mesh.material_coords[static_cast<std::size_t>(k)].transpose();
+  return m;
+}
+
+remesh::SizeFieldParams remesh_size_params(const RemeshSettings& settings) {
+  remesh::SizeFieldParams size;
+  size.c_m = settings.c_m;
+  size.h_min_m = settings.h_min_m;
+  size.h_max_m = settings.h_max_m;
+  return size;
+}
+
 }  // namespace
+
+double cloth_remesh_indicator_m(const ClothMesh& mesh, const Matrix3X& x,
+                                const RemeshSettings& settings) {
+  const remesh::Matrix2X material = remesh_material_rows(mesh);
+  const remesh::Triangles triangles = remesh_triangle_rows(mesh);
+  return remesh::remesh_indicator(material, triangles,
+                                  remesh::vertex_curvature(material, triangles, x),
+                                  remesh_size_params(settings));
+}
 
 RemeshedCloth remesh_cloth(const ClothMesh& mesh, const Matrix3X& x, const Matrix3X& v,
                            const Matrix3X& initial_x, const std::vector<Index>& keep,
@@ -63,17 +88,16 @@ RemeshedCloth remesh_cloth(const ClothMesh& mesh, const Matrix3X& x, const Matri
                                 "triangle mesh");
   remesh::RemeshInput in;
   const Index n_old = mesh.vertex_count();
-  in.material.resize(n_old, 2);
-  for (Index k = 0; k < n_old; ++k)
-    in.material.row(k) = mesh.material_coords[static_cast<std::size_t>(k)].transpose();
+  in.material = remesh_material_rows(mesh);
   in.triangles = remesh_triangle_rows(mesh);
   in.positions = x;
   in.velocities = v;
   in.pins = keep;
   remesh::RemeshParams params;
-  params.size.c_m = settings.c_m;
-  params.size.h_min_m = settings.h_min_m;
-  params.size.h_max_m = settings.h_max_m;
+  params.size = remesh_size_params(settings);
+  params.positions = settings.transfer == RemeshTransfer::quadratic
+                         ? remesh::PositionTransfer::quadratic
+                         : remesh::PositionTransfer::linear;
   params.mesher.max_vertices = static_cast<Index>(settings.max_vertices);
   const remesh::RemeshOutput out = remesh::remesh(in, params);
 

@@ -30,6 +30,11 @@ struct RemeshedCloth {
 // step), constraints (projection) or the adaptive step, a build without CGAL.
 void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings);
 
+// Seed 002's criterion on the cloth at positions x (#V×3): max over triangles of |κ| h² (metres;
+// sim/remesh/size_field.h remesh_indicator, triangles already at h_min left out).
+double cloth_remesh_indicator_m(const ClothMesh& mesh, const Matrix3X& x,
+                                const RemeshSettings& settings);
+
 // One remeshing step: the cloth at positions x and velocities v (#V×3), with initial_x (#V×3)
 // carried along and `keep` (pins) kept. Throws std::invalid_argument from the remesher (a size
 // field asking for more than settings.max_vertices vertices, ...).

@@ -18,4 +18,9 @@ RemeshedCloth remesh_cloth(const ClothMesh&, const Matrix3X&, const Matrix3X&, c
   throw std::invalid_argument("remesh_cloth: this build of weft has no remesher (no CGAL)");
 }
 
+double cloth_remesh_indicator_m(const ClothMesh&, const Matrix3X&, const RemeshSettings&) {
+  throw std::invalid_argument("cloth_remesh_indicator_m: this build of weft has no remesher (no "
+                              "CGAL)");
+}
+
 }  // namespace weft::sim

@@ -37,6 +37,8 @@ struct StepStatistics {
   long rejected_steps = 0;  // adaptive steps redone shorter (sim/adaptive_step.h)
   long remeshes = 0;        // adaptive remeshing steps (simulation.remesh)
   double remesh_energy_J = 0.0;  // the total energy's change by those remeshes (the transfer's)
+  // The largest remesh criterion max |κ|h² at the indicator checks, metres (0: none checked).
+  double max_remesh_indicator_m = 0.0;
 };
 
 enum class Phase {

@@ -30,16 +30,27 @@ struct AdaptiveStepSettings {
   double max_prediction_strain = 0.25;  // ε_max
 };
 
-// simulation.remesh (docs/remeshing.md): every every_steps steps the cloth is meshed anew in
-// material space, graded by its curvature (seed 002 eq. 29: h = clamp(√(c/|κ|), h_min, h_max)),
-// positions and velocities interpolated onto the new mesh, the boundary and pins kept exactly
-// (sim/cloth_remesh.h). Off unless enabled; a triangle-mesh cloth only (Simulator checks).
+// simulation.remesh (docs/remeshing.md): the cloth is meshed anew in material space, graded by
+// its curvature (seed 002 eq. 29: h = clamp(√(c/|κ|), h_min, h_max)), positions and velocities
+// interpolated onto the new mesh, the boundary and pins kept exactly (sim/cloth_remesh.h):
+// after every every_steps-th step, or, with an indicator threshold, only at those checks where
+// seed 002's criterion max |κ| h² (eq. 28, §5.2 d) exceeds indicator × c. Off unless enabled;
+// a triangle-mesh cloth only (Simulator checks).
+enum class RemeshTransfer {
+  linear,     // barycentric interpolation: new vertices on the old mesh's flat facets
+  quadratic,  // plus the fitted curvature patches' second-order term: on the curved surface
+};
+
 struct RemeshSettings {
   bool enabled = false;
-  long every_steps = 100;
+  long every_steps = 100;  // steps between two remeshes, or between two indicator checks
   double c_m = 1e-3;       // eq. 29's constant |κ| h², metres
   double h_min_m = 0.005;  // the finest edge, metres
   double h_max_m = 0.05;   // the coarsest edge (flat cloth), metres
+  // > 0: remesh only when max |κ| h² > indicator × c (dimensionless, > 1: after a remesh the
+  // criterion is about c where the cloth is curved); 0: remesh at every check.
+  double indicator = 0.0;
+  RemeshTransfer transfer = RemeshTransfer::quadratic;  // of positions; velocities are linear
   long max_vertices = 200'000;  // a mesh finer than this is an error, not a frozen run
 };
 

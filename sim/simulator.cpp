@@ -253,8 +253,20 @@ bool Simulator::attempt_step(double h_s, bool may_reject) {
   ++m_stats.steps;
   m_timers.time(Phase::check, [&] { check_finite(); });
   if (m_settings.remesh.enabled && m_steps % m_settings.remesh.every_steps == 0)
-    m_timers.time(Phase::remesh, [&] { remesh_now(); });
+    m_timers.time(Phase::remesh, [&] {
+      if (remesh_due()) remesh_now();
+    });
   return true;
+}
+
+// At a check (every every_steps steps): always, or with an indicator threshold when seed 002's
+// criterion max |κ| h² has passed indicator × c (its largest value goes to the statistics).
+bool Simulator::remesh_due() {
+  const RemeshSettings& r = m_settings.remesh;
+  if (r.indicator <= 0.0) return true;
+  const double indicator_m = cloth_remesh_indicator_m(m_mesh, m_state.x, r);
+  m_stats.max_remesh_indicator_m = std::max(m_stats.max_remesh_indicator_m, indicator_m);
+  return indicator_m > r.indicator * r.c_m;
 }
 
 void Simulator::remesh_now() {

@@ -66,7 +66,8 @@ class Simulator {
   void set_pin_path(const std::vector<Index>& vertices, const PinPath& path);
   // One step of h seconds, as named, timed phases: drive pins → integrate → place pins → move
   // obstacles → contacts and constraints → velocity filter → check → remesh (with
-  // simulation.remesh, after every every_steps-th step). With the adaptive step, the
+  // simulation.remesh, after every every_steps-th step; with its indicator, only when seed
+  // 002's criterion max |κ| h² has passed indicator × c). With the adaptive step, the
   // step is never rejected here, but its prediction still sets the next planned step.
   void step(double h_s);
   // Starts the cloth from these positions (#V×3, m) instead of its flat rest state, at rest:
@@ -83,6 +84,10 @@ class Simulator {
   // and applies, and from the remesher.
   void remesh_now();
   long remesh_count() const { return m_remeshes; }
+  // Whether a remesh check (every every_steps steps) remeshes now: always without an indicator
+  // threshold, else when cloth_remesh_indicator_m of the current positions passes it (recorded
+  // in the step statistics' max_remesh_indicator_m).
+  bool remesh_due();
 
   const State& state() const { return m_state; }
   // The cloth's current mesh: the scene's until the first remesh. The object stays the same

@@ -19,9 +19,17 @@ std::vector<std::string> Simulator::explain() const {
   if (m_settings.remesh.enabled) {
     const RemeshSettings& r = m_settings.remesh;
     std::ostringstream remesh;
-    remesh << "remesh: every " << r.every_steps << " steps, h = clamp(sqrt(" << 1e3 * r.c_m
-           << " mm / |curvature|), " << 1e3 * r.h_min_m << " mm, " << 1e3 * r.h_max_m
-           << " mm) (CGAL Delaunay refinement, boundary and pins kept); now "
+    remesh << "remesh: ";
+    if (r.indicator > 0.0)
+      remesh << "when max |curvature| h^2 > " << r.indicator << " c, checked every "
+             << r.every_steps << (r.every_steps == 1 ? " step" : " steps");
+    else
+      remesh << "every " << r.every_steps << " steps";
+    remesh << ", h = clamp(sqrt(c / |curvature|), " << 1e3 * r.h_min_m << " mm, "
+           << 1e3 * r.h_max_m << " mm), c = " << 1e3 * r.c_m
+           << " mm (CGAL Delaunay refinement, boundary and pins kept; positions transferred "
+           << (r.transfer == RemeshTransfer::quadratic ? "quadratically" : "linearly")
+           << "); now "
            << m_mesh.vertex_count() << " vertices, " << m_mesh.faces.size() << " triangles";
     lines.push_back(remesh.str());
   }

@@ -10,10 +10,16 @@ the flat pattern in metres (u along the warp); positions lay it flat and horizon
 the z axis at height z0.
 
     python3 assets/meshes/drape_square_50.py
+
+With arguments, `drape_square_50.py CELLS OUT.obj` writes the same square on CELLS x CELLS cells
+to OUT.obj instead: the uniform meshes of docs/remeshing.md's adaptive-against-uniform table.
 """
 import os
+import sys
 
 side, n, z0 = 0.5, 20, 0.405  # m, cells per side, m
+if len(sys.argv) == 3:
+    n = int(sys.argv[1])
 h = side / n
 
 lines = ["# 50 cm square, union-jack triangles: written by drape_square_50.py"]
@@ -37,6 +43,8 @@ for j in range(n):
 for t in faces:
     lines.append("f " + " ".join("%d/%d" % (p, p) for p in t))
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "drape_square_50.obj")
+if len(sys.argv) == 3:
+    out = sys.argv[2]
 with open(out, "w") as f:
     f.write("\n".join(lines) + "\n")
 print("%s: %d vertices, %d triangles" % (out, (n + 1) ** 2, len(faces)))

@@ -45,11 +45,20 @@ std::vector<Index> stencil(const std::vector<std::vector<Index>>& neighbours, In
   return found;
 }
 
-// |κ|max at vertex v from a quadratic fit over `points`, or −1 when the fit is rank-deficient.
-double fitted_curvature(const Matrix2X& material, const Matrix3X& positions, Index v,
-                        const std::vector<Index>& points) {
+// I = JᵀJ of a patch.
+Eigen::Matrix2d patch_first_form(const VertexPatch& p) {
+  Eigen::Matrix2d I;
+  I << p.x_u.dot(p.x_u), p.x_u.dot(p.x_v), p.x_u.dot(p.x_v), p.x_v.dot(p.x_v);
+  return I;
+}
+
+// The quadratic Taylor patch at vertex v fitted over `points` (invalid when the fit is
+// rank-deficient or the fitted surface has no normal at v).
+VertexPatch fitted_patch(const Matrix2X& material, const Matrix3X& positions, Index v,
+                         const std::vector<Index>& points) {
   constexpr int kUnknowns = 5;  // x_u, x_v, ½x_uu, x_uv, ½x_vv per world component
-  if (static_cast<int>(points.size()) < kUnknowns) return -1.0;
+  VertexPatch patch;
+  if (static_cast<int>(points.size()) < kUnknowns) return patch;
   const Vec2 origin = material.row(v);
   double scale = 0.0;
   for (Index k : points) scale = std::max(scale, (Vec2(material.row(k)) - origin).norm());
@@ -64,46 +73,62 @@ double fitted_curvature(const Matrix2X& material, const Matrix3X& positions, Ind
   }
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
   qr.setThreshold(1e-8);
-  if (qr.rank() < kUnknowns) return -1.0;
+  if (qr.rank() < kUnknowns) return patch;
   const Eigen::MatrixXd c = qr.solve(b);  // 5×3, rows in scaled parameters
-  const Vec3 x_u = c.row(0).transpose() / scale, x_v = c.row(1).transpose() / scale;
-  const Vec3 x_uu = 2.0 * c.row(2).transpose() / (scale * scale);
-  const Vec3 x_uv = c.row(3).transpose() / (scale * scale);
-  const Vec3 x_vv = 2.0 * c.row(4).transpose() / (scale * scale);
-  const Vec3 normal_dir = x_u.cross(x_v);
-  if (!(normal_dir.norm() > 0.0)) return -1.0;
-  const Vec3 n = normal_dir.normalized();
-  Eigen::Matrix2d I, II;
-  I << x_u.dot(x_u), x_u.dot(x_v), x_u.dot(x_v), x_v.dot(x_v);
-  II << n.dot(x_uu), n.dot(x_uv), n.dot(x_uv), n.dot(x_vv);
-  if (!(I.determinant() > 0.0)) return -1.0;
-  const Eigen::Vector2d k = principal_curvatures(I, II);
-  return std::max(std::abs(k(0)), std::abs(k(1)));
+  patch.x_u = c.row(0).transpose() / scale;
+  patch.x_v = c.row(1).transpose() / scale;
+  patch.x_uu = 2.0 * c.row(2).transpose() / (scale * scale);
+  patch.x_uv = c.row(3).transpose() / (scale * scale);
+  patch.x_vv = 2.0 * c.row(4).transpose() / (scale * scale);
+  patch.valid =
+      patch.x_u.cross(patch.x_v).norm() > 0.0 && patch_first_form(patch).determinant() > 0.0;
+  return patch;
 }
 
 }  // namespace
 
-Eigen::VectorXd vertex_curvature(const Matrix2X& material, const Triangles& triangles,
-                                 const Matrix3X& positions) {
+double patch_curvature(const VertexPatch& p) {
+  if (!p.valid) return 0.0;
+  const Vec3 n = p.x_u.cross(p.x_v).normalized();
+  Eigen::Matrix2d II;
+  II << n.dot(p.x_uu), n.dot(p.x_uv), n.dot(p.x_uv), n.dot(p.x_vv);
+  const Eigen::Vector2d k = principal_curvatures(patch_first_form(p), II);
+  return std::max(std::abs(k(0)), std::abs(k(1)));
+}
+
+Eigen::VectorXd patch_curvatures(const std::vector<VertexPatch>& patches) {
+  Eigen::VectorXd kappa(static_cast<Eigen::Index>(patches.size()));
+  for (size_t v = 0; v < patches.size(); ++v)
+    kappa(static_cast<Eigen::Index>(v)) = patch_curvature(patches[v]);
+  return kappa;
+}
+
+std::vector<VertexPatch> vertex_patches(const Matrix2X& material, const Triangles& triangles,
+                                        const Matrix3X& positions) {
   check_mesh(material, triangles, "curvature");
   if (positions.rows() != material.rows())
     throw std::invalid_argument("curvature: " + std::to_string(positions.rows()) +
                                 " positions for " + std::to_string(material.rows()) + " vertices");
   const Index nv = static_cast<Index>(material.rows());
   const auto neighbours = vertex_neighbours(nv, triangles);
-  Eigen::VectorXd kappa = Eigen::VectorXd::Zero(nv);
+  std::vector<VertexPatch> patches(static_cast<size_t>(nv));
   for (Index v = 0; v < nv; ++v) {
     if (neighbours[static_cast<size_t>(v)].empty()) continue;  // a vertex of no triangle
     // Two rings; three where a corner's two-ring is too small for the fit.
     for (int rings = 2; rings <= 3; ++rings) {
-      const double k = fitted_curvature(material, positions, v, stencil(neighbours, v, rings));
-      if (k >= 0.0) {
-        kappa(v) = k;
+      VertexPatch p = fitted_patch(material, positions, v, stencil(neighbours, v, rings));
+      if (p.valid) {
+        patches[static_cast<size_t>(v)] = p;
         break;
       }
     }
   }
-  return kappa;
+  return patches;
+}
+
+Eigen::VectorXd vertex_curvature(const Matrix2X& material, const Triangles& triangles,
+                                 const Matrix3X& positions) {
+  return patch_curvatures(vertex_patches(material, triangles, positions));
 }
 
 }  // namespace weft::sim::remesh

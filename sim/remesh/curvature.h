@@ -14,12 +14,33 @@
 // On a symmetric two-ring the cubic terms of x cancel, so the error is O(h²/R²).
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "sim/remesh/remesh_types.h"
 
 namespace weft::sim::remesh {
 
-// #V max principal curvature magnitudes, 1/m. material: #V×2 (m); triangles: #T×3;
+// The fitted quadratic Taylor patch of x(u, v) at one vertex: its first derivatives (m/m) and
+// second derivatives (1/m) in material coordinates. valid = false where no stencil within three
+// rings carries the fit, or the fitted surface has no normal there.
+struct VertexPatch {
+  bool valid = false;
+  Vec3 x_u = Vec3::Zero(), x_v = Vec3::Zero();
+  Vec3 x_uu = Vec3::Zero(), x_uv = Vec3::Zero(), x_vv = Vec3::Zero();
+};
+
+// The patch of every vertex (two rings; three where a corner's two-ring is too small).
+// material: #V×2 (m); triangles: #T×3; positions: #V×3 (m).
+std::vector<VertexPatch> vertex_patches(const Matrix2X& material, const Triangles& triangles,
+                                        const Matrix3X& positions);
+
+// |κ|max of a patch (1/m): the larger principal curvature magnitude; 0 for an invalid patch.
+double patch_curvature(const VertexPatch& patch);
+
+// The per-vertex |κ|max of the patches: #V, 1/m.
+Eigen::VectorXd patch_curvatures(const std::vector<VertexPatch>& patches);
+
+// #V max principal curvature magnitudes, 1/m (patch_curvatures of vertex_patches). material: #V×2 (m); triangles: #T×3;
 // positions: #V×3 world positions (m). A vertex whose stencil cannot carry a quadratic fit
 // (fewer than 5 points in general position within three rings) gets 0.
 Eigen::VectorXd vertex_curvature(const Matrix2X& material, const Triangles& triangles,

@@ -9,6 +9,15 @@
 
 namespace weft::sim::remesh {
 
+SecondDerivatives patch_second_derivatives(const std::vector<VertexPatch>& patches) {
+  SecondDerivatives second = SecondDerivatives::Zero(static_cast<Eigen::Index>(patches.size()), 9);
+  for (size_t v = 0; v < patches.size(); ++v)
+    if (const VertexPatch& p = patches[v]; p.valid)
+      second.row(static_cast<Eigen::Index>(v)) << p.x_uu.transpose(), p.x_uv.transpose(),
+          p.x_vv.transpose();
+  return second;
+}
+
 RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
   check_size_field_params(params.size);
   const auto rows = input.material.rows();
@@ -19,7 +28,9 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
                                 " vertices, expected one of each per vertex");
   RemeshOutput out;
   base::Stopwatch phase;
-  out.old_curvature = vertex_curvature(input.material, input.triangles, input.positions);
+  const std::vector<VertexPatch> patches =
+      vertex_patches(input.material, input.triangles, input.positions);
+  out.old_curvature = patch_curvatures(patches);
   out.old_target_size = target_sizes(out.old_curvature, params.size);
 
   // The size field between the old vertices: barycentric interpolation, as the kinematics.
@@ -37,7 +48,12 @@ RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params) {
   out.mesher_s = phase.seconds();
   phase.restart();
   out.transfer = make_transfer_map(old_mesh, out.mesh.material, out.mesh.new_to_old);
-  out.positions = transfer(out.transfer, input.triangles, input.positions);
+  if (params.positions == PositionTransfer::quadratic) {
+    out.positions = transfer_quadratic(out.transfer, input.material, input.triangles,
+                                       input.positions, patch_second_derivatives(patches));
+  } else {
+    out.positions = transfer(out.transfer, input.triangles, input.positions);
+  }
   out.velocities = transfer(out.transfer, input.triangles, input.velocities);
   out.transfer_s = phase.seconds();
   return out;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "sim/remesh/curvature.h"
 #include "sim/remesh/mesher.h"
 #include "sim/remesh/remesh_types.h"
 #include "sim/remesh/size_field.h"
@@ -14,9 +15,15 @@
 
 namespace weft::sim::remesh {
 
+// How positions reach the new vertices (transfer.h): barycentric interpolation on the old
+// facets, or that with the quadratic correction from the fitted curvature patches, which puts
+// new vertices on the curved surface rather than on its chords. Velocities are always linear.
+enum class PositionTransfer { linear, quadratic };
+
 struct RemeshParams {
   SizeFieldParams size;
   MesherParams mesher;
+  PositionTransfer positions = PositionTransfer::quadratic;
 };
 
 struct RemeshInput {
@@ -38,6 +45,10 @@ struct RemeshOutput {
   // CGAL mesher (with its size queries); locating the new vertices and interpolating.
   double curvature_s = 0.0, mesher_s = 0.0, transfer_s = 0.0;
 };
+
+// The second derivatives of the fitted patches as transfer_quadratic takes them: #V×9, zero for
+// a vertex without a valid patch (no correction there).
+SecondDerivatives patch_second_derivatives(const std::vector<VertexPatch>& patches);
 
 // Throws std::invalid_argument naming the array or parameter on bad input.
 RemeshOutput remesh(const RemeshInput& input, const RemeshParams& params);

@@ -49,13 +49,15 @@ double remesh_indicator(const Matrix2X& material, const Triangles& triangles,
                         const Eigen::VectorXd& curvature, const SizeFieldParams& params) {
   check_size_field_params(params);
   const Eigen::VectorXd h = triangle_sizes(material, triangles);
+  // Eq. 29 reaches h_min at |κ| = c / h_min²: a sharper fold asks for no finer mesh.
+  const double resolvable_1_m = params.c_m / (params.h_min_m * params.h_min_m);
   double worst = 0.0;
   for (Index t = 0; t < triangles.rows(); ++t) {
     if (h(t) <= params.h_min_m) continue;
     const double kappa =
         (curvature(triangles(t, 0)) + curvature(triangles(t, 1)) + curvature(triangles(t, 2))) /
         3.0;
-    worst = std::max(worst, kappa * h(t) * h(t));
+    worst = std::max(worst, std::min(kappa, resolvable_1_m) * h(t) * h(t));
   }
   return worst;
 }

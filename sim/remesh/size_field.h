@@ -33,10 +33,12 @@ Eigen::VectorXd target_sizes(const Eigen::VectorXd& curvature, const SizeFieldPa
 Eigen::VectorXd triangle_sizes(const Matrix2X& material, const Triangles& triangles);
 
 // The remeshing criterion of seed 002 §5.2 d: max over triangles of |κ_t| h_t², with |κ_t| the
-// mean of the triangle's vertex curvatures and h_t its mean side length. A triangle already at
-// h_min or finer (h_t ≤ h_min) cannot be refined further and is left out, so that a fold sharper
-// than h_min allows does not call for a remesh at every check. Metres; remesh when it exceeds
-// a threshold above c (after a remesh it is about c where the cloth is curved).
+// mean of the triangle's vertex curvatures and h_t its mean side length. What a remesh cannot
+// refine does not count, so that a fold sharper than h_min allows does not call for a remesh at
+// every check: a triangle already at h_min or finer (h_t ≤ h_min) is left out, and |κ_t| is
+// capped at c / h_min², the curvature at which eq. 29 reaches h_min (so a triangle counts at most
+// c h_t²/h_min²). Metres; remesh when it exceeds a threshold above c (after a remesh it is about
+// c where the cloth is curved).
 double remesh_indicator(const Matrix2X& material, const Triangles& triangles,
                         const Eigen::VectorXd& curvature, const SizeFieldParams& params);
 

@@ -49,4 +49,32 @@ Matrix3X transfer(const TransferMap& map, const Triangles& old_triangles, const 
   return transfer_rows(map, old_triangles, values);
 }
 
+Matrix3X transfer_quadratic(const TransferMap& map, const Matrix2X& old_material,
+                            const Triangles& old_triangles, const Matrix3X& positions,
+                            const SecondDerivatives& second_derivatives) {
+  WEFT_CHECK(second_derivatives.rows() == positions.rows() &&
+                 old_material.rows() == positions.rows(),
+             "one second derivative and one material point per old vertex");
+  Matrix3X out = transfer_rows(map, old_triangles, positions);
+  for (Eigen::Index n = 0; n < out.rows(); ++n) {
+    if (map.new_to_old[static_cast<size_t>(n)] >= 0) continue;  // a kept vertex: copied
+    const Location& at = map.location[static_cast<size_t>(n)];
+    Vec3 correction = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Index i = old_triangles(at.triangle, k), j = old_triangles(at.triangle, (k + 1) % 3);
+      const Vec2 E = Vec2(old_material.row(j)) - Vec2(old_material.row(i));
+      // The edge's H: the mean of its two ends', so that a point on the edge gets the same
+      // correction from both of its triangles.
+      const auto H = 0.5 * (second_derivatives.row(i) + second_derivatives.row(j));
+      correction += at.barycentric[static_cast<size_t>(k)] *
+                    at.barycentric[static_cast<size_t>((k + 1) % 3)] *
+                    (H.segment<3>(0).transpose() * (E.x() * E.x()) +
+                     H.segment<3>(3).transpose() * (2.0 * E.x() * E.y()) +
+                     H.segment<3>(6).transpose() * (E.y() * E.y()));
+    }
+    out.row(n) -= 0.5 * correction.transpose();
+  }
+  return out;
+}
+
 }  // namespace weft::sim::remesh

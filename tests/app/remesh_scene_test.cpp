@@ -89,6 +89,41 @@ TEST(RemeshScene, KeysOutOfRangeAreErrorsNamingThem) {
   EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "h_mni");
 }
 
+TEST(RemeshScene, TheIndicatorAndTheTransferAreRead) {
+  const fs::path dir = remesh_test_dir();
+  Json json = remeshed_hang(dir);
+  EXPECT_EQ(parse_scene(json.dump(), (dir / "scene.json").string()).sim.remesh.indicator, 0.0);
+  EXPECT_EQ(parse_scene(json.dump(), (dir / "scene.json").string()).sim.remesh.transfer,
+            sim::RemeshTransfer::quadratic);
+  json["simulation"]["remesh"]["indicator"] = 2.5;
+  json["simulation"]["remesh"]["transfer"] = "linear";
+  const Scene scene = parse_scene(json.dump(), (dir / "scene.json").string());
+  EXPECT_EQ(scene.sim.remesh.indicator, 2.5);
+  EXPECT_EQ(scene.sim.remesh.transfer, sim::RemeshTransfer::linear);
+  // Remeshed only when max |κ|h² passes 2.5 c: the square swings down and curves.
+  const auto simulator = make_simulator(scene);
+  simulator->advance(4.0 / 24.0);
+  EXPECT_GE(simulator->remesh_count(), 1);
+  EXPECT_LE(simulator->remesh_count(), 2);
+}
+
+TEST(RemeshScene, BadIndicatorsAndTransfersAreErrorsNamingTheKey) {
+  const fs::path dir = remesh_test_dir();
+  Json scene = remeshed_hang(dir);
+  scene["simulation"]["remesh"]["indicator"] = 1.0;
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"),
+                  "simulation.remesh.indicator: expected a multiple of c above 1");
+  scene["simulation"]["remesh"]["indicator"] = -3;
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.indicator");
+  scene["simulation"]["remesh"]["indicator"] = "2 mm";
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.indicator");
+  scene = remeshed_hang(dir);
+  scene["simulation"]["remesh"]["transfer"] = "cubic";
+  const std::string transfer = test::scene_error_of(scene, dir / "scene.json");
+  EXPECT_CONTAINS(transfer, "simulation.remesh.transfer");
+  EXPECT_CONTAINS(transfer, "quadratic");
+}
+
 TEST(RemeshScene, WhatCannotBeRemeshedIsASceneErrorNamingTheReason) {
   const fs::path dir = remesh_test_dir();
   Json springs = remeshed_hang(dir);

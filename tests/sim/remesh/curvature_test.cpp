@@ -74,11 +74,7 @@ TEST(Curvature, SphereGivesOneOverRadius) {
   const Index n = 49;
   const auto m = grid_mesh(0.12, 0.12, n, n, -0.06, -0.06);
   const Eigen::VectorXd kappa = vertex_curvature(
-      m.material, m.triangles, deform(m.material, [&](double u, double v) {
-        const double r = std::hypot(u, v), phi = std::atan2(v, u);
-        return Vec3(R * std::sin(r / R) * std::cos(phi), R * std::sin(r / R) * std::sin(phi),
-                    R * (1.0 - std::cos(r / R)));
-      }));
+      m.material, m.triangles, deform(m.material, [&](double u, double v) { return testing::on_sphere(u, v, R); }));
   EXPECT_LT(worst_relative_error(kappa, deep_interior(n, n), 1.0 / R), 0.02);
 }
 

@@ -68,6 +68,11 @@ TEST(SizeField, IndicatorIsCurvatureTimesSizeSquaredOnACylinder) {
   // Triangles already at h_min cannot be refined: they do not call for a remesh.
   p.h_min_m = 0.02;
   EXPECT_EQ(remesh_indicator(m.material, m.triangles, kappa, p), 0.0);
+  // A fold sharper than h_min resolves counts as the curvature at which eq. 29 reaches h_min,
+  // c/h_min²: for h_min = h/2, at most 4 c, whatever |κ|.
+  p.h_min_m = 0.5 * h;
+  const Eigen::VectorXd sharp = Eigen::VectorXd::Constant(m.material.rows(), 1e4);
+  EXPECT_NEAR(remesh_indicator(m.material, m.triangles, sharp, p), 4.0 * p.c_m, 1e-15);
 }
 
 }  // namespace

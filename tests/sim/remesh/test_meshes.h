@@ -52,6 +52,15 @@ inline Vec3 on_cylinder(double u, double v, double R) {
   return {R * std::sin(u / R), v, R * (1.0 - std::cos(u / R))};
 }
 
+// The flat sheet laid on a sphere of radius R touching the plane z = 0 at the origin, centre
+// (0, 0, R), by the azimuthal equidistant map (lengths along meridians kept, parallels
+// stretched: the metric is not the identity).
+inline Vec3 on_sphere(double u, double v, double R) {
+  const double r = std::hypot(u, v), phi = std::atan2(v, u);
+  return {R * std::sin(r / R) * std::cos(phi), R * std::sin(r / R) * std::sin(phi),
+          R * (1.0 - std::cos(r / R))};
+}
+
 // Twice the total material area of a mesh's triangles (signed by orientation).
 inline double area2(const Matrix2X& material, const Triangles& triangles) {
   double sum = 0.0;
