@@ -234,6 +234,7 @@ sim::SelfCollisionSettings read_self_collision(ObjectReader r, Scene::CrossingPo
   c.iterations = static_cast<int>(r.integer("iterations", c.iterations, Range::closed(1, 100)));
   c.neighbourhood_edges =
       r.number("neighbourhood", c.neighbourhood_edges, Range::closed(0.0, 4.0));
+  c.impact_zones = r.boolean("impact_zones", c.impact_zones);
   r.finish();
   return c;
 }

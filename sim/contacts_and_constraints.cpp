@@ -23,7 +23,7 @@ const char* projection_name(ProjectionMethod method) {
 ContactsAndConstraints::ContactsAndConstraints(const ClothMesh& mesh,
                                                const Eigen::VectorXd& inv_mass,
                                                const SimSettings& settings)
-    : m_settings(settings), m_inv_mass(inv_mass) {
+    : m_mesh(mesh), m_settings(settings), m_inv_mass(inv_mass) {
   m_projector = make_projector(mesh, inv_mass, settings.projection, settings.sparse_backend);
   // Fast projection's multipliers give the constraint force to carry (carried_tension.h);
   // pairwise projection has none.
@@ -33,6 +33,9 @@ ContactsAndConstraints::ContactsAndConstraints(const ClothMesh& mesh,
   m_posed_obstacles = posed_obstacles(settings.obstacles, settings.obstacle_motions, 0.0);
   if (settings.self_collision.enabled)
     m_self = std::make_unique<SelfCollision>(mesh, settings.self_collision);
+  if (m_self && settings.self_collision.impact_zones)
+    m_zones = std::make_unique<ImpactZones>(mesh.triangles(),
+                                            impact_zone_fraction * m_self->thickness_m());
 }
 
 ContactsAndConstraints::~ContactsAndConstraints() = default;
@@ -48,7 +51,13 @@ void ContactsAndConstraints::pose_obstacles(double t0_s, double t1_s) {
 bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, double h_s,
                                      PhaseTimers& timers, StepStatistics& stats) {
   bool collided = timers.time(Phase::collide, [&] { return collide(x_start, x, true, stats); });
-  if (!m_projector) return collided;
+  if (!m_projector) {
+    if (m_zones) {
+      timers.time(Phase::collide, [&] { failsafe(x_start, x, stats); });
+      collided = collided || !m_zones->zone_vertices().empty();  // a zone moved x
+    }
+    return collided;
+  }
   ProjectionResult total;
   for (int round = 0; round <= kContactRounds; ++round) {
     const ProjectionResult r = timers.time(Phase::project, [&] { return project(x, h_s); });
@@ -62,6 +71,7 @@ bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, doubl
         !timers.time(Phase::collide, [&] { return collide(x_start, x, false, stats); }))
       break;
   }
+  if (m_zones) timers.time(Phase::collide, [&] { failsafe(x_start, x, stats); });
   record(total, stats);
   return true;
 }
@@ -80,6 +90,32 @@ void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& s
   if (!r.converged) ++stats.unconverged_steps;
   stats.worst_projected_strain = std::max(stats.worst_projected_strain, r.max_strain);
   stats.solve_s += r.solve_s;
+}
+
+// The impact zones leave the edges from a zone to the rest of the cloth stretched. With a
+// projection, the cloth is projected once more with every zone vertex so far held (inverse
+// mass 0: a zone keeps its rigid motion) and the zones are sought again over the new motion,
+// up to kHeldRounds times; the impact zones always come last, so no crossing is left.
+void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats) {
+  ImpactZoneCounts counts = m_zones->resolve(x_start, m_inv_mass, x);
+  long most = counts.zone_vertices;
+  if (m_projector && counts.zone_vertices > 0) {
+    Eigen::VectorXd held = m_inv_mass;
+    for (int round = 0; round < kHeldRounds && (round == 0 || counts.collisions > 0); ++round) {
+      for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
+      const auto projector =
+          make_projector(m_mesh, held, m_settings.projection, m_settings.sparse_backend);
+      const ProjectionResult r = projector->project(x);
+      stats.projection_iterations += r.iterations;  // its convergence shows in the frame's strain
+      stats.projection_factorizations += r.factorizations;
+      stats.projection_reuse_iterations += r.reuse_iterations;
+      stats.solve_s += r.solve_s;
+      counts = m_zones->resolve(x_start, m_inv_mass, x, /*grow=*/true);
+      most = std::max(most, counts.zone_vertices);
+    }
+  }
+  stats.max_impact_zone_vertices = std::max(stats.max_impact_zone_vertices, most);
+  if (!counts.resolved) ++stats.unresolved_impact_steps;
 }
 
 // Obstacle push-out, with Coulomb friction against the displacement since the start of the

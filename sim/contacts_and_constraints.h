@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/collision/impact_zones.h"
 #include "sim/constraints/carried_tension.h"
 #include "sim/constraints/projection.h"
 #include "sim/diagnostics.h"
@@ -56,14 +57,21 @@ class ContactsAndConstraints {
  private:
   ProjectionResult project(Matrix3X& x, double h_s);  // one projection; carries its tension
   bool collide(const Matrix3X& x_start, Matrix3X& x, bool with_friction, StepStatistics& stats);
+  // The failsafe after the last correction: rigid impact zones over x_start → x.
+  void failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats);
   static void record(const ProjectionResult& r, StepStatistics& stats);  // a step's, summed
   static constexpr int kContactRounds = 2;  // push-outs between projections, per step
+  static constexpr int kHeldRounds = 10;    // projections with the impact zones held, per step
 
+  const ClothMesh& m_mesh;        // the owner's
   const SimSettings& m_settings;  // the owner's
   const Eigen::VectorXd& m_inv_mass;  // the owner's System's
   std::unique_ptr<ConstraintProjector> m_projector;
   std::shared_ptr<CarriedTensionTerm> m_tension;  // when fast projection carries tension
   std::unique_ptr<SelfCollision> m_self;          // when settings.self_collision.enabled
+  std::unique_ptr<ImpactZones> m_zones;           // with m_self, unless impact_zones is off
+  // The continuous-collision thickness of the impact zones, a fraction of self-collision's.
+  static constexpr double impact_zone_fraction = 0.1;
   std::vector<Obstacle> m_posed_obstacles;        // where the obstacles are at the step's end
   std::vector<RigidPose> m_obstacle_step_motions;  // each one's motion over the step; empty: none
 };

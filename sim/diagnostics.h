@@ -33,6 +33,8 @@ struct StepStatistics {
   long failed_implicit_solves = 0;
   long cg_iterations = 0;             // implicit Euler by conjugate gradients, summed over steps
   long max_self_contacts = 0;         // self-collision contacts in any one step
+  long max_impact_zone_vertices = 0;  // vertices in self-collision's impact zones, any one step
+  long unresolved_impact_steps = 0;   // steps whose impact zones hit their pass limit
   double min_step_s = 0.0, max_step_s = 0.0;  // the shortest and longest step (0: none taken)
   long rejected_steps = 0;  // adaptive steps redone shorter (sim/adaptive_step.h)
   long remeshes = 0;        // adaptive remeshing steps (simulation.remesh)

@@ -24,8 +24,8 @@
 // step is kept on the side it was on then, so a vertex that passed through the sheet within one
 // step, by less than the contact distance plus the crossing depth (a quarter of the contact
 // distance), is brought back; two edges whose closest points swapped sides during the step
-// likewise. Faster crossings are missed; the per-frame intersection count
-// (self_intersection.h) reports them.
+// likewise. Faster crossings are left to the failsafe after the step's corrections
+// (impact_zones.h); the per-frame intersection count (self_intersection.h) reports any left.
 //
 // Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by
 // sorting and sweeping their boxes; normal cones drop flat patches and flat pairs of
@@ -69,6 +69,10 @@ struct SelfCollisionSettings {
   // candidate list (issue 23: the 64² mass-spring sphere drape ends 48 frames with 0
   // crossings instead of 4–20; bench/self_collision_bench's drop costs 1.6× as much CPU).
   double neighbourhood_edges = 1.0;
+  // The failsafe after a step's corrections (impact_zones.h, issue 23): continuous collision
+  // detection over the step's motion and rigid impact zones, so no crossing is left. Run by
+  // the step's contacts and constraints (contacts_and_constraints.h), not by SelfCollision.
+  bool impact_zones = true;
   int threads = 0;  // threads that build the candidate list, 0..4096; 0: all hardware
                     // threads. Never changes a bit of the result.
 };

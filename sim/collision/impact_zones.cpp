@@ -1,0 +1,242 @@
+#include "sim/collision/impact_zones.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "sim/collision/continuous_collision.h"
+#include "sim/collision/self_intersection.h"
+#include "sim/collision/spatial_hash.h"
+
+namespace weft::sim {
+namespace {
+
+Aabb swept_box(const Matrix3X& x_start, const Matrix3X& x, const Index* ids, int count,
+               double grow_m) {
+  Aabb box{vertex(x_start, ids[0]), vertex(x_start, ids[0])};
+  for (int k = 0; k < count; ++k)
+    for (const Matrix3X* m : {&x_start, &x}) {
+      const Vec3 p = vertex(*m, ids[k]);
+      box.lo = box.lo.cwiseMin(p);
+      box.hi = box.hi.cwiseMax(p);
+    }
+  return inflated(box, grow_m);
+}
+
+double zone_cell_size(const std::vector<Aabb>& boxes) {
+  double sum_m = 0.0;
+  for (const Aabb& b : boxes) sum_m += (b.hi - b.lo).maxCoeff();
+  const double mean_m = boxes.empty() ? 0.0 : sum_m / static_cast<double>(boxes.size());
+  return mean_m > 0.0 ? 2.0 * mean_m : 1.0;  // as the crossing count (self_intersection.cpp)
+}
+
+}  // namespace
+
+void apply_rigid_zone_motion(const std::vector<Index>& zone, const Matrix3X& x_start,
+                             const Matrix3X& x_proposed, const Eigen::VectorXd& mass,
+                             Matrix3X& x) {
+  if (zone.empty()) return;
+  double total_kg = 0.0;
+  Vec3 c0 = Vec3::Zero(), c1 = Vec3::Zero();
+  for (const Index v : zone) {
+    total_kg += mass[v];
+    c0 += mass[v] * vertex(x_start, v);
+    c1 += mass[v] * vertex(x_proposed, v);
+  }
+  c0 /= total_kg;
+  c1 /= total_kg;
+  Vec3 momentum = Vec3::Zero();  // angular, of the displacements about c0 (kg m²)
+  Mat3 inertia = Mat3::Zero();
+  for (const Index v : zone) {
+    const Vec3 r = vertex(x_start, v) - c0;
+    const Vec3 d = vertex(x_proposed, v) - vertex(x_start, v);
+    momentum += mass[v] * r.cross(d);
+    inertia += mass[v] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+  }
+  // ω = I⁻¹ L, by the pseudo-inverse: a collinear zone has no inertia about its line.
+  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(inertia);
+  const Vec3 values = eigen.eigenvalues();
+  const double cutoff = 1e-12 * values.cwiseAbs().maxCoeff();
+  Vec3 in_basis = eigen.eigenvectors().transpose() * momentum;
+  for (int k = 0; k < 3; ++k) in_basis[k] = values[k] > cutoff ? in_basis[k] / values[k] : 0.0;
+  const Vec3 omega = eigen.eigenvectors() * in_basis;
+  const double angle = omega.norm();
+  const Mat3 rotation =
+      angle > 0.0 ? Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix() : Mat3::Identity();
+  for (const Index v : zone) x.row(v) = (c1 + rotation * (vertex(x_start, v) - c0)).transpose();
+}
+
+ImpactZones::ImpactZones(std::vector<std::array<Index, 3>> triangles, double eta_m)
+    : m_triangles(std::move(triangles)), m_edges(unique_edges(m_triangles)), m_eta_m(eta_m) {
+  if (!(eta_m > 0.0) || !std::isfinite(eta_m))
+    throw std::invalid_argument("impact zones: the thickness eta must be finite > 0");
+  for (const auto& t : m_triangles) m_vertices.insert(m_vertices.end(), t.begin(), t.end());
+  std::sort(m_vertices.begin(), m_vertices.end());
+  m_vertices.erase(std::unique(m_vertices.begin(), m_vertices.end()), m_vertices.end());
+}
+
+Index ImpactZones::find(Index v) {
+  Index root = v;
+  while (m_parent[static_cast<std::size_t>(root)] != root)
+    root = m_parent[static_cast<std::size_t>(root)];
+  while (m_parent[static_cast<std::size_t>(v)] != root) {
+    const Index next = m_parent[static_cast<std::size_t>(v)];
+    m_parent[static_cast<std::size_t>(v)] = root;
+    v = next;
+  }
+  return root;
+}
+
+void ImpactZones::unite(Index a, Index b) {
+  for (const Index v : {a, b})
+    if (m_parent[static_cast<std::size_t>(v)] < 0) m_parent[static_cast<std::size_t>(v)] = v;
+  const Index ra = find(a), rb = find(b);
+  // The smaller index is the root: the zones do not depend on the order of the unions.
+  if (ra < rb) m_parent[static_cast<std::size_t>(rb)] = ra;
+  if (rb < ra) m_parent[static_cast<std::size_t>(ra)] = rb;
+}
+
+void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
+                                  PairLists& out) const {
+  out.vt.clear();
+  out.ee.clear();
+  std::vector<Aabb> boxes;
+  boxes.reserve(m_triangles.size());
+  for (const auto& t : m_triangles) boxes.push_back(swept_box(x_start, x, t.data(), 3, m_eta_m));
+  std::vector<Index> hits;
+  {
+    const double cell_m = zone_cell_size(boxes);
+    const SpatialHash hash(cell_m, std::move(boxes));
+    for (const Index v : m_vertices) {
+      hash.query(swept_box(x_start, x, &v, 1, 0.0), hits);
+      for (const Index t : hits) {
+        const auto& tri = m_triangles[static_cast<std::size_t>(t)];
+        if (tri[0] != v && tri[1] != v && tri[2] != v) out.vt.push_back({v, t});
+      }
+    }
+  }
+  boxes.clear();
+  for (const auto& e : m_edges) boxes.push_back(swept_box(x_start, x, e.data(), 2, 0.5 * m_eta_m));
+  const std::vector<Aabb> edge_boxes = boxes;
+  const SpatialHash hash(zone_cell_size(edge_boxes), std::move(boxes));
+  for (std::size_t e = 0; e < m_edges.size(); ++e) {
+    hash.query(edge_boxes[e], hits);
+    const auto& a = m_edges[e];
+    for (const Index f : hits) {
+      if (f <= static_cast<Index>(e)) continue;
+      const auto& b = m_edges[static_cast<std::size_t>(f)];
+      if (a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1])
+        out.ee.push_back({static_cast<Index>(e), f});
+    }
+  }
+}
+
+ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
+                                      Matrix3X& x, bool grow) {
+  ImpactZoneCounts counts;
+  const auto n = static_cast<std::size_t>(x.rows());
+  if (!grow || m_parent.size() != n) m_parent.assign(n, -1);
+  m_zone_vertices.clear();
+  const Matrix3X proposed = x;
+  Eigen::VectorXd mass = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  double heaviest_kg = 0.0;
+  for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
+    if (inv_mass[v] > 0.0) heaviest_kg = std::max(heaviest_kg, 1.0 / inv_mass[v]);
+  for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
+    mass[v] = inv_mass[v] > 0.0 ? 1.0 / inv_mass[v] : 1e6 * std::max(heaviest_kg, 1.0);
+
+  std::vector<char> changed(n, 1);  // whose path changed since the last pass
+  PairLists candidates;
+  std::vector<std::array<Index, 4>> hits;
+  const auto in_one_zone = [&](const std::array<Index, 4>& ids) {
+    for (const Index v : ids)
+      if (m_parent[static_cast<std::size_t>(v)] < 0) return false;
+    const Index root = find(ids[0]);
+    return find(ids[1]) == root && find(ids[2]) == root && find(ids[3]) == root;
+  };
+  const auto worth_testing = [&](const std::array<Index, 4>& ids) {
+    bool any = false;
+    for (const Index v : ids) any = any || changed[static_cast<std::size_t>(v)] != 0;
+    return any && !in_one_zone(ids);
+  };
+  for (counts.passes = 1; counts.passes <= max_passes; ++counts.passes) {
+    find_candidates(x_start, x, candidates);
+    hits.clear();
+    for (const auto& [v, t] : candidates.vt) {
+      const auto& tri = m_triangles[static_cast<std::size_t>(t)];
+      const std::array<Index, 4> ids{v, tri[0], tri[1], tri[2]};
+      if (!worth_testing(ids)) continue;
+      if (vertex_triangle_impact(vertex(x_start, v), vertex(x_start, tri[0]),
+                                 vertex(x_start, tri[1]), vertex(x_start, tri[2]), vertex(x, v),
+                                 vertex(x, tri[0]), vertex(x, tri[1]), vertex(x, tri[2]), m_eta_m))
+        hits.push_back(ids);
+    }
+    for (const auto& [e, f] : candidates.ee) {
+      const auto& a = m_edges[static_cast<std::size_t>(e)];
+      const auto& b = m_edges[static_cast<std::size_t>(f)];
+      const std::array<Index, 4> ids{a[0], a[1], b[0], b[1]};
+      if (!worth_testing(ids)) continue;
+      if (edge_edge_impact(vertex(x_start, a[0]), vertex(x_start, a[1]), vertex(x_start, b[0]),
+                           vertex(x_start, b[1]), vertex(x, a[0]), vertex(x, a[1]),
+                           vertex(x, b[0]), vertex(x, b[1]), m_eta_m))
+        hits.push_back(ids);
+    }
+    if (hits.empty()) break;
+    counts.collisions += static_cast<long>(hits.size());
+    if (counts.passes == max_passes) {
+      counts.resolved = false;
+      break;
+    }
+    for (const auto& ids : hits)
+      for (int k = 1; k < 4; ++k) unite(ids[0], ids[static_cast<std::size_t>(k)]);
+    // Zones joined by an edge become one, so that every edge between zone vertices moves
+    // rigidly (a projection that holds the zones cannot correct it).
+    std::vector<Index> joined;
+    for (const auto& e : m_edges) {
+      if (m_parent[static_cast<std::size_t>(e[0])] < 0 || m_parent[static_cast<std::size_t>(e[1])] < 0)
+        continue;
+      if (find(e[0]) != find(e[1])) {
+        unite(e[0], e[1]);
+        joined.push_back(e[0]);
+      }
+    }
+    // The zones that gained a pair this pass move anew, rigidly, from the start.
+    std::vector<char> touched_root(n, 0);
+    for (const auto& ids : hits) touched_root[static_cast<std::size_t>(find(ids[0]))] = 1;
+    for (const Index v : joined) touched_root[static_cast<std::size_t>(find(v))] = 1;
+    std::vector<std::vector<Index>> zones;
+    std::vector<Index> zone_of_root(n, -1);
+    for (std::size_t v = 0; v < n; ++v) {
+      if (m_parent[v] < 0) continue;
+      const auto root = static_cast<std::size_t>(find(static_cast<Index>(v)));
+      if (!touched_root[root]) continue;
+      if (zone_of_root[root] < 0) {
+        zone_of_root[root] = static_cast<Index>(zones.size());
+        zones.emplace_back();
+      }
+      zones[static_cast<std::size_t>(zone_of_root[root])].push_back(static_cast<Index>(v));
+    }
+    std::fill(changed.begin(), changed.end(), 0);
+    for (const auto& zone : zones) {
+      apply_rigid_zone_motion(zone, x_start, proposed, mass, x);
+      for (const Index v : zone) {
+        if (!(inv_mass[v] > 0.0)) x.row(v) = proposed.row(v);  // pins keep their own motion
+        changed[static_cast<std::size_t>(v)] = 1;
+      }
+    }
+  }
+  counts.passes = std::min(counts.passes, max_passes);
+  std::vector<char> is_root(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (m_parent[v] < 0) continue;
+    m_zone_vertices.push_back(static_cast<Index>(v));
+    is_root[static_cast<std::size_t>(find(static_cast<Index>(v)))] = 1;
+  }
+  counts.zone_vertices = static_cast<long>(m_zone_vertices.size());
+  counts.zones = static_cast<int>(std::count(is_root.begin(), is_root.end(), 1));
+  return counts;
+}
+
+}  // namespace weft::sim
