@@ -21,10 +21,13 @@ struct ZoneDrapeRun {
   double worst_strain = 0.0;     // the largest warp/weft strain at the end of a frame
   long unresolved_steps = 0;     // steps whose impact zones hit their pass limit
   long most_zone_vertices = 0;
+  int frames_beyond_tolerance = 0;  // frames ending with a strain above the projection's 1e-3
+  int unreported_frames = 0;        // … whose steps were all counted as converged
   Matrix3X x;
 };
 
-ZoneDrapeRun drop_drape_with_zones(Index n, int frames, int threads, bool impact_zones) {
+ZoneDrapeRun drop_drape_with_zones(Index n, int frames, int threads, bool impact_zones,
+                                   double neighbourhood_edges = 0.0) {
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
   s.time_step_s = 1.0 / 120.0;
@@ -37,7 +40,7 @@ ZoneDrapeRun drop_drape_with_zones(Index n, int frames, int threads, bool impact
                  PlaneObstacle{Vec3::Zero(), Vec3::UnitZ()}};
   s.collision_friction = 0.5;
   s.self_collision.enabled = true;
-  s.self_collision.neighbourhood_edges = 0.0;
+  s.self_collision.neighbourhood_edges = neighbourhood_edges;
   s.self_collision.impact_zones = impact_zones;
   s.self_collision.threads = threads;
   s.solver_threads = threads;
@@ -55,6 +58,10 @@ ZoneDrapeRun drop_drape_with_zones(Index n, int frames, int threads, bool impact
     run.most_zone_vertices = std::max(run.most_zone_vertices, st.max_impact_zone_vertices);
     const double strain = sim.diagnostics().max_strain;
     run.worst_strain = std::max(run.worst_strain, strain);
+    if (strain > s.projection.tolerance) {
+      ++run.frames_beyond_tolerance;
+      if (st.unconverged_steps == 0) ++run.unreported_frames;
+    }
     run.crossings.push_back(count_edge_triangle_crossings(sim.state().x, triangles, edges));
     if (std::getenv("WEFT_TEST_VERBOSE"))
       std::printf("frame %d: %ld steps, %ld unconverged, strain %.2e, %ld self contacts, %ld zone "
@@ -75,6 +82,19 @@ TEST(ImpactZoneDrape, InextensibleDrapeNeverPassesThroughItself) {
               "vertices in a step\n",
               run.worst_strain, run.most_zone_vertices);
   EXPECT_LE(run.worst_strain, 0.05);
+  EXPECT_EQ(run.unreported_frames, 0);
+}
+
+// With the default neighbourhood the zones form in sharper folds, and the edges leaving them
+// end some frames beyond the projection's tolerance (0.25 % at 32²): those steps are counted
+// as unconverged — weft run warns of them — rather than passed off as within the tolerance.
+TEST(ImpactZoneDrape, AStrainTheZonesLeaveBeyondTheToleranceIsReported) {
+  const ZoneDrapeRun run = drop_drape_with_zones(32, 24, 2, true, 1.0);
+  for (std::size_t f = 0; f < run.crossings.size(); ++f)
+    EXPECT_EQ(run.crossings[f], 0) << "frame " << f + 1;
+  EXPECT_GT(run.frames_beyond_tolerance, 0);  // what this test is about happens
+  EXPECT_EQ(run.unreported_frames, 0) << "of " << run.frames_beyond_tolerance
+                                      << " frames beyond the tolerance";
 }
 
 TEST(ImpactZoneDrape, SameBitsOnOneAndTwoThreads) {
