@@ -227,16 +227,16 @@ TEST_F(HostileInput, TooManyObstaclesIsAnErrorBeforeAnyWork) {
   const std::string plane = "{\"plane\": {\"point\": [0, 0, 0], \"normal\": [0, 0, 1]}}";
   std::string list;
   for (int k = 0; k < 100000; ++k) list += (k ? "," : "") + plane;
-  const auto start = std::chrono::steady_clock::now();
   const CommandResult r = run_scene("planes", tiny_scene("", ",\n  \"obstacles\": [" + list + "]"));
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.exit_code, 1) << r.output.substr(0, 400);
   EXPECT_CONTAINS(r.output, "obstacles: expected at most " +
                                 std::to_string(weft::app::max_obstacles) +
                                 " obstacles (the limit");
   EXPECT_CONTAINS(r.output, "got 100000");
-  EXPECT_LT(seconds, 20.0);
+  // Before any work: nothing simulated or drawn (not a timing, which a loaded or sanitized
+  // build stretches: 20.6 s under sanitizers on a busy machine).
+  EXPECT_FALSE(fs::exists(m_dir / "planes" / "frame_0001.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "planes" / "stats.csv"));
 }
 
 // --- empty and clashing paths ------------------------------------------------------------
