@@ -113,6 +113,33 @@ double ccd_relative_speed(const std::array<Vec3, N>& first, const std::array<Vec
   return speed;
 }
 
+// The largest length of the relative edges over the step (at least eta): the scale of the
+// coplanarity cubic's tolerance, which is a volume.
+double ccd_length_scale(const Vec3& u0, const Vec3& du, const Vec3& v0, const Vec3& dv,
+                        const Vec3& w0, const Vec3& dw, double eta_m) {
+  return std::max({u0.norm(), v0.norm(), w0.norm(), (u0 + du).norm(), (v0 + dv).norm(),
+                   (w0 + dw).norm(), eta_m});
+}
+
+// The earliest impact of two features whose coplanarity cubic is f: at the cubic's roots where
+// the height over the common plane, |f(t)| / plane_area(t), is below eta and the features' own
+// distance(t) is too; or, when they stay coplanar all step (f ≡ 0), by ccd_coplanar_search
+// with the bound relative_speed().
+template <class Distance, class Speed, class PlaneArea>
+std::optional<double> ccd_first_impact(const CoplanarityCubic& f, double length_m,
+                                       const Distance& distance, const Speed& relative_speed,
+                                       const PlaneArea& plane_area, double eta_m) {
+  std::array<double, 8> times{};
+  const int n = ccd_candidate_times(f, coplanar_tolerance * length_m * length_m * length_m, times);
+  if (n < 0) return ccd_coplanar_search(distance, relative_speed(), eta_m);
+  for (int k = 0; k < n; ++k) {
+    const double t = times[static_cast<std::size_t>(k)];
+    if (std::abs(f(t)) > eta_m * plane_area(t)) continue;
+    if (distance(t) < eta_m) return t;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 CoplanarityCubic coplanarity_cubic(const Vec3& u0, const Vec3& du, const Vec3& v0, const Vec3& dv,
@@ -132,29 +159,20 @@ std::optional<double> vertex_triangle_impact(const Vec3& p0, const Vec3& a0, con
   const Vec3 u0 = b0 - a0, v0 = c0 - a0, w0 = p0 - a0;
   const Vec3 du = (b1 - a1) - u0, dv = (c1 - a1) - v0, dw = (p1 - a1) - w0;
   const CoplanarityCubic f = coplanarity_cubic(u0, du, v0, dv, w0, dw);
-  const double length_m = std::max({u0.norm(), v0.norm(), w0.norm(), (u0 + du).norm(),
-                                    (v0 + dv).norm(), (w0 + dw).norm(), eta_m});
   const auto distance = [&](double t) {
     const Vec3 p = ccd_lerp(p0, p1, t), a = ccd_lerp(a0, a1, t), b = ccd_lerp(b0, b1, t),
                c = ccd_lerp(c0, c1, t);
     const Vec3 w = closest_point_on_triangle_weights(p, a, b, c);
     return (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
   };
-  std::array<double, 8> times{};
-  const int n = ccd_candidate_times(f, coplanar_tolerance * length_m * length_m * length_m, times);
-  if (n < 0) {
-    const double speed = ccd_relative_speed(std::array<Vec3, 1>{p1 - p0},
-                                            std::array<Vec3, 3>{a1 - a0, b1 - b0, c1 - c0});
-    return ccd_coplanar_search(distance, speed, eta_m);
-  }
-  // The distance is at least the height over the plane, |f| / |u × v|: measured only where
-  // that is below eta.
-  for (int k = 0; k < n; ++k) {
-    const double t = times[static_cast<std::size_t>(k)];
-    if (std::abs(f(t)) > eta_m * (u0 + t * du).cross(v0 + t * dv).norm()) continue;
-    if (distance(t) < eta_m) return t;
-  }
-  return std::nullopt;
+  const auto speed = [&] {
+    return ccd_relative_speed(std::array<Vec3, 1>{p1 - p0},
+                              std::array<Vec3, 3>{a1 - a0, b1 - b0, c1 - c0});
+  };
+  // The distance is at least the height over the plane, |f| / |u × v|.
+  const auto plane_area = [&](double t) { return (u0 + t * du).cross(v0 + t * dv).norm(); };
+  return ccd_first_impact(f, ccd_length_scale(u0, du, v0, dv, w0, dw, eta_m), distance, speed,
+                          plane_area, eta_m);
 }
 
 std::optional<double> edge_edge_impact(const Vec3& p0, const Vec3& q0, const Vec3& r0,
@@ -163,30 +181,22 @@ std::optional<double> edge_edge_impact(const Vec3& p0, const Vec3& q0, const Vec
   const Vec3 u0 = q0 - p0, v0 = r0 - p0, w0 = s0 - p0;
   const Vec3 du = (q1 - p1) - u0, dv = (r1 - p1) - v0, dw = (s1 - p1) - w0;
   const CoplanarityCubic f = coplanarity_cubic(u0, du, v0, dv, w0, dw);
-  const double length_m = std::max({u0.norm(), v0.norm(), w0.norm(), (u0 + du).norm(),
-                                    (v0 + dv).norm(), (w0 + dw).norm(), eta_m});
   const auto distance = [&](double t) {
     const Vec3 p = ccd_lerp(p0, p1, t), q = ccd_lerp(q0, q1, t), r = ccd_lerp(r0, r1, t),
                s = ccd_lerp(s0, s1, t);
     const std::array<double, 2> st = closest_segment_parameters(p, q, r, s);
     return ((p + st[0] * (q - p)) - (r + st[1] * (s - r))).norm();
   };
-  std::array<double, 8> times{};
-  const int n = ccd_candidate_times(f, coplanar_tolerance * length_m * length_m * length_m, times);
-  if (n < 0) {
-    const double speed = ccd_relative_speed(std::array<Vec3, 2>{p1 - p0, q1 - q0},
-                                            std::array<Vec3, 2>{r1 - r0, s1 - s0});
-    return ccd_coplanar_search(distance, speed, eta_m);
-  }
-  // The distance is at least the lines' distance, |f| / |(q − p) × (s − r)|: measured only
-  // where that is below eta.
-  for (int k = 0; k < n; ++k) {
-    const double t = times[static_cast<std::size_t>(k)];
-    const Vec3 along_pq = u0 + t * du, along_rs = (w0 + t * dw) - (v0 + t * dv);
-    if (std::abs(f(t)) > eta_m * along_pq.cross(along_rs).norm()) continue;
-    if (distance(t) < eta_m) return t;
-  }
-  return std::nullopt;
+  const auto speed = [&] {
+    return ccd_relative_speed(std::array<Vec3, 2>{p1 - p0, q1 - q0},
+                              std::array<Vec3, 2>{r1 - r0, s1 - s0});
+  };
+  // The distance is at least the lines' distance, |f| / |(q − p) × (s − r)|.
+  const auto plane_area = [&](double t) {
+    return (u0 + t * du).cross((w0 + t * dw) - (v0 + t * dv)).norm();
+  };
+  return ccd_first_impact(f, ccd_length_scale(u0, du, v0, dv, w0, dw, eta_m), distance, speed,
+                          plane_area, eta_m);
 }
 
 }  // namespace weft::sim
