@@ -8,6 +8,9 @@
 # program relinks when an archive changes. AddressSanitizer needs only the program itself linked
 # with -fsanitize=address: calls into uninstrumented code are not checked, not misreported.
 set(WEFT_PREBUILT_LIBRARIES weft_sim weft_analysis weft_render weft_chart)
+if(TARGET weft_remesh)  # the remesher (CGAL): 50 s of the instrumented build's compile time alone
+  list(APPEND WEFT_PREBUILT_LIBRARIES weft_remesh)
+endif()
 
 # Checks that `dir` is a build of this tree with the same optional parts, then swaps in its
 # archives. Call after every library target is defined.
