@@ -7,6 +7,9 @@
 
 #include "app/run_checkpoint.h"
 
+#include <elf.h>
+#include <link.h>
+
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -38,6 +41,36 @@ std::string hex(std::uint64_t value) {
   return text;
 }
 
+// The GNU build ID note of the main program (its first loaded object), or "" without one.
+std::string gnu_build_id() {
+  std::string id;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) -> int {
+        for (int i = 0; i < info->dlpi_phnum; ++i) {
+          const ElfW(Phdr)& segment = info->dlpi_phdr[i];
+          if (segment.p_type != PT_NOTE) continue;
+          const char* p = reinterpret_cast<const char*>(info->dlpi_addr + segment.p_vaddr);
+          const char* const end = p + segment.p_memsz;
+          const auto align4 = [](size_t n) { return (n + 3) & ~size_t{3}; };
+          while (p + sizeof(ElfW(Nhdr)) <= end) {
+            const auto* note = reinterpret_cast<const ElfW(Nhdr)*>(p);
+            const char* name = p + sizeof(ElfW(Nhdr));
+            const char* desc = name + align4(note->n_namesz);
+            if (desc + note->n_descsz > end) break;
+            if (note->n_type == NT_GNU_BUILD_ID && note->n_namesz == 4 &&
+                std::memcmp(name, "GNU", 4) == 0) {
+              static_cast<std::string*>(out)->assign(desc, note->n_descsz);
+              return 1;
+            }
+            p = desc + align4(note->n_descsz);
+          }
+        }
+        return 1;  // the main program only
+      },
+      &id);
+  return id;
+}
+
 }  // namespace
 
 std::uint64_t fnv1a_64(const std::string& bytes) {
@@ -50,7 +83,10 @@ std::uint64_t fnv1a_64(const std::string& bytes) {
 }
 
 std::uint64_t build_hash() {
-  static const std::uint64_t hash = fnv1a_64(read_bytes("/proc/self/exe"));
+  static const std::uint64_t hash = [] {
+    const std::string id = gnu_build_id();
+    return fnv1a_64(id.empty() ? read_bytes("/proc/self/exe") : id);
+  }();
   return hash;
 }
 
