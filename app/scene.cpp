@@ -294,13 +294,6 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
       s.implicit_solve);
   s.implicit_cg_tolerance =
       r.number("cg_tolerance", s.implicit_cg_tolerance, Range::gt(0.0).lt(1.0));
-  s.implicit_cg_preconditioner = r.enumeration<sim::CgPreconditioner>(
-      "cg_preconditioner",
-      {{"block_jacobi", sim::CgPreconditioner::block_jacobi},
-       {"cholesky", sim::CgPreconditioner::cholesky}},
-      s.implicit_cg_preconditioner);
-  s.implicit_cg_refactor_iterations = static_cast<int>(r.integer(
-      "cg_refactor_iterations", s.implicit_cg_refactor_iterations, Range::closed(0, 1000)));
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));

@@ -13,16 +13,13 @@
 //                                     [--cg TOLERANCE] [--quick] [--methods SUBSTRING]
 //                                     [--reuse N] [--threads N] [--frames N] [--no-hold]
 //                                     [--adaptive STRAIN] [--max-step SECONDS]
-//                                     [--precond block_jacobi|cholesky] [--refactor N]
 // --reuse: fast projection's CG iterations on a reused factorization (0: a factorization per
 // iteration, the paper's); --threads: implicit Euler's CG threads (0: all); --frames: fewer
 // frames for the largest sizes (the rows then cover only that start); --no-hold: project the
 // top edge between the pins instead of holding it (sim/constraints/taut_chains.h), to measure
 // what holding it buys; --adaptive: fast projection with the adaptive step
 // (sim/adaptive_step.h) aiming its prediction's strain at STRAIN, its steps at most --max-step
-// (default 1/24 s; --step is then unused); --precond: the preconditioner of --cg's conjugate
-// gradients, --refactor: iterations past which the Cholesky one is refactorized (the column
-// "CG fact" counts those factorizations per step). After the rows, the
+// (default 1/24 s; --step is then unused). After the rows, the
 // targets of issue 18 for fast projection at tol 1e-2, with the growth exponent.
 #include <algorithm>
 #include <cmath>
@@ -55,7 +52,6 @@ struct Row {
   double ms_per_frame = 0.0;   // median over frames
   double cpu_ms_per_frame = 0.0;  // process CPU time, mean over frames (robust to a busy machine)
   double factorizations_per_step = 0.0;
-  double cg_factorizations_per_step = 0.0;  // implicit Euler's Cholesky preconditioner
   double iterations_per_step = 0.0, cg_per_step = 0.0;
   int max_iterations = 0;
   double max_strain = 0.0, mean_strain = 0.0;
@@ -76,8 +72,6 @@ struct Options {
   bool hold_taut_chains = true;
   double adaptive_strain = 0.0;  // > 0: the adaptive step, aiming at this prediction strain
   double max_step_s = 1.0 / 24.0;
-  CgPreconditioner preconditioner = CgPreconditioner::block_jacobi;
-  int refactor_iterations = ImplicitSolveSettings{}.cg_refactor_iterations;
 };
 
 Row run(Index n, const Method& method, const Options& options) {
@@ -98,8 +92,6 @@ Row run(Index n, const Method& method, const Options& options) {
   if (options.cg_tolerance > 0.0 && method.projection != ProjectionMethod::none) {
     s.implicit_solve = ImplicitSolve::conjugate_gradient;
     s.implicit_cg_tolerance = options.cg_tolerance;
-    s.implicit_cg_preconditioner = options.preconditioner;
-    s.implicit_cg_refactor_iterations = options.refactor_iterations;
   }
   s.projection.method = method.projection;
   s.projection.tolerance = method.tolerance;
@@ -116,7 +108,7 @@ Row run(Index n, const Method& method, const Options& options) {
 
   Row row;
   std::vector<double> frame_ms;
-  long steps = 0, iterations = 0, cg_iterations = 0, factorizations = 0, cg_factorizations = 0;
+  long steps = 0, iterations = 0, cg_iterations = 0, factorizations = 0;
   const std::clock_t cpu_start = std::clock();
   double strain_sum = 0.0;
   int strain_frames = 0;
@@ -135,7 +127,6 @@ Row run(Index n, const Method& method, const Options& options) {
     iterations += st.projection_iterations;
     factorizations += st.projection_factorizations;
     cg_iterations += st.cg_iterations;
-    cg_factorizations += st.cg_factorizations;
     row.max_iterations = std::max(row.max_iterations, st.max_projection_iterations);
     row.unconverged += st.unconverged_steps;
     row.rejected += st.rejected_steps;
@@ -153,7 +144,6 @@ Row run(Index n, const Method& method, const Options& options) {
   row.iterations_per_step = static_cast<double>(iterations) / static_cast<double>(steps);
   row.factorizations_per_step = static_cast<double>(factorizations) / static_cast<double>(steps);
   row.cg_per_step = static_cast<double>(cg_iterations) / static_cast<double>(steps);
-  row.cg_factorizations_per_step = static_cast<double>(cg_factorizations) / static_cast<double>(steps);
   row.steps_per_frame = static_cast<double>(steps) / options.frames;
   row.mean_strain = strain_frames > 0 ? strain_sum / strain_frames : 0.0;
   return row;
@@ -214,16 +204,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) only = argv[++i];
     else if (!std::strcmp(argv[i], "--adaptive") && i + 1 < argc) options.adaptive_strain = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options.max_step_s = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--refactor") && i + 1 < argc) options.refactor_iterations = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--precond") && i + 1 < argc && !std::strcmp(argv[i + 1], "cholesky")) {
-      options.preconditioner = CgPreconditioner::cholesky;
-      ++i;
-    } else if (!std::strcmp(argv[i], "--precond") && i + 1 < argc && !std::strcmp(argv[i + 1], "block_jacobi")) {
-      options.preconditioner = CgPreconditioner::block_jacobi;
-      ++i;
-    }
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--precond block_jacobi|cholesky] [--refactor N]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS]\n", argv[0]);
       return 1;
     }
   }
@@ -258,9 +240,8 @@ int main(int argc, char** argv) {
                                          : "direct",
               sparse_backend_name(options.backend),
               options.hold_taut_chains ? "held (taut chain)" : "projected (--no-hold)");
-  std::printf("%-6s %-26s %10s %8s %9s %9s %8s %7s %11s %11s %7s %11s %8s %8s\n", "size", "method", "ms/frame",
-              "cpu ms", "iter/step", "fact/step", "CG/step", "max it", "max strain", "mean strain", "unconv", "steps/frame", "rejected",
-              "CG fact");
+  std::printf("%-6s %-26s %10s %8s %9s %9s %8s %7s %11s %11s %7s %11s %8s\n", "size", "method", "ms/frame",
+              "cpu ms", "iter/step", "fact/step", "CG/step", "max it", "max strain", "mean strain", "unconv", "steps/frame", "rejected");
   std::vector<std::pair<int, Row>> target_rows;  // fast projection at tol 1e-2, by size
   for (int n : sizes) {
     for (const Method& m : methods) {
@@ -271,9 +252,9 @@ int main(int argc, char** argv) {
         std::printf("%-6s %-26s diverged\n", size.c_str(), m.name.c_str());
         continue;
       }
-      std::printf("%-6s %-26s %10.2f %8.2f %9.2f %9.2f %8.1f %7d %10.4f%% %10.4f%% %7ld %11.2f %8ld %8.3f\n", size.c_str(),
+      std::printf("%-6s %-26s %10.2f %8.2f %9.2f %9.2f %8.1f %7d %10.4f%% %10.4f%% %7ld %11.2f %8ld\n", size.c_str(),
                   m.name.c_str(), r.ms_per_frame, r.cpu_ms_per_frame, r.iterations_per_step, r.factorizations_per_step, r.cg_per_step, r.max_iterations, 100 * r.max_strain, 100 * r.mean_strain,
-                  r.unconverged, r.steps_per_frame, r.rejected, r.cg_factorizations_per_step);
+                  r.unconverged, r.steps_per_frame, r.rejected);
       std::fflush(stdout);
     }
   }

@@ -32,7 +32,6 @@ struct StepStatistics {
   double solve_s = 0.0;               // linear solves (implicit Euler and fast projection)
   long failed_implicit_solves = 0;
   long cg_iterations = 0;             // implicit Euler by conjugate gradients, summed over steps
-  long cg_factorizations = 0;         // of its Cholesky preconditioner, summed over steps
   long max_self_contacts = 0;         // self-collision contacts in any one step
   long max_impact_zone_vertices = 0;  // vertices in self-collision's impact zones, any one step
   long unresolved_impact_steps = 0;   // steps whose impact zones hit their pass limit

@@ -89,10 +89,6 @@ struct SimSettings {
   // residual of implicit_cg_tolerance (see ImplicitSolveSettings).
   ImplicitSolve implicit_solve = ImplicitSolve::direct;
   double implicit_cg_tolerance = 1e-4;
-  // Conjugate gradients' preconditioner, and when its Cholesky factorization is redone (see
-  // ImplicitSolveSettings).
-  CgPreconditioner implicit_cg_preconditioner = CgPreconditioner::block_jacobi;
-  int implicit_cg_refactor_iterations = ImplicitSolveSettings{}.cg_refactor_iterations;
   // Threads of the conjugate gradients' matrix–vector product (0: all hardware threads). Never
   // changes a bit of the result (`weft run --threads`).
   int solver_threads = 0;

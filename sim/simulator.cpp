@@ -94,9 +94,6 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_integrator_settings.implicit_solve.method = settings.implicit_solve;
   m_integrator_settings.implicit_solve.backend = settings.sparse_backend;
   m_integrator_settings.implicit_solve.cg_tolerance = settings.implicit_cg_tolerance;
-  m_integrator_settings.implicit_solve.cg_preconditioner = settings.implicit_cg_preconditioner;
-  m_integrator_settings.implicit_solve.cg_refactor_iterations =
-      settings.implicit_cg_refactor_iterations;
   m_integrator_settings.implicit_solve.threads = settings.solver_threads;
   // Dynamic relaxation: one iteration per step of the explicit integrators' step, with
   // fictitious masses stable at it (sim/integrators/dynamic_relaxation.h).
@@ -230,7 +227,6 @@ bool Simulator::attempt_step(double h_s, bool may_reject) {
   m_stats.solve_s += integrated.solve_s;
   if (!integrated.solved) ++m_stats.failed_implicit_solves;
   m_stats.cg_iterations += integrated.cg_iterations;
-  m_stats.cg_factorizations += integrated.cg_factorizations;
   m_timers.time(Phase::pins, [&] { place_pins(t1); });
   if (m_adaptive) {
     const double strain = max_edge_strain(m_contacts->projector()->constraints(), m_state.x);

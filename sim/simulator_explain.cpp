@@ -49,10 +49,7 @@ std::string Simulator::explain_integrate() const {
     if (m_settings.implicit_solve == ImplicitSolve::direct)
       line << ", sparse direct solve (" << sparse_backend_name(m_settings.sparse_backend) << ")";
     else
-      line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance
-           << (m_settings.implicit_cg_preconditioner == CgPreconditioner::cholesky
-                   ? " preconditioned by a reused Cholesky factorization"
-                   : "");
+      line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance;
   }
   if (const DynamicRelaxation* relaxation = this->relaxation()) {
     const Eigen::ArrayXd ratio =

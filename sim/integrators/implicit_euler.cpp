@@ -32,12 +32,6 @@ struct ImplicitEuler::Impl {
   std::unique_ptr<SparseSpdSolver> solver;  // direct
   std::unique_ptr<BlockConjugateGradient> cg;  // conjugate gradients
   Eigen::VectorXd last_dv;  // conjugate gradients' warm start
-  // CgPreconditioner::cholesky: a factorization of an earlier step's A, the values it was made
-  // from (for a checkpoint), and the last step's iteration count, which decides a refactorization.
-  std::unique_ptr<SparseSpdSolver> cg_factor;
-  bool cg_factor_valid = false;
-  std::vector<double> cg_factored_values;
-  int last_cg_iterations = 0;
   Matrix3X forces;          // #V×3 scratch, N
   Matrix3X velocity_forces; // #V×3 scratch, N
   Matrix3X kv;              // #V×3 scratch, K v_n, N/s
@@ -112,10 +106,6 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
     cg = std::make_unique<BlockConjugateGradient>(solve.threads);
     cg->analyze(A);
     last_dv = Eigen::VectorXd::Zero(3 * n);
-    if (solve.cg_preconditioner == CgPreconditioner::cholesky) {
-      cg_factor = make_sparse_spd_solver(solve.backend);
-      cg_factor->analyze(A);
-    }
   }
 }
 
@@ -168,20 +158,10 @@ bool ImplicitEuler::Impl::solve_system(const Eigen::VectorXd& rhs, Eigen::Vector
     return dv.allFinite();  // NaN/inf in, or a factorization that should have failed
   }
   cg->set_matrix(A);
-  const SparseSpdSolver* factor = nullptr;
-  if (cg_factor) {
-    if (!cg_factor_valid || last_cg_iterations > solve_settings.cg_refactor_iterations) {
-      ++result.cg_factorizations;
-      cg_factor_valid = cg_factor->factorize(A);  // else block Jacobi, and again next step
-      if (cg_factor_valid) cg_factored_values.assign(A.valuePtr(), A.valuePtr() + A.nonZeros());
-    }
-    if (cg_factor_valid) factor = cg_factor.get();
-  }
   dv = last_dv;
   const BlockConjugateGradient::Result r =
-      cg->solve(rhs, dv, solve_settings.cg_tolerance, solve_settings.cg_max_iterations, factor);
+      cg->solve(rhs, dv, solve_settings.cg_tolerance, solve_settings.cg_max_iterations);
   result.cg_iterations = r.iterations;
-  last_cg_iterations = r.iterations;
   // Not converging within the cap still leaves a usable (smaller-residual) Δv; a breakdown
   // (non-SPD A, non-finite input) does not.
   if (r.breakdown || !dv.allFinite()) return false;
@@ -360,32 +340,15 @@ StepReport ImplicitEuler::step(const System& system, State& state, double h_s) {
   return result;
 }
 
-// The direct solver refactorizes every step; conjugate gradients carry their warm start and,
-// with the Cholesky preconditioner, the matrix it factorizes and the last iteration count.
+// The direct solver refactorizes every step; only conjugate gradients' warm start carries over.
 void ImplicitEuler::save_state(StateWriter& out) const {
-  const Impl& im = *m_impl;
   out.section("implicit Euler");
-  out.matrix(im.last_dv);
-  out.pod(im.cg_factor_valid);
-  out.pods(im.cg_factor_valid ? im.cg_factored_values : std::vector<double>{});
-  out.pod(im.last_cg_iterations);
+  out.matrix(m_impl->last_dv);
 }
 
 void ImplicitEuler::restore_state(StateReader& in) {
-  Impl& im = *m_impl;
   in.section("implicit Euler");
-  in.matrix(im.last_dv, im.last_dv.size(), 1);
-  im.cg_factor_valid = in.pod<bool>();
-  in.pods(im.cg_factored_values);
-  im.last_cg_iterations = in.pod<int>();
-  if (!im.cg_factor_valid) return;
-  if (!im.cg_factor || im.cg_factored_values.size() != static_cast<std::size_t>(im.A.nonZeros()))
-    in.fail("a preconditioner factorization of " + std::to_string(im.cg_factored_values.size()) +
-            " values for a matrix of " + std::to_string(im.A.nonZeros()) +
-            (im.cg_factor ? "" : " without the Cholesky preconditioner"));
-  SparseMatrix saved = im.A;
-  std::copy(im.cg_factored_values.begin(), im.cg_factored_values.end(), saved.valuePtr());
-  if (!im.cg_factor->factorize(saved)) in.fail("the saved preconditioner factorization fails");
+  in.matrix(m_impl->last_dv, m_impl->last_dv.size(), 1);
 }
 
 }  // namespace weft::sim

@@ -20,7 +20,6 @@ struct StepReport {
   bool solved = true;          // implicit Euler: false when the linear solve failed (v kept)
   double solve_s = 0.0;        // implicit Euler: assembly, factorization and solve, s
   int cg_iterations = 0;       // implicit Euler by conjugate gradients
-  int cg_factorizations = 0;   // implicit Euler: Cholesky factorizations for CG's preconditioner
   bool kinetic_reset = false;  // dynamic relaxation: a kinetic-damping reset (v is now 0)
 };
 
@@ -50,18 +49,11 @@ class TimeIntegrator {
 // the step's accuracy is then that of the residual).
 enum class ImplicitSolve { direct, conjugate_gradient };
 
-// Conjugate gradients' preconditioner: the inverse of each vertex's 3×3 diagonal block, or a
-// sparse Cholesky factorization (through `backend`) of an earlier step's matrix, reused until
-// a step takes more than cg_refactor_iterations iterations (the next step then refactorizes).
-enum class CgPreconditioner { block_jacobi, cholesky };
-
 struct ImplicitSolveSettings {
   ImplicitSolve method = ImplicitSolve::direct;
   SparseBackend backend = default_sparse_backend();  // direct
   double cg_tolerance = 1e-4;                        // conjugate gradients: relative residual
   int cg_max_iterations = 200;
-  CgPreconditioner cg_preconditioner = CgPreconditioner::block_jacobi;
-  int cg_refactor_iterations = 8;  // cholesky: more iterations than this refactorize next step
   // Conjugate gradients: threads of the matrix–vector product (0: all hardware threads). The
   // result is the same bits for any number.
   int threads = 0;

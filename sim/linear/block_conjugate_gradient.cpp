@@ -108,8 +108,7 @@ void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::Vecto
 
 BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::VectorXd& b,
                                                              Eigen::VectorXd& x, double tolerance,
-                                                             int max_iterations,
-                                                             const SparseSpdSolver* factorization) const {
+                                                             int max_iterations) const {
   if (b.size() != 3 * static_cast<Eigen::Index>(m_diagonal_block.size()))
     throw std::logic_error("BlockConjugateGradient::solve: right-hand side has " +
                            std::to_string(b.size()) + " rows, expected " +
@@ -134,15 +133,8 @@ BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::Vector
     result.breakdown = true;
     return result;
   }
-  const auto apply_preconditioner = [&] {
-    if (factorization != nullptr) {
-      z = factorization->solve(r);
-    } else {
-      precondition(r, z);
-    }
-  };
   if (r_norm2 > threshold) {
-    apply_preconditioner();
+    precondition(r, z);
     p = z;
     double rz = r.dot(z);
     while (result.iterations < max_iterations) {
@@ -162,7 +154,7 @@ BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::Vector
       r -= alpha * q;
       r_norm2 = r.squaredNorm();
       if (r_norm2 <= threshold) break;
-      apply_preconditioner();
+      precondition(r, z);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;

@@ -10,10 +10,6 @@
 // order, so the product — and with the sequential vector updates and dot products, every
 // iterate — is the same bits for any number of threads (DESIGN.md, Determinism).
 //
-// The preconditioner is block Jacobi unless solve() is given a factorization of a nearby SPD
-// matrix (an earlier step's A): then z = F⁻¹ r, F's triangular solves run on the calling thread,
-// and with F = A the iteration ends after one step.
-//
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.
 
@@ -46,11 +42,9 @@ class BlockConjugateGradient {
   void analyze(const SparseMatrix& lower);
   // The values of `lower` (the analysed pattern) and the inverses of its 3×3 diagonal blocks.
   void set_matrix(const SparseMatrix& lower);
-  // From the initial guess x (resized to b's size and zeroed if its size differs);
-  // `factorization`, when given, preconditions instead of block Jacobi (factorize()d, the
-  // same size).
+  // From the initial guess x (resized to b's size and zeroed if its size differs).
   Result solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
-               int max_iterations, const SparseSpdSolver* factorization = nullptr) const;
+               int max_iterations) const;
 
  private:
   using Block = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;

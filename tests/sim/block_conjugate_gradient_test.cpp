@@ -121,57 +121,6 @@ TEST(BlockConjugateGradient, SameBitsForAnyNumberOfThreads) {
   EXPECT_TRUE((x[0].array() == x[2].array()).all());
 }
 
-// A factorization as the preconditioner (CgPreconditioner::cholesky): of A itself, CG is a
-// direct solve and stops after one iteration; of a different ("stale") SPD matrix — the same
-// grid with springs 30 % stiffer or softer and the diagonal raised by up to 5 % at random — it
-// still reaches the tolerance, in far fewer iterations than block Jacobi, and agrees with it.
-TEST(BlockConjugateGradient, FactorizationPreconditionerIsExactOnItsOwnMatrix) {
-  const SparseMatrix A = grid_system(12, 0.05, 9);
-  const Eigen::VectorXd b = random_vector(A.rows(), 10);
-  const auto cg = prepared(A);
-  for (SparseBackend backend : available_sparse_backends()) {
-    SCOPED_TRACE(sparse_backend_name(backend));
-    const auto factor = make_sparse_spd_solver(backend);
-    factor->analyze(lower(A));
-    ASSERT_TRUE(factor->factorize(lower(A)));
-    Eigen::VectorXd x;
-    const auto r = cg->solve(b, x, 1e-10, 50, factor.get());
-    EXPECT_FALSE(r.breakdown);
-    EXPECT_EQ(r.iterations, 1);
-    EXPECT_LE(r.relative_residual, 1e-10);
-    EXPECT_LE((b - A * x).norm() / b.norm(), 1e-10);
-  }
-}
-
-TEST(BlockConjugateGradient, StaleFactorizationStillReachesTheTolerance) {
-  const SparseMatrix A = grid_system(16, 0.05, 11);
-  SparseMatrix stale = A;  // every entry off the mass diagonal scaled by one factor in [0.7, 1.3]
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> scale(0.7, 1.3);
-  const double s = scale(rng);
-  for (int col = 0; col < stale.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(stale, col); it; ++it)
-      it.valueRef() = it.row() == it.col() ? 0.05 + s * (it.value() - 0.05) : s * it.value();
-  std::uniform_real_distribution<double> raise(1.0, 1.05);  // not a scaling; stays SPD
-  for (int col = 0; col < stale.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(stale, col); it; ++it)
-      if (it.row() == it.col()) it.valueRef() *= raise(rng);
-  const Eigen::VectorXd b = random_vector(A.rows(), 13);
-  const auto cg = prepared(A);
-  const auto factor = make_sparse_spd_solver(default_sparse_backend());
-  factor->analyze(lower(stale));
-  ASSERT_TRUE(factor->factorize(lower(stale)));
-  Eigen::VectorXd x, y;
-  const auto with_factor = cg->solve(b, x, 1e-8, 500, factor.get());
-  const auto jacobi = cg->solve(b, y, 1e-8, 2000);
-  EXPECT_FALSE(with_factor.breakdown);
-  EXPECT_LE(with_factor.relative_residual, 1e-8);
-  EXPECT_LE((b - A * x).norm() / b.norm(), 1e-8);
-  EXPECT_GT(with_factor.iterations, 1);
-  EXPECT_LT(3 * with_factor.iterations, jacobi.iterations);
-  EXPECT_LT((x - y).norm() / y.norm(), 1e-6);
-}
-
 TEST(BlockConjugateGradient, IndefiniteMatrixIsABreakdown) {
   SparseMatrix A = grid_system(4, 0.05, 8);
   A.coeffRef(6, 6) = -50.0;  // a negative diagonal entry: not positive definite
