@@ -1,8 +1,6 @@
 #include "sim/integrators/implicit_euler.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -108,10 +106,6 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
     cg = std::make_unique<BlockConjugateGradient>(solve.threads);
     cg->analyze(A);
     last_dv = Eigen::VectorXd::Zero(3 * n);
-    if (const char* mg = std::getenv("WEFT_TWO_LEVEL")) {  // EXPERIMENT: sweeps
-      const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
-      if (side * side == n) cg->set_two_level_grid(side, std::atoi(mg));
-    }
   }
 }
 

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -18,9 +16,7 @@ constexpr std::size_t kBlockRowsPerThreadMin = 700;
 BlockConjugateGradient::BlockConjugateGradient(int threads)
     : m_pool(std::make_unique<base::ThreadPool>(threads)) {}
 
-BlockConjugateGradient::~BlockConjugateGradient() {
-  if (m_grid_n > 0) std::fprintf(stderr, "two-level: %d coarse factorizations\n", coarse_factorizations);
-}
+BlockConjugateGradient::~BlockConjugateGradient() = default;
 
 void BlockConjugateGradient::analyze(const SparseMatrix& lower) {
   if (lower.rows() != lower.cols() || lower.rows() % 3 != 0 || !lower.isCompressed())
@@ -79,19 +75,6 @@ void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
   }
   for (std::size_t p = 0; p < m_block_inverse.size(); ++p)
     m_block_inverse[p] = Block(m_blocks.data() + m_diagonal_block[p]).inverse();
-  if (m_grid_n > 0 && (!m_coarse || m_last_iterations > m_coarse_refactor)) {
-    const SparseMatrix full = lower.selfadjointView<Eigen::Lower>();
-    const SparseMatrix AP = full * m_P;
-    const SparseMatrix Ac = m_P.transpose() * AP;
-    SparseMatrix lower_c = Ac.triangularView<Eigen::Lower>();
-    lower_c.makeCompressed();
-    if (!m_coarse) {
-      m_coarse = make_sparse_spd_solver(default_sparse_backend());
-      m_coarse->analyze(lower_c);
-    }
-    ++coarse_factorizations;
-    if (!m_coarse->factorize(lower_c)) throw std::runtime_error("coarse factorization failed");
-  }
 }
 
 void BlockConjugateGradient::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
@@ -116,67 +99,7 @@ void BlockConjugateGradient::multiply(const Eigen::VectorXd& x, Eigen::VectorXd&
   }
 }
 
-void BlockConjugateGradient::set_two_level_grid(int n, int sweeps) {
-  m_grid_n = n;
-  m_sweeps = sweeps;
-  if (n <= 0) return;
-  const int nc = n / 2 + 1;  // coarse nodes at fine 2I (the last clamped to n−1)
-  const auto coarse_of = [&](int I) { return std::min(2 * I, n - 1); };
-  std::vector<Eigen::Triplet<double, int>> t;
-  // 1-D weights: fine i from coarse I.
-  const auto weights = [&](int i, std::vector<std::pair<int, double>>& w) {
-    w.clear();
-    const int I = i / 2;
-    if (coarse_of(I) == i) { w.push_back({I, 1.0}); return; }
-    const int a = coarse_of(I), b = coarse_of(I + 1);
-    const double s = double(i - a) / double(b - a);
-    w.push_back({I, 1.0 - s});
-    w.push_back({I + 1, s});
-  };
-  std::vector<std::pair<int, double>> wi, wj;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      weights(i, wi);
-      weights(j, wj);
-      for (auto [I, a] : wi)
-        for (auto [J, b] : wj)
-          for (int c = 0; c < 3; ++c) t.emplace_back(3 * (j * n + i) + c, 3 * (J * nc + I) + c, a * b);
-    }
-  m_P.resize(3 * n * n, 3 * nc * nc);
-  m_P.setFromTriplets(t.begin(), t.end());
-  m_P.makeCompressed();
-  m_coarse.reset();
-  if (const char* k = std::getenv("WEFT_COARSE_REFACTOR")) m_coarse_refactor = std::atoi(k);
-}
-
-void BlockConjugateGradient::jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  for (std::size_t v = 0; v < m_block_inverse.size(); ++v) {
-    const auto i = static_cast<Eigen::Index>(3 * v);
-    z.segment<3>(i).noalias() = m_block_inverse[v] * r.segment<3>(i);
-  }
-}
-
 void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  if (m_grid_n > 0) {
-    constexpr double omega = 0.6;
-    Eigen::VectorXd Az(r.size()), d(r.size());
-    jacobi(r, z);
-    z *= omega;
-    for (int s = 1; s < m_sweeps; ++s) {
-      multiply(z, Az);
-      jacobi(r - Az, d);
-      z += omega * d;
-    }
-    multiply(z, Az);
-    const Eigen::VectorXd rc = m_P.transpose() * (r - Az);
-    z += m_P * m_coarse->solve(rc);
-    for (int s = 0; s < m_sweeps; ++s) {
-      multiply(z, Az);
-      jacobi(r - Az, d);
-      z += omega * d;
-    }
-    return;
-  }
   for (std::size_t v = 0; v < m_block_inverse.size(); ++v) {
     const auto i = static_cast<Eigen::Index>(3 * v);
     z.segment<3>(i).noalias() = m_block_inverse[v] * r.segment<3>(i);
@@ -238,7 +161,6 @@ BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::Vector
     }
   }
   result.relative_residual = std::sqrt(r_norm2 / b_norm2);
-  m_last_iterations = result.iterations;
   return result;
 }
 

@@ -42,11 +42,6 @@ class BlockConjugateGradient {
   void analyze(const SparseMatrix& lower);
   // The values of `lower` (the analysed pattern) and the inverses of its 3×3 diagonal blocks.
   void set_matrix(const SparseMatrix& lower);
-  // EXPERIMENT: a two-level preconditioner on an n×n vertex grid (vertex j n + i), bilinear
-  // prolongation to every other vertex, Galerkin coarse matrix factorized by CHOLMOD, damped
-  // block-Jacobi smoothing (`sweeps` before and after). 0 = block Jacobi.
-  void set_two_level_grid(int n, int sweeps);
-  int coarse_factorizations = 0;
   // From the initial guess x (resized to b's size and zeroed if its size differs).
   Result solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
                int max_iterations) const;
@@ -55,11 +50,6 @@ class BlockConjugateGradient {
   using Block = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;  // y = A x
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
-  void jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
-  int m_grid_n = 0, m_sweeps = 1, m_coarse_refactor = 0;
-  mutable int m_last_iterations = 1 << 30;
-  SparseMatrix m_P;
-  std::unique_ptr<SparseSpdSolver> m_coarse;
 
   std::unique_ptr<base::ThreadPool> m_pool;
   // Block compressed rows: block row p has the blocks m_block_start[p] … m_block_start[p+1]−1,
