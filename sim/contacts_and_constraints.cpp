@@ -105,7 +105,10 @@ void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& s
 // The impact zones leave the edges from a zone to the rest of the cloth stretched. With a
 // projection, the cloth is projected once more with every zone vertex so far held (inverse
 // mass 0: a zone keeps its rigid motion) and the zones are sought again over the new motion,
-// up to kHeldRounds times; the impact zones always come last, so no crossing is left.
+// up to kHeldRounds times; the impact zones always come last, so no crossing is left. The
+// projector of these projections is made once and given the held vertices at each round
+// (set_inverse_masses: fast projection keeps its analysis); it starts each step afresh, so
+// nothing of it carries from one step to the next.
 void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats) {
   ImpactZoneCounts counts = m_zones->resolve(x_start, m_inv_mass, x);
   long most = counts.zone_vertices;
@@ -113,9 +116,11 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
     Eigen::VectorXd held = m_inv_mass;
     for (int round = 0; round < kHeldRounds && (round == 0 || counts.collisions > 0); ++round) {
       for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
-      const auto projector =
-          make_projector(m_mesh, held, m_settings.projection, m_settings.sparse_backend);
-      const ProjectionResult r = projector->project(x);
+      if (!m_held_projector)
+        m_held_projector =
+            make_projector(m_mesh, m_inv_mass, m_settings.projection, m_settings.sparse_backend);
+      m_held_projector->set_inverse_masses(held, /*fresh=*/round == 0);
+      const ProjectionResult r = m_held_projector->project(x);
       stats.projection_iterations += r.iterations;  // its convergence shows in the frame's strain
       stats.projection_factorizations += r.factorizations;
       stats.projection_reuse_iterations += r.reuse_iterations;
