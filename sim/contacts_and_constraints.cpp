@@ -1,7 +1,10 @@
 #include "sim/contacts_and_constraints.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
+
+#include "sim/constraints/inextensibility.h"
 
 namespace weft::sim {
 namespace {
@@ -125,7 +128,18 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
       stats.projection_factorizations += r.factorizations;
       stats.projection_reuse_iterations += r.reuse_iterations;
       stats.solve_s += r.solve_s;
+      // The zones take in the free ends of the edges they leave stretched beyond the
+      // tolerance: a zone that moves rigidly with them keeps those edges at their start length.
+      std::vector<std::array<Index, 2>> stretched;
+      if (m_settings.projection.method == ProjectionMethod::fast_projection)
+        for (const EdgeConstraint& c : m_held_projector->constraints())
+          if ((held[c.a] == 0.0) != (held[c.b] == 0.0) &&
+              std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)) >
+                  m_settings.projection.tolerance)
+            stretched.push_back({c.a, c.b});
+      m_zones->absorb(stretched);
       counts = m_zones->resolve(x_start, m_inv_mass, x, /*grow=*/true);
+      if (!stretched.empty()) counts.collisions += static_cast<long>(stretched.size());
       most = std::max(most, counts.zone_vertices);
     }
   }

@@ -200,6 +200,10 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
   }
 }
 
+void ImpactZones::absorb(const std::vector<std::array<Index, 2>>& edges) {
+  m_absorbed.insert(m_absorbed.end(), edges.begin(), edges.end());
+}
+
 ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
                                       Matrix3X& x, bool grow) {
   ImpactZoneCounts counts;
@@ -233,9 +237,17 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
     for (const Index v : ids) any = any || changed[static_cast<std::size_t>(v)] != 0;
     return any && !in_one_zone(ids);
   };
-  for (counts.passes = 1; counts.passes <= max_passes; ++counts.passes) {
-    find_candidates(x_start, x, changed, candidates);
+  // Edges absorb() gave since the last call join their zones first, as hits of a pass 0.
+  std::vector<std::array<Index, 4>> absorbed;
+  if (grow)
+    for (const auto& e : m_absorbed) absorbed.push_back({e[0], e[1], e[1], e[1]});
+  m_absorbed.clear();
+  for (counts.passes = absorbed.empty() ? 1 : 0; counts.passes <= max_passes; ++counts.passes) {
     hits.clear();
+    if (counts.passes == 0) {
+      hits = absorbed;
+    } else {
+    find_candidates(x_start, x, changed, candidates);
     for (const auto& [v, t] : candidates.vt) {
       const auto& tri = m_triangles[static_cast<std::size_t>(t)];
       const std::array<Index, 4> ids{v, tri[0], tri[1], tri[2]};
@@ -255,8 +267,9 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
                            vertex(x, b[0]), vertex(x, b[1]), m_eta_m))
         hits.push_back(ids);
     }
+    }
     if (hits.empty()) break;
-    counts.collisions += static_cast<long>(hits.size());
+    if (counts.passes > 0) counts.collisions += static_cast<long>(hits.size());
     if (counts.passes == max_passes) {
       counts.resolved = false;
       break;
@@ -290,7 +303,7 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
       }
       zones[static_cast<std::size_t>(zone_of_root[root])].push_back(static_cast<Index>(v));
     }
-    std::fill(changed.begin(), changed.end(), 0);
+    if (counts.passes > 0) std::fill(changed.begin(), changed.end(), 0);
     for (const auto& zone : zones) {
       apply_rigid_zone_motion(zone, x_start, proposed, mass, x);
       for (const Index v : zone) {
@@ -299,7 +312,7 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
       }
     }
   }
-  counts.passes = std::min(counts.passes, max_passes);
+  counts.passes = std::max(1, std::min(counts.passes, max_passes));
   m_last_start = x_start;
   m_last_x = x;
   m_last_resolved = counts.resolved;

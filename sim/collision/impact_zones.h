@@ -70,6 +70,11 @@ class ImpactZones {
   ImpactZoneCounts resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass, Matrix3X& x,
                            bool grow = false);
 
+  // Edges (pairs of vertices) whose two ends the next resolve() with grow puts into one zone,
+  // moved rigidly like a colliding pair's: edges leaving a zone that a projection with the
+  // zones held could not bring within its tolerance (the zone takes in their free ends).
+  void absorb(const std::vector<std::array<Index, 2>>& edges);
+
   // The vertices in some zone after the last resolve(), ascending (with grow, the earlier
   // calls' zones too).
   const std::vector<Index>& zone_vertices() const { return m_zone_vertices; }
@@ -102,6 +107,7 @@ class ImpactZones {
   double m_eta_m;
   std::vector<Index> m_parent;  // union–find over vertices; −1: in no zone
   std::vector<Index> m_zone_vertices;
+  std::vector<std::array<Index, 2>> m_absorbed;  // for the next resolve() with grow
   // The last resolve()'s positions and whether it ended without a collision: a call with grow
   // need not test again the pairs that did not move since.
   Matrix3X m_last_start, m_last_x;
