@@ -1,7 +1,10 @@
 #include "sim/contacts_and_constraints.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
+
+#include "sim/constraints/inextensibility.h"
 
 namespace weft::sim {
 namespace {
@@ -105,7 +108,10 @@ void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& s
 // The impact zones leave the edges from a zone to the rest of the cloth stretched. With a
 // projection, the cloth is projected once more with every zone vertex so far held (inverse
 // mass 0: a zone keeps its rigid motion) and the zones are sought again over the new motion,
-// up to kHeldRounds times; the impact zones always come last, so no crossing is left.
+// up to kHeldRounds times; the impact zones always come last, so no crossing is left. The
+// projector of these projections is made once and given the held vertices at each round
+// (set_inverse_masses: fast projection keeps its analysis); it starts each step afresh, so
+// nothing of it carries from one step to the next.
 void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats) {
   ImpactZoneCounts counts = m_zones->resolve(x_start, m_inv_mass, x);
   long most = counts.zone_vertices;
@@ -113,14 +119,27 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
     Eigen::VectorXd held = m_inv_mass;
     for (int round = 0; round < kHeldRounds && (round == 0 || counts.collisions > 0); ++round) {
       for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
-      const auto projector =
-          make_projector(m_mesh, held, m_settings.projection, m_settings.sparse_backend);
-      const ProjectionResult r = projector->project(x);
+      if (!m_held_projector)
+        m_held_projector =
+            make_projector(m_mesh, m_inv_mass, m_settings.projection, m_settings.sparse_backend);
+      m_held_projector->set_inverse_masses(held, /*fresh=*/round == 0);
+      const ProjectionResult r = m_held_projector->project(x);
       stats.projection_iterations += r.iterations;  // its convergence shows in the frame's strain
       stats.projection_factorizations += r.factorizations;
       stats.projection_reuse_iterations += r.reuse_iterations;
       stats.solve_s += r.solve_s;
+      // The zones take in the free ends of the edges they leave stretched beyond the
+      // tolerance: a zone that moves rigidly with them keeps those edges at their start length.
+      std::vector<std::array<Index, 2>> stretched;
+      if (m_settings.projection.method == ProjectionMethod::fast_projection)
+        for (const EdgeConstraint& c : m_held_projector->constraints())
+          if ((held[c.a] == 0.0) != (held[c.b] == 0.0) &&
+              std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)) >
+                  m_settings.projection.tolerance)
+            stretched.push_back({c.a, c.b});
+      m_zones->absorb(stretched);
       counts = m_zones->resolve(x_start, m_inv_mass, x, /*grow=*/true);
+      if (!stretched.empty()) counts.collisions += static_cast<long>(stretched.size());
       most = std::max(most, counts.zone_vertices);
     }
   }

@@ -70,6 +70,7 @@ class ContactsAndConstraints {
   std::shared_ptr<CarriedTensionTerm> m_tension;  // when fast projection carries tension
   std::unique_ptr<SelfCollision> m_self;          // when settings.self_collision.enabled
   std::unique_ptr<ImpactZones> m_zones;           // with m_self, unless impact_zones is off
+  std::unique_ptr<ConstraintProjector> m_held_projector;  // the zones' (failsafe), made at need
   // The continuous-collision thickness of the impact zones, a fraction of self-collision's.
   static constexpr double impact_zone_fraction = 0.1;
   std::vector<Obstacle> m_posed_obstacles;        // where the obstacles are at the step's end

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -98,27 +99,54 @@ void ImpactZones::unite(Index a, Index b) {
   if (rb < ra) m_parent[static_cast<std::size_t>(ra)] = rb;
 }
 
-void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
-                                  PairLists& out) const {
-  out.vt.clear();
-  out.ee.clear();
+double ImpactZones::reach_needed(const Matrix3X& x_start, const Matrix3X& x) const {
+  if (m_cache_a.rows() != x.rows() || m_cache_b.rows() != x.rows())
+    return std::numeric_limits<double>::infinity();
+  // T_k must lie in [p_k − hi_k − r, p_k − lo_k + r] for every position p and its vertex's
+  // reference box [lo, hi]: possible iff max(p − hi) − min(p − lo) ≤ 2 r.
+  Eigen::Array3d most = Eigen::Array3d::Constant(-std::numeric_limits<double>::infinity());
+  Eigen::Array3d least = -most;
+  for (const Index v : m_vertices) {
+    const Eigen::Array3d a = vertex(m_cache_a, v).array(), b = vertex(m_cache_b, v).array();
+    const Eigen::Array3d lo = a.min(b), hi = a.max(b);
+    for (const Matrix3X* m : {&x_start, &x}) {
+      const Eigen::Array3d p = vertex(*m, v).array();
+      most = most.max(p - hi);
+      least = least.min(p - lo);
+    }
+  }
+  return std::max(0.0, 0.5 * (most - least).maxCoeff());
+}
+
+void ImpactZones::rebuild_candidates(const Matrix3X& x_start, const Matrix3X& x) {
+  ++m_rebuilds;
+  m_cache_a = x_start;
+  m_cache_b = x;
+  double edge_sum_m = 0.0;
+  for (const auto& e : m_edges) edge_sum_m += (vertex(x_start, e[0]) - vertex(x_start, e[1])).norm();
+  const double mean_edge_m =
+      m_edges.empty() ? 0.0 : edge_sum_m / static_cast<double>(m_edges.size());
+  m_cache_reach_m = reach_edges * mean_edge_m;
+  // The boxes grow a little more than the reach, against rounding in the bounds.
+  const double r = m_cache_reach_m * (1.0 + 1e-9) + 1e-9 * m_eta_m;
+  m_cached.vt.clear();
+  m_cached.ee.clear();
   std::vector<Aabb> boxes;
   boxes.reserve(m_triangles.size());
-  for (const auto& t : m_triangles) boxes.push_back(swept_box(x_start, x, t.data(), 3, m_eta_m));
+  for (const auto& t : m_triangles) boxes.push_back(swept_box(x_start, x, t.data(), 3, r + m_eta_m));
   std::vector<Index> hits;
   {
-    const double cell_m = zone_cell_size(boxes);
-    const SpatialHash hash(cell_m, std::move(boxes));
+    const SpatialHash hash(zone_cell_size(boxes), std::move(boxes));
     for (const Index v : m_vertices) {
-      hash.query(swept_box(x_start, x, &v, 1, 0.0), hits);
+      hash.query(swept_box(x_start, x, &v, 1, r), hits);
       for (const Index t : hits) {
         const auto& tri = m_triangles[static_cast<std::size_t>(t)];
-        if (tri[0] != v && tri[1] != v && tri[2] != v) out.vt.push_back({v, t});
+        if (tri[0] != v && tri[1] != v && tri[2] != v) m_cached.vt.push_back({v, t});
       }
     }
   }
   boxes.clear();
-  for (const auto& e : m_edges) boxes.push_back(swept_box(x_start, x, e.data(), 2, 0.5 * m_eta_m));
+  for (const auto& e : m_edges) boxes.push_back(swept_box(x_start, x, e.data(), 2, r + 0.5 * m_eta_m));
   const std::vector<Aabb> edge_boxes = boxes;
   const SpatialHash hash(zone_cell_size(edge_boxes), std::move(boxes));
   for (std::size_t e = 0; e < m_edges.size(); ++e) {
@@ -128,9 +156,52 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
       if (f <= static_cast<Index>(e)) continue;
       const auto& b = m_edges[static_cast<std::size_t>(f)];
       if (a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1])
-        out.ee.push_back({static_cast<Index>(e), f});
+        m_cached.ee.push_back({static_cast<Index>(e), f});
     }
   }
+}
+
+void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
+                                  const std::vector<char>& changed, PairLists& out) {
+  out.vt.clear();
+  out.ee.clear();
+  if (!(reach_needed(x_start, x) <= m_cache_reach_m)) rebuild_candidates(x_start, x);
+  const auto moved = [&](Index v) { return changed[static_cast<std::size_t>(v)] != 0; };
+  // The swept boxes of the features with a changed vertex; the others' are the last pass's.
+  m_vertex_boxes.resize(static_cast<std::size_t>(x.rows()));
+  for (const Index v : m_vertices)
+    if (moved(v)) m_vertex_boxes[static_cast<std::size_t>(v)] = swept_box(x_start, x, &v, 1, 0.0);
+  m_triangle_boxes.resize(m_triangles.size());
+  for (std::size_t t = 0; t < m_triangles.size(); ++t) {
+    const auto& tri = m_triangles[t];
+    if (moved(tri[0]) || moved(tri[1]) || moved(tri[2]))
+      m_triangle_boxes[t] = swept_box(x_start, x, tri.data(), 3, m_eta_m);
+  }
+  m_edge_boxes.resize(m_edges.size());
+  for (std::size_t e = 0; e < m_edges.size(); ++e) {
+    const auto& edge = m_edges[e];
+    if (moved(edge[0]) || moved(edge[1]))
+      m_edge_boxes[e] = swept_box(x_start, x, edge.data(), 2, 0.5 * m_eta_m);
+  }
+  for (const auto& [v, t] : m_cached.vt) {
+    const auto& tri = m_triangles[static_cast<std::size_t>(t)];
+    if (!(moved(v) || moved(tri[0]) || moved(tri[1]) || moved(tri[2]))) continue;
+    if (boxes_overlap(m_triangle_boxes[static_cast<std::size_t>(t)],
+                      m_vertex_boxes[static_cast<std::size_t>(v)]))
+      out.vt.push_back({v, t});
+  }
+  for (const auto& [e, f] : m_cached.ee) {
+    const auto& a = m_edges[static_cast<std::size_t>(e)];
+    const auto& b = m_edges[static_cast<std::size_t>(f)];
+    if (!(moved(a[0]) || moved(a[1]) || moved(b[0]) || moved(b[1]))) continue;
+    if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)],
+                      m_edge_boxes[static_cast<std::size_t>(f)]))
+      out.ee.push_back({e, f});
+  }
+}
+
+void ImpactZones::absorb(const std::vector<std::array<Index, 2>>& edges) {
+  m_absorbed.insert(m_absorbed.end(), edges.begin(), edges.end());
 }
 
 ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
@@ -147,7 +218,12 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
   for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
     mass[v] = inv_mass[v] > 0.0 ? 1.0 / inv_mass[v] : 1e6 * std::max(heaviest_kg, 1.0);
 
-  std::vector<char> changed(n, 1);  // whose path changed since the last pass
+  // Whose path changed since the last pass; with grow after a call that ended without a
+  // collision in this step, since that call's end.
+  std::vector<char> changed(n, 1);
+  if (grow && m_last_resolved && m_last_start.rows() == x.rows() && m_last_start == x_start)
+    for (std::size_t v = 0; v < n; ++v)
+      changed[v] = x.row(static_cast<Eigen::Index>(v)) != m_last_x.row(static_cast<Eigen::Index>(v));
   PairLists candidates;
   std::vector<std::array<Index, 4>> hits;
   const auto in_one_zone = [&](const std::array<Index, 4>& ids) {
@@ -161,9 +237,17 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
     for (const Index v : ids) any = any || changed[static_cast<std::size_t>(v)] != 0;
     return any && !in_one_zone(ids);
   };
-  for (counts.passes = 1; counts.passes <= max_passes; ++counts.passes) {
-    find_candidates(x_start, x, candidates);
+  // Edges absorb() gave since the last call join their zones first, as hits of a pass 0.
+  std::vector<std::array<Index, 4>> absorbed;
+  if (grow)
+    for (const auto& e : m_absorbed) absorbed.push_back({e[0], e[1], e[1], e[1]});
+  m_absorbed.clear();
+  for (counts.passes = absorbed.empty() ? 1 : 0; counts.passes <= max_passes; ++counts.passes) {
     hits.clear();
+    if (counts.passes == 0) {
+      hits = absorbed;
+    } else {
+    find_candidates(x_start, x, changed, candidates);
     for (const auto& [v, t] : candidates.vt) {
       const auto& tri = m_triangles[static_cast<std::size_t>(t)];
       const std::array<Index, 4> ids{v, tri[0], tri[1], tri[2]};
@@ -183,8 +267,9 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
                            vertex(x, b[0]), vertex(x, b[1]), m_eta_m))
         hits.push_back(ids);
     }
+    }
     if (hits.empty()) break;
-    counts.collisions += static_cast<long>(hits.size());
+    if (counts.passes > 0) counts.collisions += static_cast<long>(hits.size());
     if (counts.passes == max_passes) {
       counts.resolved = false;
       break;
@@ -218,7 +303,7 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
       }
       zones[static_cast<std::size_t>(zone_of_root[root])].push_back(static_cast<Index>(v));
     }
-    std::fill(changed.begin(), changed.end(), 0);
+    if (counts.passes > 0) std::fill(changed.begin(), changed.end(), 0);
     for (const auto& zone : zones) {
       apply_rigid_zone_motion(zone, x_start, proposed, mass, x);
       for (const Index v : zone) {
@@ -227,7 +312,10 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
       }
     }
   }
-  counts.passes = std::min(counts.passes, max_passes);
+  counts.passes = std::max(1, std::min(counts.passes, max_passes));
+  m_last_start = x_start;
+  m_last_x = x;
+  m_last_resolved = counts.resolved;
   std::vector<char> is_root(n, 0);
   for (std::size_t v = 0; v < n; ++v) {
     if (m_parent[v] < 0) continue;

@@ -20,9 +20,22 @@
 // vertices (inverse mass 0) weigh a million times the heaviest vertex and keep their own end
 // positions.
 //
-// Broad phase: a spatial hash (spatial_hash.h) of the triangles' and of the edges' boxes swept
-// over the step and grown by eta; after the first pass only the pairs touching a vertex whose
-// path changed are tested again. Single-threaded, fixed order: the same bits every time.
+// Broad phase: the pairs whose boxes swept over the step (triangles grown by eta, edges by
+// eta/2) overlap; after the first pass only the pairs touching a vertex whose path changed are
+// tested again, and a call with `grow` tests at first only the pairs touching a vertex moved
+// since the last call (the others were tested at those positions). The pairs are filtered from
+// a cached list (a Verlet list) of the pairs whose reference boxes — each vertex's box from A_i
+// to B_i, the start and end positions at the list's build — overlap when grown by a reach r
+// more. The list holds every pair whose swept boxes overlap while some common translation T
+// brings each start and end position within r (per coordinate) of its vertex's reference box
+// plus T: each swept box then lies inside its feature's reference box plus T grown by r. That
+// is checked at every pass (the smallest such reach is a max/min per coordinate), and the list
+// is rebuilt from the current step when it fails, with a spatial hash (spatial_hash.h). So the
+// pairs tested, and the results, are those of a search from scratch at every pass; the list
+// only saves time: the passes and the projections with the zones held within a step (the
+// reach covers their corrections), and steps whose motion stays within the reach (issue 23:
+// the search from scratch took ~35 ms per pass at 64²). Single-threaded, fixed order: the
+// same bits every time.
 
 #include <array>
 #include <vector>
@@ -57,19 +70,34 @@ class ImpactZones {
   ImpactZoneCounts resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass, Matrix3X& x,
                            bool grow = false);
 
+  // Edges (pairs of vertices) whose two ends the next resolve() with grow puts into one zone,
+  // moved rigidly like a colliding pair's: edges leaving a zone that a projection with the
+  // zones held could not bring within its tolerance (the zone takes in their free ends).
+  void absorb(const std::vector<std::array<Index, 2>>& edges);
+
   // The vertices in some zone after the last resolve(), ascending (with grow, the earlier
   // calls' zones too).
   const std::vector<Index>& zone_vertices() const { return m_zone_vertices; }
   double eta_m() const { return m_eta_m; }
 
   static constexpr int max_passes = 200;
+  // The cached list's reach r, in mean edge lengths (of the step it was built from).
+  static constexpr double reach_edges = 0.25;
+  // Times the cached candidate list was built.
+  long candidate_rebuilds() const { return m_rebuilds; }
 
  private:
   struct PairLists {
     std::vector<std::array<Index, 2>> vt;  // (vertex, triangle)
     std::vector<std::array<Index, 2>> ee;  // (edge, edge), first < second
   };
-  void find_candidates(const Matrix3X& x_start, const Matrix3X& x, PairLists& out) const;
+  // The pairs (sharing no vertex) whose swept boxes overlap and that touch a vertex v with
+  // changed[v] != 0, vt ascending by (vertex, triangle) and ee by (edge, edge).
+  void find_candidates(const Matrix3X& x_start, const Matrix3X& x,
+                       const std::vector<char>& changed, PairLists& out);
+  // The smallest reach for which the cached list holds (rule above); infinite without a list.
+  double reach_needed(const Matrix3X& x_start, const Matrix3X& x) const;
+  void rebuild_candidates(const Matrix3X& x_start, const Matrix3X& x);
   Index find(Index v);
   void unite(Index a, Index b);
 
@@ -79,6 +107,18 @@ class ImpactZones {
   double m_eta_m;
   std::vector<Index> m_parent;  // union–find over vertices; −1: in no zone
   std::vector<Index> m_zone_vertices;
+  std::vector<std::array<Index, 2>> m_absorbed;  // for the next resolve() with grow
+  // The last resolve()'s positions and whether it ended without a collision: a call with grow
+  // need not test again the pairs that did not move since.
+  Matrix3X m_last_start, m_last_x;
+  bool m_last_resolved = false;
+  // The cached candidate list (ordered as find_candidates' answer), its reference boxes' ends
+  // A, B and reach r (rule above).
+  PairLists m_cached;
+  Matrix3X m_cache_a, m_cache_b;
+  double m_cache_reach_m = 0.0;
+  long m_rebuilds = 0;
+  std::vector<Aabb> m_triangle_boxes, m_edge_boxes, m_vertex_boxes;  // swept; scratch
 };
 
 }  // namespace weft::sim

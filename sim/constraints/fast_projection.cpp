@@ -32,7 +32,14 @@ double projection_forcing_term(double strain, double tolerance) {
 
 FastProjection::FastProjection(std::vector<EdgeConstraint> constraints, Eigen::VectorXd inv_mass,
                                const ProjectionSettings& settings, SparseBackend backend)
-    : m_constraints(std::move(constraints)), m_inv_mass(std::move(inv_mass)), m_settings(settings) {
+    : m_constraints(std::move(constraints)),
+      m_inv_mass(std::move(inv_mass)),
+      m_inv_mass_made(m_inv_mass),
+      m_active(m_constraints.size(), 1),
+      m_settings(settings) {
+  m_held_diagonal.reserve(m_constraints.size());
+  for (const EdgeConstraint& c : m_constraints)
+    m_held_diagonal.push_back(4.0 * (m_inv_mass[c.a] + m_inv_mass[c.b]));
   m_d.resize(static_cast<Eigen::Index>(m_constraints.size()), 3);
   m_c.resize(static_cast<Eigen::Index>(m_constraints.size()));
   build_pattern();
@@ -51,7 +58,7 @@ void FastProjection::build_pattern() {
     if (m_inv_mass[c.a] > 0.0) incident[static_cast<std::size_t>(c.a)].push_back({e, -1.0});
     if (m_inv_mass[c.b] > 0.0) incident[static_cast<std::size_t>(c.b)].push_back({e, +1.0});
   }
-  struct Pending { int row, col; double coefficient; };
+  struct Pending { int row, col; Index vertex; double sign, coefficient; };
   std::vector<Pending> pending;
   std::vector<Eigen::Triplet<double, int>> triplets;
   for (int e = 0; e < n_c; ++e) triplets.emplace_back(e, e, 0.0);  // diagonal always present
@@ -61,7 +68,8 @@ void FastProjection::build_pattern() {
         if (f > e) continue;  // lower triangle: row e ≥ column f
         const double le = m_constraints[static_cast<std::size_t>(e)].rest_m;
         const double lf = m_constraints[static_cast<std::size_t>(f)].rest_m;
-        pending.push_back({e, f, se * sf * m_inv_mass[static_cast<Eigen::Index>(v)] * 4.0 / (le * lf)});
+        pending.push_back({e, f, static_cast<Index>(v), se * sf,
+                           se * sf * m_inv_mass[static_cast<Eigen::Index>(v)] * 4.0 / (le * lf)});
         triplets.emplace_back(e, f, 0.0);
       }
     }
@@ -71,9 +79,30 @@ void FastProjection::build_pattern() {
   m_matrix.makeCompressed();
   m_contributions.reserve(pending.size());
   for (const Pending& p : pending)
-    m_contributions.push_back({slot_of(m_matrix, p.row, p.col), p.row, p.col, p.coefficient});
+    m_contributions.push_back(
+        {slot_of(m_matrix, p.row, p.col), p.row, p.col, p.vertex, p.sign, p.coefficient});
   m_diagonal_slots.resize(static_cast<std::size_t>(n_c));
   for (int e = 0; e < n_c; ++e) m_diagonal_slots[static_cast<std::size_t>(e)] = slot_of(m_matrix, e, e);
+}
+
+void FastProjection::set_inverse_masses(const Eigen::VectorXd& inv_mass, bool fresh) {
+  require_held_kept(m_inv_mass_made, inv_mass);
+  m_inv_mass = inv_mass;
+  for (Contribution& t : m_contributions) {
+    const double le = m_constraints[static_cast<std::size_t>(t.e)].rest_m;
+    const double lf = m_constraints[static_cast<std::size_t>(t.f)].rest_m;
+    t.coefficient = t.sign * m_inv_mass[t.vertex] * 4.0 / (le * lf);  // as build_pattern
+  }
+  m_any_inactive = false;
+  for (std::size_t k = 0; k < m_constraints.size(); ++k) {
+    const EdgeConstraint& c = m_constraints[k];
+    m_active[k] = m_inv_mass[c.a] != 0.0 || m_inv_mass[c.b] != 0.0;
+    m_any_inactive = m_any_inactive || !m_active[k];
+  }
+  if (fresh) {
+    m_reusable = false;
+    m_factored_values.clear();
+  }
 }
 
 double FastProjection::evaluate(const Matrix3X& x) {
@@ -82,7 +111,7 @@ double FastProjection::evaluate(const Matrix3X& x) {
     const EdgeConstraint& c = m_constraints[k];
     const auto e = static_cast<Eigen::Index>(k);
     m_d.row(e) = x.row(c.b) - x.row(c.a);
-    m_c[e] = m_d.row(e).squaredNorm() / c.rest_m - c.rest_m;
+    m_c[e] = m_active[k] ? m_d.row(e).squaredNorm() / c.rest_m - c.rest_m : 0.0;
     sum_sq += m_c[e] * m_c[e];
   }
   return sum_sq;
@@ -93,6 +122,9 @@ void FastProjection::fill_matrix() {
   std::fill(values, values + m_matrix.nonZeros(), 0.0);
   for (const Contribution& t : m_contributions)
     values[t.slot] += t.coefficient * m_d.row(t.e).dot(m_d.row(t.f));
+  if (m_any_inactive)
+    for (std::size_t k = 0; k < m_constraints.size(); ++k)
+      if (!m_active[k]) values[m_diagonal_slots[k]] = m_held_diagonal[k];
 }
 
 // Redundant constraints (e.g. closed loops of pinned neighbours) or a perfectly degenerate
@@ -203,7 +235,7 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
   m_multipliers.setZero(static_cast<Eigen::Index>(m_constraints.size()));
   if (m_constraints.empty()) return result;
   double merit = evaluate(x);
-  result.max_strain = max_edge_strain(m_constraints, x);
+  result.max_strain = max_edge_strain(m_constraints, x, m_inv_mass);
   Matrix3X best = x;
   Eigen::VectorXd best_multipliers = m_multipliers;  // the correction that led to `best`
   double best_strain = result.max_strain;
@@ -233,7 +265,7 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
     x += alpha * step;
     m_multipliers += alpha * mu;
     merit = evaluate(x);
-    result.max_strain = max_edge_strain(m_constraints, x);
+    result.max_strain = max_edge_strain(m_constraints, x, m_inv_mass);
     if (result.max_strain < best_strain) {
       best_strain = result.max_strain;
       best = x;

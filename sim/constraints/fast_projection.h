@@ -38,6 +38,9 @@ class FastProjection final : public ConstraintProjector {
   ProjectionResult project(Matrix3X& x) override;
   const std::vector<EdgeConstraint>& constraints() const override { return m_constraints; }
   const Eigen::VectorXd& multipliers() const override { return m_multipliers; }
+  // A constraint between two held vertices keeps its row of the pattern with a constant
+  // diagonal and a zero right-hand side (its multiplier is 0) and is left out of the strain.
+  void set_inverse_masses(const Eigen::VectorXd& inv_mass, bool fresh) override;
   // The reusable factorization is saved as the matrix it factorizes and refactorized on
   // restore (the same bits: the factorization is deterministic).
   void save_state(StateWriter& out) const override;
@@ -48,6 +51,8 @@ class FastProjection final : public ConstraintProjector {
   struct Contribution {
     int slot;  // index into the matrix's value array
     int e, f;
+    Index vertex;  // v, the vertex e and f share
+    double sign;   // sign_e · sign_f
     double coefficient;  // sign_e · sign_f · (1/m_v) · 4 / (l_e l_f)
   };
 
@@ -65,6 +70,12 @@ class FastProjection final : public ConstraintProjector {
 
   std::vector<EdgeConstraint> m_constraints;
   Eigen::VectorXd m_inv_mass;
+  Eigen::VectorXd m_inv_mass_made;  // at construction, which set the pattern
+  // Per constraint: whether an end is free (set_inverse_masses); the diagonal a constraint
+  // between two held vertices keeps, 4 (1/m_a + 1/m_b) with the masses at construction.
+  std::vector<char> m_active;
+  std::vector<double> m_held_diagonal;
+  bool m_any_inactive = false;
   ProjectionSettings m_settings;
   SparseMatrix m_matrix;  // lower triangle of J M⁻¹ Jᵀ
   std::vector<Contribution> m_contributions;

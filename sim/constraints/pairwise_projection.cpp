@@ -6,7 +6,15 @@ namespace weft::sim {
 
 PairwiseProjection::PairwiseProjection(std::vector<EdgeConstraint> constraints,
                                        Eigen::VectorXd inv_mass, const ProjectionSettings& settings)
-    : m_constraints(std::move(constraints)), m_inv_mass(std::move(inv_mass)), m_settings(settings) {}
+    : m_constraints(std::move(constraints)),
+      m_inv_mass(std::move(inv_mass)),
+      m_inv_mass_made(m_inv_mass),
+      m_settings(settings) {}
+
+void PairwiseProjection::set_inverse_masses(const Eigen::VectorXd& inv_mass, bool /*fresh*/) {
+  require_held_kept(m_inv_mass_made, inv_mass);
+  m_inv_mass = inv_mass;
+}
 
 ProjectionResult PairwiseProjection::project(Matrix3X& x) {
   ProjectionResult result;
@@ -15,6 +23,7 @@ ProjectionResult PairwiseProjection::project(Matrix3X& x) {
     ++result.iterations;
     for (const EdgeConstraint& c : m_constraints) {
       const double wa = m_inv_mass[c.a], wb = m_inv_mass[c.b];
+      if (wa + wb == 0.0) continue;  // both ends held
       const Eigen::RowVector3d d = x.row(c.b) - x.row(c.a);
       const double len = d.norm();
       if (len == 0.0) continue;
@@ -25,7 +34,7 @@ ProjectionResult PairwiseProjection::project(Matrix3X& x) {
       x.row(c.b) -= wb * correction;
     }
   }
-  result.max_strain = max_edge_strain(m_constraints, x);
+  result.max_strain = max_edge_strain(m_constraints, x, m_inv_mass);
   result.converged = result.max_strain <= std::max(limit, m_settings.tolerance);
   return result;
 }

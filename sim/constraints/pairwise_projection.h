@@ -16,6 +16,7 @@ class PairwiseProjection final : public ConstraintProjector {
                      const ProjectionSettings& settings);
   ProjectionResult project(Matrix3X& x) override;
   const std::vector<EdgeConstraint>& constraints() const override { return m_constraints; }
+  void set_inverse_masses(const Eigen::VectorXd& inv_mass, bool fresh) override;
   // Nothing carries over from one step to the next: an empty section.
   void save_state(StateWriter& out) const override { out.section("pairwise projection"); }
   void restore_state(StateReader& in) override { in.section("pairwise projection"); }
@@ -23,6 +24,7 @@ class PairwiseProjection final : public ConstraintProjector {
  private:
   std::vector<EdgeConstraint> m_constraints;
   Eigen::VectorXd m_inv_mass;
+  Eigen::VectorXd m_inv_mass_made;  // at construction: its held vertices stay held
   ProjectionSettings m_settings;
 };
 

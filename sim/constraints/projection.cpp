@@ -1,6 +1,8 @@
 #include "sim/constraints/projection.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "sim/collision/self_intersection.h"  // unique_edges
 #include "sim/constraints/fast_projection.h"
@@ -39,6 +41,26 @@ double max_edge_strain(const std::vector<EdgeConstraint>& constraints, const Mat
   for (const EdgeConstraint& c : constraints)
     worst = std::max(worst, std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)));
   return worst;
+}
+
+double max_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x,
+                       const Eigen::VectorXd& inv_mass) {
+  double worst = 0.0;
+  for (const EdgeConstraint& c : constraints)
+    if (inv_mass[c.a] != 0.0 || inv_mass[c.b] != 0.0)
+      worst = std::max(worst, std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)));
+  return worst;
+}
+
+void require_held_kept(const Eigen::VectorXd& made, const Eigen::VectorXd& now) {
+  if (now.size() != made.size())
+    throw std::invalid_argument("projection: inverse masses for " + std::to_string(now.size()) +
+                                " vertices, the projector was made for " +
+                                std::to_string(made.size()));
+  for (Eigen::Index v = 0; v < made.size(); ++v)
+    if (made[v] == 0.0 && now[v] != 0.0)
+      throw std::invalid_argument("projection: vertex " + std::to_string(v) +
+                                  " was held when the projector was made and must stay held");
 }
 
 double mean_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x) {

@@ -30,6 +30,13 @@ std::vector<EdgeConstraint> make_edge_constraints(const ClothMesh& mesh, Constra
 
 // Largest |length / rest − 1| over the constraints.
 double max_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x);
+// The same over the constraints with an end whose inverse mass is not 0 (the others cannot
+// be corrected).
+double max_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x,
+                       const Eigen::VectorXd& inv_mass);
+// Throws std::invalid_argument (set_inverse_masses) unless `now` has the size of `made` and
+// is 0 wherever `made` is.
+void require_held_kept(const Eigen::VectorXd& made, const Eigen::VectorXd& now);
 double mean_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x);
 
 enum class ProjectionMethod { none, fast_projection, pairwise };
@@ -78,6 +85,14 @@ class ConstraintProjector {
   // so −Jᵀ μ / h² is the constraint force of a step of h seconds. Empty when the method has
   // no multipliers (pairwise projection).
   virtual const Eigen::VectorXd& multipliers() const;
+  // Projects from now on with these inverse masses (#V): a vertex whose inverse mass is 0 is
+  // held, and a constraint between two held vertices is left out. The vertices held when the
+  // projector was made must stay held (std::invalid_argument otherwise): their constraints,
+  // and fast projection's sparsity pattern and its analysis, are kept, so that holding other
+  // vertices costs no new analysis (issue 23: the impact zones' projections). fresh: forget
+  // what earlier projections carry over (fast projection: the factorization it reuses), so
+  // that the next result depends on this projector's input alone.
+  virtual void set_inverse_masses(const Eigen::VectorXd& inv_mass, bool fresh) = 0;
   // What the projector carries from one step to the next (fast projection: the factorization
   // it may reuse), for a checkpoint; restore_state() reads it into a projector made alike.
   virtual void save_state(StateWriter& out) const = 0;

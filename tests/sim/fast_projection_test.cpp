@@ -128,6 +128,37 @@ TEST(FastProjection, PinnedVerticesNeverMove) {
   for (Index v : pinned) EXPECT_EQ(Vec3(x.row(v)), Vec3(x0.row(v)));
 }
 
+// Holding more vertices by set_inverse_masses (issue 23's impact zones) projects as a projector
+// made with those masses: held vertices never move, the others meet the tolerance (edges
+// between two held vertices, rigid together here, are left out), and a vertex held at
+// construction cannot be freed.
+TEST(FastProjection, VerticesHeldLaterStayPutAndTheRestConverges) {
+  const ClothMesh mesh = grid(9);
+  const Eigen::VectorXd w = inverse_masses(mesh, {0});
+  Eigen::VectorXd held = w;
+  const std::vector<Index> block{30, 31, 39, 40};  // one cell, held where it lies at rest
+  for (Index v : block) held[v] = 0.0;
+  Matrix3X x = jittered(mesh, 0.02, 4);
+  for (Index v : block) x.row(v) = mesh.rest_positions.row(v);
+  const Matrix3X x0 = x;
+  FastProjection later(make_edge_constraints(mesh, ConstrainedEdges::warp_weft, w), w,
+                       fast(1e-8, 30), default_sparse_backend());
+  later.set_inverse_masses(held, /*fresh=*/true);
+  Matrix3X x_later = x;
+  const ProjectionResult r = later.project(x_later);
+  EXPECT_TRUE(r.converged);
+  for (Index v : block) EXPECT_EQ(Vec3(x_later.row(v)), Vec3(x0.row(v)));
+  EXPECT_LE(max_edge_strain(later.constraints(), x_later), 1e-8);
+  FastProjection made(make_edge_constraints(mesh, ConstrainedEdges::warp_weft, held), held,
+                      fast(1e-8, 30), default_sparse_backend());
+  Matrix3X x_made = x;
+  EXPECT_TRUE(made.project(x_made).converged);
+  EXPECT_LT((x_made - x_later).cwiseAbs().maxCoeff(), 1e-6);
+  Eigen::VectorXd freed = w;
+  freed[0] = 1.0;
+  EXPECT_THROW(later.set_inverse_masses(freed, true), std::invalid_argument);
+}
+
 // Near the solution each iteration at least squares the strain (Newton's quadratic order).
 // One pin: two pins at exactly their rest distance make the edge chain between them a taut
 // string whose only solution is straight, a singular root where Newton is linear (tested with

@@ -85,16 +85,18 @@ TEST(ImpactZoneDrape, InextensibleDrapeNeverPassesThroughItself) {
   EXPECT_EQ(run.unreported_frames, 0);
 }
 
-// With the default neighbourhood the zones form in sharper folds, and the edges leaving them
-// end some frames beyond the projection's tolerance (0.25 % at 32²): those steps are counted
-// as unconverged — weft run warns of them — rather than passed off as within the tolerance.
-TEST(ImpactZoneDrape, AStrainTheZonesLeaveBeyondTheToleranceIsReported) {
+// With the default neighbourhood the zones form in sharper folds. Held projections could not
+// keep the edges leaving them: 5 frames ended beyond the projection's tolerance (0.25 % at
+// 32²), counted as unconverged. Now a zone takes in the free ends of the edges it leaves
+// stretched (ImpactZones::absorb) and every frame ends within the tolerance; any frame beyond
+// it must still be reported.
+TEST(ImpactZoneDrape, ZonesTakeInTheEdgesTheyLeaveStretched) {
   const ZoneDrapeRun run = drop_drape_with_zones(32, 24, 2, true, 1.0);
   for (std::size_t f = 0; f < run.crossings.size(); ++f)
     EXPECT_EQ(run.crossings[f], 0) << "frame " << f + 1;
-  EXPECT_GT(run.frames_beyond_tolerance, 0);  // what this test is about happens
-  EXPECT_EQ(run.unreported_frames, 0) << "of " << run.frames_beyond_tolerance
-                                      << " frames beyond the tolerance";
+  EXPECT_GT(run.most_zone_vertices, 0);  // zones formed
+  EXPECT_EQ(run.frames_beyond_tolerance, 0) << "worst strain " << run.worst_strain;
+  EXPECT_EQ(run.unreported_frames, 0);
 }
 
 TEST(ImpactZoneDrape, SameBitsOnOneAndTwoThreads) {
