@@ -204,6 +204,43 @@ void ImpactZones::absorb(const std::vector<std::array<Index, 2>>& edges) {
   m_absorbed.insert(m_absorbed.end(), edges.begin(), edges.end());
 }
 
+void ImpactZones::collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
+                                  const std::vector<char>& changed,
+                                  std::vector<std::array<Index, 4>>& hits) {
+  hits.clear();
+  const auto in_one_zone = [&](const std::array<Index, 4>& ids) {
+    for (const Index v : ids)
+      if (m_parent[static_cast<std::size_t>(v)] < 0) return false;
+    const Index root = find(ids[0]);
+    return find(ids[1]) == root && find(ids[2]) == root && find(ids[3]) == root;
+  };
+  const auto worth_testing = [&](const std::array<Index, 4>& ids) {
+    bool any = false;
+    for (const Index v : ids) any = any || changed[static_cast<std::size_t>(v)] != 0;
+    return any && !in_one_zone(ids);
+  };
+  find_candidates(x_start, x, changed, m_candidates);
+  for (const auto& [v, t] : m_candidates.vt) {
+    const auto& tri = m_triangles[static_cast<std::size_t>(t)];
+    const std::array<Index, 4> ids{v, tri[0], tri[1], tri[2]};
+    if (!worth_testing(ids)) continue;
+    if (vertex_triangle_impact(vertex(x_start, v), vertex(x_start, tri[0]),
+                               vertex(x_start, tri[1]), vertex(x_start, tri[2]), vertex(x, v),
+                               vertex(x, tri[0]), vertex(x, tri[1]), vertex(x, tri[2]), m_eta_m))
+      hits.push_back(ids);
+  }
+  for (const auto& [e, f] : m_candidates.ee) {
+    const auto& a = m_edges[static_cast<std::size_t>(e)];
+    const auto& b = m_edges[static_cast<std::size_t>(f)];
+    const std::array<Index, 4> ids{a[0], a[1], b[0], b[1]};
+    if (!worth_testing(ids)) continue;
+    if (edge_edge_impact(vertex(x_start, a[0]), vertex(x_start, a[1]), vertex(x_start, b[0]),
+                         vertex(x_start, b[1]), vertex(x, a[0]), vertex(x, a[1]),
+                         vertex(x, b[0]), vertex(x, b[1]), m_eta_m))
+      hits.push_back(ids);
+  }
+}
+
 ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
                                       Matrix3X& x, bool grow) {
   ImpactZoneCounts counts;
@@ -224,50 +261,17 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
   if (grow && m_last_resolved && m_last_start.rows() == x.rows() && m_last_start == x_start)
     for (std::size_t v = 0; v < n; ++v)
       changed[v] = x.row(static_cast<Eigen::Index>(v)) != m_last_x.row(static_cast<Eigen::Index>(v));
-  PairLists candidates;
   std::vector<std::array<Index, 4>> hits;
-  const auto in_one_zone = [&](const std::array<Index, 4>& ids) {
-    for (const Index v : ids)
-      if (m_parent[static_cast<std::size_t>(v)] < 0) return false;
-    const Index root = find(ids[0]);
-    return find(ids[1]) == root && find(ids[2]) == root && find(ids[3]) == root;
-  };
-  const auto worth_testing = [&](const std::array<Index, 4>& ids) {
-    bool any = false;
-    for (const Index v : ids) any = any || changed[static_cast<std::size_t>(v)] != 0;
-    return any && !in_one_zone(ids);
-  };
   // Edges absorb() gave since the last call join their zones first, as hits of a pass 0.
   std::vector<std::array<Index, 4>> absorbed;
   if (grow)
     for (const auto& e : m_absorbed) absorbed.push_back({e[0], e[1], e[1], e[1]});
   m_absorbed.clear();
   for (counts.passes = absorbed.empty() ? 1 : 0; counts.passes <= max_passes; ++counts.passes) {
-    hits.clear();
-    if (counts.passes == 0) {
+    if (counts.passes == 0)
       hits = absorbed;
-    } else {
-    find_candidates(x_start, x, changed, candidates);
-    for (const auto& [v, t] : candidates.vt) {
-      const auto& tri = m_triangles[static_cast<std::size_t>(t)];
-      const std::array<Index, 4> ids{v, tri[0], tri[1], tri[2]};
-      if (!worth_testing(ids)) continue;
-      if (vertex_triangle_impact(vertex(x_start, v), vertex(x_start, tri[0]),
-                                 vertex(x_start, tri[1]), vertex(x_start, tri[2]), vertex(x, v),
-                                 vertex(x, tri[0]), vertex(x, tri[1]), vertex(x, tri[2]), m_eta_m))
-        hits.push_back(ids);
-    }
-    for (const auto& [e, f] : candidates.ee) {
-      const auto& a = m_edges[static_cast<std::size_t>(e)];
-      const auto& b = m_edges[static_cast<std::size_t>(f)];
-      const std::array<Index, 4> ids{a[0], a[1], b[0], b[1]};
-      if (!worth_testing(ids)) continue;
-      if (edge_edge_impact(vertex(x_start, a[0]), vertex(x_start, a[1]), vertex(x_start, b[0]),
-                           vertex(x_start, b[1]), vertex(x, a[0]), vertex(x, a[1]),
-                           vertex(x, b[0]), vertex(x, b[1]), m_eta_m))
-        hits.push_back(ids);
-    }
-    }
+    else
+      collect_impacts(x_start, x, changed, hits);
     if (hits.empty()) break;
     if (counts.passes > 0) counts.collisions += static_cast<long>(hits.size());
     if (counts.passes == max_passes) {

@@ -98,6 +98,10 @@ class ImpactZones {
   // The smallest reach for which the cached list holds (rule above); infinite without a list.
   double reach_needed(const Matrix3X& x_start, const Matrix3X& x) const;
   void rebuild_candidates(const Matrix3X& x_start, const Matrix3X& x);
+  // The candidate pairs that touch a changed vertex, are not inside one zone already and
+  // collide over the step from x_start to x (continuous_collision.h), in the candidates' order.
+  void collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
+                       const std::vector<char>& changed, std::vector<std::array<Index, 4>>& hits);
   Index find(Index v);
   void unite(Index a, Index b);
 
@@ -115,6 +119,7 @@ class ImpactZones {
   // The cached candidate list (ordered as find_candidates' answer), its reference boxes' ends
   // A, B and reach r (rule above).
   PairLists m_cached;
+  PairLists m_candidates;  // collect_impacts' workspace
   Matrix3X m_cache_a, m_cache_b;
   double m_cache_reach_m = 0.0;
   long m_rebuilds = 0;
