@@ -1,10 +1,12 @@
 #include "app/run_command.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <regex>
+#include <string>
 
 #include "app/auto_camera.h"
 #include "app/frame_mesh.h"
@@ -79,6 +81,32 @@ void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& o
     render::write_png(*scene.render.cloth_surface.texture.image, dir / texture_file_name);
 }
 
+// An explicit step with fast projection jitters when the tolerance is large against the strain
+// one step's fall adds to an edge, |g| h² / ℓ: the projection then acts only every few steps, and
+// each correction, up to tolerance × ℓ, becomes a velocity of up to tolerance × ℓ / h that nothing
+// damps. On the default hang the cloth settled at every tolerance up to 1.4 times that strain and
+// never at 2.8 times or more (docs/inextensibility.md, "Explicit integrators"); the warning starts
+// at 2. Empty when there is nothing to warn of.
+std::string projection_jitter_warning(const Scene& scene, double time_step) {
+  const sim::ProjectionSettings& projection = scene.sim.projection;
+  const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
+                             scene.sim.integrator != sim::Integrator::dynamic_relaxation;
+  if (!explicit_step || projection.method != sim::ProjectionMethod::fast_projection || scene.mesh)
+    return {};
+  const double edge = std::min(scene.grid.size_u_m / static_cast<double>(scene.grid.nu - 1),
+                               scene.grid.size_v_m / static_cast<double>(scene.grid.nv - 1));
+  const double fall_strain = scene.sim.gravity_m_s2.norm() * time_step * time_step / edge;
+  if (projection.tolerance <= 2.0 * fall_strain) return {};
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "simulation.constraints.tolerance %.3g is more than twice the strain one step's "
+                "fall adds to an edge (|g| h^2 / edge = %.2g at h = %.3g ms): the projection will act "
+                "only every few steps and the cloth may jitter without settling; use a tolerance "
+                "of at most %.2g, or implicit_euler",
+                projection.tolerance, fall_strain, 1e3 * time_step, fall_strain);
+  return text;
+}
+
 void print_header(const Scene& scene, const sim::Simulator& simulator,
                   const render::Renderer& renderer, bool explain) {
   std::fprintf(
@@ -96,6 +124,9 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
                  "of the explicit integrator: the run will probably diverge (lower "
                  "simulation.time_step or use implicit_euler)\n",
                  1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step());
+  if (const std::string jitter = projection_jitter_warning(scene, simulator.time_step());
+      !jitter.empty())
+    std::fprintf(stderr, "weft: warning: %s\n", jitter.c_str());
   if (scene.tension_field) {
     const sim::TensionFieldResult folds = sim::solve_tension_field(tension_field_inputs(
         *scene.tension_field, scene.grid, scene.material, scene.sim.gravity_m_s2));
