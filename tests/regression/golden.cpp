@@ -10,6 +10,7 @@
 #include "app/frame_stream.h"
 #include "app/obstacle_meshes.h"
 #include "app/scene.h"
+#include "app/scene_options.h"
 #include "app/renderer_choice.h"
 #include "tests/app/coarse_scene.h"
 
@@ -46,8 +47,13 @@ void write_page(const fs::path& dir, const GoldenCase& c, const render::ImageDif
 
 }  // namespace
 
-render::Image render_case(const GoldenCase& c, double density_scale) {
-  app::Scene scene = app::test::coarse_scene(c.scene, c.resolution);
+render::Image render_case(const GoldenCase& c, double density_scale, long* remeshes) {
+  std::vector<app::Setting> settings;
+  for (const auto& [key, value] : c.settings) settings.push_back({key, value});
+  app::Scene scene =
+      settings.empty()
+          ? app::test::coarse_scene(c.scene, c.resolution)
+          : app::load_scene_with(fs::path(WEFT_SOURCE_DIR) / "assets" / "scenes" / c.scene, settings);
   scene.material.density_kg_m2 *= density_scale;
   scene.render.width = c.width;
   scene.render.height = c.height;
@@ -58,6 +64,7 @@ render::Image render_case(const GoldenCase& c, double density_scale) {
   // The frames weft run writes: the frame stream, frame by frame to the last.
   const app::FrameStreamEnd end = app::stream_frames(scene, *simulator, {});
   if (end.divergence) throw end.divergence->error;
+  if (remeshes) *remeshes = simulator->remesh_count();
   const auto renderer = app::make_chosen_renderer(scene.render);
   return renderer->render(app::to_render_mesh(simulator->mesh(), simulator->state().x),
                           scene.render, app::obstacle_render_objects(scene.sim.obstacles, scene.render));
