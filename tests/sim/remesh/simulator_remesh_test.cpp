@@ -254,7 +254,8 @@ struct FlatteningRun {
   Eigen::Vector2d extent_m{0.0, 0.0};  // the flat cloth's extent along x and y at the end
 };
 
-FlatteningRun flatten_a_bump(double coarsen) {
+// The square on its ridge, ready to fall.
+std::unique_ptr<Simulator> ridge_on_the_ground(double coarsen) {
   SimSettings s = remeshing_settings(2);
   s.remesh.indicator = 2.0;
   s.remesh.coarsen = coarsen;
@@ -262,8 +263,9 @@ FlatteningRun flatten_a_bump(double coarsen) {
   PlaneObstacle ground;
   s.obstacles.push_back(ground);
   const double z0 = s.collision_thickness_m;
-  Simulator sim(triangle_square(0.3, 16, {0.0, 0.0, z0}, {1, 0, 0}, {0, 1, 0}), Material{}, {},
-                s);
+  auto sim = std::make_unique<Simulator>(
+      triangle_square(0.3, 16, {0.0, 0.0, z0}, {1, 0, 0}, {0, 1, 0}), Material{},
+      std::vector<Index>{}, s);
   // The ridge's profile (ξ, z(ξ)) tabulated by its arc length, so that the cloth is laid on it
   // without strain (a cylinder-like surface): the material u − 15 cm is the arc length from
   // the crest.
@@ -283,7 +285,7 @@ FlatteningRun flatten_a_bump(double coarsen) {
       xi += step;
     }
   }
-  Matrix3X x = sim.state().x;
+  Matrix3X x = sim->state().x;
   for (Index i = 0; i < x.rows(); ++i) {
     const double arc = std::abs(x(i, 0) - 0.15);
     const auto k = static_cast<std::size_t>(std::lround(arc / dxi));
@@ -291,7 +293,13 @@ FlatteningRun flatten_a_bump(double coarsen) {
     x(i, 0) = 0.15 + std::copysign(xi, x(i, 0) - 0.15);
     x(i, 2) = z0 + ridge(xi);
   }
-  sim.set_initial_positions(x);
+  sim->set_initial_positions(x);
+  return sim;
+}
+
+FlatteningRun flatten_a_bump(double coarsen) {
+  const std::unique_ptr<Simulator> owner = ridge_on_the_ground(coarsen);
+  Simulator& sim = *owner;
   FlatteningRun run;
   run.start = run.peak = sim.mesh().vertex_count();
   const auto potential = [&] {
@@ -350,6 +358,31 @@ TEST(SimulatorRemesh, UnderTheIndicatorAClothThatFlattensIsCoarsenedAgain) {
   // flattening released, and by less than a refinement of the ridge does.
   EXPECT_LT(coarsened.coarsening_jump_J, 0.05 * coarsened.potential_drop_J);
   EXPECT_LT(coarsened.coarsening_jump_J, coarsened.refining_jump_J);
+}
+
+// The coarsening criterion's reference goes with the state: the ridge saved after 10 steps
+// (refined, its reference taken) and restored into a Simulator made anew goes on, through its
+// coarsening, with the same mesh and bits as the run that never stopped (40 steps).
+TEST(SimulatorRemesh, ACoarseningRunRestoredGoesOnWithTheSameBits) {
+  const auto whole = ridge_on_the_ground(1.5), first = ridge_on_the_ground(1.5);
+  for (int k = 0; k < 40; ++k) whole->step(1.0 / 120.0);
+  for (int k = 0; k < 10; ++k) first->step(1.0 / 120.0);
+  ASSERT_GE(first->remesh_count(), 1);
+  StateWriter saved;
+  first->save_state(saved);
+  const auto resumed = ridge_on_the_ground(1.5);
+  StateReader reader(saved.bytes(), "the saved state");
+  resumed->restore_state(reader);
+  long coarsenings = 0;
+  for (int k = 10; k < 40; ++k) {
+    resumed->step(1.0 / 120.0);
+    coarsenings += resumed->take_step_statistics().coarsenings;
+  }
+  EXPECT_GE(coarsenings, 1) << "coarsened after the restore";
+  EXPECT_EQ(resumed->remesh_count(), whole->remesh_count());
+  EXPECT_EQ(resumed->mesh().faces, whole->mesh().faces);
+  EXPECT_TRUE(same_bits(resumed->state().x, whole->state().x));
+  EXPECT_TRUE(same_bits(resumed->state().v, whole->state().v));
 }
 
 std::string remesh_error(const ClothMesh& mesh, const SimSettings& s) {
