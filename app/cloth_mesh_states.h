@@ -1,7 +1,8 @@
 #pragma once
 // The meshes of a remeshed run's saved states (weft run --save-states with simulation.remesh;
 // docs/checkpoints.md): beside state_NNNN.npy, cloth_mesh_NNNN.weft holds the cloth's mesh of
-// frame NNNN — written for frame 0 and for every frame in whose steps the cloth was remeshed —
+// frame NNNN — written for frame 0, for every frame in whose steps the cloth was remeshed and
+// for the first frame of a resumed run —
 // so that the mesh of frame k is the newest cloth_mesh_j.weft with j ≤ k. weft render draws
 // each state on its own mesh with it.
 //

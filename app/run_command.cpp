@@ -180,8 +180,10 @@ class FrameWriter {
     if (m_options.save_states)
       write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
                        m_simulator.state().x);
-    if (remeshed_states && row.steps.remeshes > 0)
+    // After a resume too: the interrupted run may not have saved states (nor meshes).
+    if (remeshed_states && (row.steps.remeshes > 0 || m_resumed_mesh_unsaved))
       write_cloth_mesh_state(m_dir, frame.index, m_simulator.mesh());
+    m_resumed_mesh_unsaved = false;
     row.diagnostics = m_simulator.diagnostics();
     // The frame's own mesh: with simulation.remesh it changes from frame to frame, so its
     // triangles and edges are taken anew after each remesh (and only then).
@@ -217,6 +219,7 @@ class FrameWriter {
   }
   // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
   void resume(const RunCheckpoint& checkpoint) {
+    m_resumed_mesh_unsaved = true;
     m_rows = checkpoint.rows;
     m_crossing_frames = checkpoint.crossing_frames;
     m_stats.restore(m_rows);
@@ -261,6 +264,7 @@ class FrameWriter {
   std::vector<int> m_crossing_frames;
   sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
   std::unique_ptr<sim::ClothMesh> m_initial_mesh;  // and its mesh, with simulation.remesh
+  bool m_resumed_mesh_unsaved = false;  // resumed: the mesh goes with the first frame's state
 };
 
 // Says where the run stopped and what it kept; writes the report of the frames written.

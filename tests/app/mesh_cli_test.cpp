@@ -165,9 +165,19 @@ TEST_F(MeshCli, ARemeshedRunResumedFromItsCheckpointGivesTheSameBits) {
   ASSERT_EQ(b.exit_code, 0) << b.output;
   ASSERT_TRUE(fs::exists(cut / "checkpoint.weft"));
   for (int k = 7; k <= 8; ++k) fs::remove(cut / frame_name("frame", k, "png"));
-  const auto resumed = run_weft("run --resume " + cut.string());
+  // Resumed with --save-states, which the interrupted run did not give: the states after the
+  // checkpoint come with their mesh, and weft render draws them as weft run did.
+  const auto resumed = run_weft("run --resume " + cut.string() + " --save-states");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_CONTAINS(resumed.output, "resuming from the checkpoint of frame 6");
+  EXPECT_TRUE(fs::exists(cut / "cloth_mesh_0007.weft"));
+  const auto drawn = run_weft("render " + cut.string() + " --scene " + scene.string() +
+                              " --frames 7-8 --out " + (m_dir / "drawn").string());
+  ASSERT_EQ(drawn.exit_code, 0) << drawn.output;
+  for (int k = 7; k <= 8; ++k)
+    EXPECT_TRUE(weft::app::test::file_bytes(whole / frame_name("frame", k, "png")) ==
+                weft::app::test::file_bytes(m_dir / "drawn" / frame_name("frame", k, "png")))
+        << "frame " << k << " drawn from the resumed run's states";
   for (int k = 1; k <= 8; ++k) {
     const std::string name = frame_name("frame", k, "png");
     ASSERT_TRUE(fs::exists(cut / name)) << name;
