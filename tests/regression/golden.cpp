@@ -26,12 +26,15 @@ bool update_mode() {
 
 void write_page(const fs::path& dir, const GoldenCase& c, const render::ImageDifference& d,
                 const std::string& verdict) {
+  std::string overrides;
+  for (const auto& [key, value] : c.settings) overrides += " --set " + key + "=" + value;
   std::ofstream html(dir / "index.html");
   html << "<!doctype html><meta charset=\"utf-8\"><title>weft regression: " << c.name
        << "</title>\n<style>body{font-family:sans-serif} img{image-rendering:pixelated;"
           "width:480px;border:1px solid #888;cursor:pointer} td{padding:6px;vertical-align:top}"
-          "</style>\n<h1>" << c.name << ": " << verdict << "</h1>\n<p>scene " << c.scene << ", "
-       << c.resolution << "² grid, " << c.frames << " frames, " << c.renderer << ", " << c.width
+          "</style>\n<h1>" << c.name << ": " << verdict << "</h1>\n<p>scene " << c.scene << overrides << ", "
+       << (c.settings.empty() ? std::to_string(c.resolution) + "² grid" : "its own mesh")
+       << ", " << c.frames << " frames, " << c.renderer << ", " << c.width
        << "×" << c.height << ". PSNR " << d.psnr_db << " dB (fail below " << c.min_psnr_db
        << "), SSIM " << d.ssim << ", max difference " << d.max_abs << ", "
        << 100.0 * d.fraction_over << " % of pixels differ by more than " << d.pixel_threshold
