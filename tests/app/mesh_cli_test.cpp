@@ -146,7 +146,7 @@ std::string remeshed_square_scene(bool camera) {
                                        : "}"));
 }
 
-std::string frame_name(const char* prefix, int k, const char* extension) {
+std::string remeshed_output_name(const char* prefix, int k, const char* extension) {
   char name[40];
   std::snprintf(name, sizeof name, "%s_%04d.%s", prefix, k, extension);
   return name;
@@ -164,7 +164,7 @@ TEST_F(MeshCli, ARemeshedRunResumedFromItsCheckpointGivesTheSameBits) {
   const auto b = run_weft("run " + scene.string() + " --checkpoint-every 3 --out " + cut.string());
   ASSERT_EQ(b.exit_code, 0) << b.output;
   ASSERT_TRUE(fs::exists(cut / "checkpoint.weft"));
-  for (int k = 7; k <= 8; ++k) fs::remove(cut / frame_name("frame", k, "png"));
+  for (int k = 7; k <= 8; ++k) fs::remove(cut / remeshed_output_name("frame", k, "png"));
   // Resumed with --save-states, which the interrupted run did not give: the states after the
   // checkpoint come with their mesh, and weft render draws them as weft run did.
   const auto resumed = run_weft("run --resume " + cut.string() + " --save-states");
@@ -175,11 +175,11 @@ TEST_F(MeshCli, ARemeshedRunResumedFromItsCheckpointGivesTheSameBits) {
                               " --frames 7-8 --out " + (m_dir / "drawn").string());
   ASSERT_EQ(drawn.exit_code, 0) << drawn.output;
   for (int k = 7; k <= 8; ++k)
-    EXPECT_TRUE(weft::app::test::file_bytes(whole / frame_name("frame", k, "png")) ==
-                weft::app::test::file_bytes(m_dir / "drawn" / frame_name("frame", k, "png")))
+    EXPECT_TRUE(weft::app::test::file_bytes(whole / remeshed_output_name("frame", k, "png")) ==
+                weft::app::test::file_bytes(m_dir / "drawn" / remeshed_output_name("frame", k, "png")))
         << "frame " << k << " drawn from the resumed run's states";
   for (int k = 1; k <= 8; ++k) {
-    const std::string name = frame_name("frame", k, "png");
+    const std::string name = remeshed_output_name("frame", k, "png");
     ASSERT_TRUE(fs::exists(cut / name)) << name;
     EXPECT_TRUE(weft::app::test::file_bytes(whole / name) ==
                 weft::app::test::file_bytes(cut / name))
@@ -214,7 +214,7 @@ TEST_F(MeshCli, ARemeshedRunsSavedStatesAreDrawnOnTheirOwnMeshes) {
   const auto d = run_weft(render + " --out " + drawn.string());
   ASSERT_EQ(d.exit_code, 0) << d.output;
   for (int k = 1; k <= 8; ++k) {
-    const std::string name = frame_name("frame", k, "png");
+    const std::string name = remeshed_output_name("frame", k, "png");
     EXPECT_TRUE(weft::app::test::file_bytes(run / name) ==
                 weft::app::test::file_bytes(drawn / name))
         << name << " differs";
@@ -222,10 +222,10 @@ TEST_F(MeshCli, ARemeshedRunsSavedStatesAreDrawnOnTheirOwnMeshes) {
   // A range drawn alone finds its meshes as well.
   const auto range = run_weft(render + " --frames 5-7 --out " + (m_dir / "range").string());
   ASSERT_EQ(range.exit_code, 0) << range.output;
-  EXPECT_TRUE(weft::app::test::file_bytes(run / frame_name("frame", 6, "png")) ==
-              weft::app::test::file_bytes(m_dir / "range" / frame_name("frame", 6, "png")));
+  EXPECT_TRUE(weft::app::test::file_bytes(run / remeshed_output_name("frame", 6, "png")) ==
+              weft::app::test::file_bytes(m_dir / "range" / remeshed_output_name("frame", 6, "png")));
   // Without its meshes the states are refused, naming what is missing.
-  for (int k = 0; k <= 8; ++k) fs::remove(run / frame_name("cloth_mesh", k, "weft"));
+  for (int k = 0; k <= 8; ++k) fs::remove(run / remeshed_output_name("cloth_mesh", k, "weft"));
   const auto missing = run_weft(render + " --frames 3 --out " + (m_dir / "none").string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
   EXPECT_CONTAINS(missing.output, "no cloth_mesh_NNNN.weft at or before frame");
