@@ -112,6 +112,9 @@ TEST_F(MeshCli, ARemeshedRunWritesEachFramesMeshAndVertexCount) {
   EXPECT_CONTAINS(r.output, "remesh: every 6 steps");
   // 6 steps of 1/120 s per frame: a remesh at the end of each.
   EXPECT_EQ(stats_column(out / "stats.csv", "remeshes"), (std::vector<double>{1, 1, 1, 1}));
+  // Remeshed every 6 steps, not by the indicator: no coarsening criterion at work.
+  EXPECT_EQ(stats_column(out / "stats.csv", "coarsenings"), (std::vector<double>{0, 0, 0, 0}));
+  EXPECT_EQ(stats_column(out / "stats.csv", "remesh_excess"), (std::vector<double>{0, 0, 0, 0}));
   const std::vector<double> vertices = stats_column(out / "stats.csv", "vertices");
   ASSERT_EQ(vertices.size(), 4u);
   EXPECT_NE(vertices.front(), 25.0) << "the first frame's mesh is the remeshed one";
