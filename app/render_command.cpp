@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "app/auto_camera.h"
+#include "app/cloth_mesh_states.h"
 #include "app/frame_painter.h"
 #include "app/json_reader.h"
 #include "app/frame_stream.h"
@@ -41,8 +42,8 @@ sim::Matrix3X read_state(const fs::path& dir, int frame, Eigen::Index vertices) 
                                      "simulated frame)");
   sim::Matrix3X x = read_npy_points(path);
   if (x.rows() != vertices)
-    throw SceneError(path.string() + ": " + std::to_string(x.rows()) + " vertices, the scene's "
-                     "cloth has " + std::to_string(vertices) + " (another scene's states?)");
+    throw SceneError(path.string() + ": " + std::to_string(x.rows()) + " vertices, the frame's "
+                     "cloth mesh has " + std::to_string(vertices) + " (another scene's states?)");
   return x;
 }
 
@@ -91,9 +92,16 @@ int run_render(const RenderOptions& options) {
   const auto [first, last] = options.frames.empty()
                                  ? std::pair<int, int>{1, scene.frames}
                                  : parse_frame_range(options.frames, scene.frames);
-  // The cloth's mesh as weft run makes it; no step is taken.
+  // The cloth's mesh as weft run makes it; no step is taken. A remeshed run's frames each have
+  // the mesh saved beside their states (app/cloth_mesh_states.h), drawn through `frame_mesh`.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const sim::ClothMesh& mesh = simulator->mesh();
+  const bool remeshed = scene.sim.remesh.enabled;
+  ClothMeshStates meshes(options.states, mesh);
+  sim::ClothMesh frame_mesh = mesh;
+  const auto vertices_of = [&](int k) {
+    return remeshed ? meshes.at(k).vertex_count() : mesh.vertex_count();
+  };
   std::vector<int> selected;
   for (int k = first; k <= last; k += options.every) selected.push_back(k);
   const fs::path out = options.out.value_or(options.states);
@@ -109,23 +117,24 @@ int run_render(const RenderOptions& options) {
   if (!scene.camera_given) {
     Eigen::AlignedBox3d box;
     for (int k = 0; k <= scene.frames; ++k) {
-      sim::Matrix3X x = read_state(options.states, k, mesh.vertex_count());
+      sim::Matrix3X x = read_state(options.states, k, vertices_of(k));
       extend_box(box, x);
       if (const std::size_t i = selected_index(k); i < selected.size()) states[i] = std::move(x);
     }
     frame_cloth_if_no_camera(scene, box);
   } else {
     for (std::size_t i = 0; i < selected.size(); ++i)
-      states[i] = read_state(options.states, selected[i], mesh.vertex_count());
+      states[i] = read_state(options.states, selected[i], vertices_of(selected[i]));
   }
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
   fs::create_directories(out);
-  FramePainter painter(scene, *renderer, mesh);
+  FramePainter painter(scene, *renderer, frame_mesh);
   Progress progress(stderr, static_cast<int>(selected.size()), "frame");
   for (std::size_t i = 0; i < selected.size(); ++i) {
     // weft run draws a frame at the simulator's time, which advance() leaves at exactly k / fps
     // (Simulator::advance: t + (k/fps − t) with t = (k−1)/fps is exact), or 0 without dynamics.
     const double time_s = scene.dynamics ? frame_time_s(scene, selected[i]) : 0.0;
+    if (remeshed) frame_mesh = meshes.at(selected[i]);
     painter.paint(selected[i], states[i], time_s, out);
     progress.update(static_cast<int>(i + 1));
   }

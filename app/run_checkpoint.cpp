@@ -1,6 +1,7 @@
 // weft run's checkpoint file (see run_checkpoint.h).
 //
-// Layout: the magic line "weft checkpoint 1\n", the build hash and the scene text's hash (8
+// Layout: the magic line "weft checkpoint 2\n" (version 2: the simulator's state begins with its
+// mesh section, the remeshed cloth's mesh; version 1 had none), the build hash and the scene text's hash (8
 // bytes each, native order), then the sections of a sim::StateWriter: "run" (frame, interval,
 // scene source and text), "rows", "crossings", "simulator" (Simulator::save_state's bytes) and
 // "end".
@@ -11,6 +12,7 @@
 #include <link.h>
 
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -25,7 +27,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::string_view kMagic = "weft checkpoint 1\n";
+constexpr std::string_view kMagicPrefix = "weft checkpoint ";
+constexpr int kCheckpointVersion = 2;
+const std::string kMagic = std::string(kMagicPrefix) + std::to_string(kCheckpointVersion) + "\n";
 
 std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -122,6 +126,15 @@ RunCheckpoint read_checkpoint(const fs::path& dir) {
   const std::string bytes = read_bytes(path);
   const std::string name = path.string();
   std::uint64_t hashes[2];
+  if (bytes.compare(0, kMagicPrefix.size(), kMagicPrefix) == 0 &&
+      bytes.compare(0, kMagic.size(), kMagic) != 0) {
+    const std::size_t end = bytes.find('\n', kMagicPrefix.size());
+    const std::string version =
+        bytes.substr(kMagicPrefix.size(), std::min<std::size_t>(end, 40) - kMagicPrefix.size());
+    throw SceneError(name + ": a weft checkpoint of format version " + version + "; this weft "
+                     "reads version " + std::to_string(kCheckpointVersion) + " only (rerun the "
+                     "scene from the start)");
+  }
   if (bytes.compare(0, kMagic.size(), kMagic) != 0 || bytes.size() < kMagic.size() + sizeof hashes)
     throw SceneError(name + ": not a weft checkpoint (weft run --checkpoint-every writes them)");
   std::memcpy(hashes, bytes.data() + kMagic.size(), sizeof hashes);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/auto_camera.h"
+#include "app/cloth_mesh_states.h"
 #include "app/frame_mesh.h"
 #include "app/frame_painter.h"
 #include "app/npy_file.h"
@@ -72,7 +73,7 @@ std::string mesh_name(int frame, MeshFormat format) {
 void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
   start_output(dir,
                {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
-                {"state", "npy"}},
+                {"state", "npy"}, {cloth_mesh_state_prefix, cloth_mesh_state_extension}},
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
   std::filesystem::remove(dir / texture_file_name);
@@ -188,22 +189,32 @@ class FrameWriter {
               sim::Simulator& simulator, render::Renderer& renderer)
       : m_scene(scene), m_options(options), m_dir(dir), m_simulator(simulator),
         m_stats(dir / "stats.csv"), m_painter(scene, renderer, simulator.mesh()),
-        m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {}
+        m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {
+    if (options.save_states && scene.sim.remesh.enabled)
+      m_initial_mesh = std::make_unique<sim::ClothMesh>(simulator.mesh());
+  }
 
   void write(const Frame& frame) {
+    const bool remeshed_states = m_options.save_states && m_scene.sim.remesh.enabled;
     if (m_rows.empty()) {
       prepare_output(m_dir, m_scene, m_options);
       if (m_options.save_states)
         write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
+      if (remeshed_states) write_cloth_mesh_state(m_dir, 0, *m_initial_mesh);
     }
-    // Every simulated frame's state, for weft render (its camera frames them all).
-    if (m_options.save_states)
-      write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
-                       m_simulator.state().x);
     FrameStats row;
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
     row.steps = m_simulator.take_step_statistics();
+    // Every simulated frame's state, for weft render (its camera frames them all); with
+    // remeshing, the mesh of each frame whose steps remeshed the cloth (cloth_mesh_states.h).
+    if (m_options.save_states)
+      write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
+                       m_simulator.state().x);
+    // After a resume too: the interrupted run may not have saved states (nor meshes).
+    if (remeshed_states && (row.steps.remeshes > 0 || m_resumed_mesh_unsaved))
+      write_cloth_mesh_state(m_dir, frame.index, m_simulator.mesh());
+    m_resumed_mesh_unsaved = false;
     row.diagnostics = m_simulator.diagnostics();
     // The frame's own mesh: with simulation.remesh it changes from frame to frame, so its
     // triangles and edges are taken anew after each remesh (and only then).
@@ -239,6 +250,7 @@ class FrameWriter {
   }
   // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
   void resume(const RunCheckpoint& checkpoint) {
+    m_resumed_mesh_unsaved = true;
     m_rows = checkpoint.rows;
     m_crossing_frames = checkpoint.crossing_frames;
     m_stats.restore(m_rows);
@@ -282,6 +294,8 @@ class FrameWriter {
   PointCache m_cache;  // --export-cache: the frames so far
   std::vector<int> m_crossing_frames;
   sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
+  std::unique_ptr<sim::ClothMesh> m_initial_mesh;  // and its mesh, with simulation.remesh
+  bool m_resumed_mesh_unsaved = false;  // resumed: the mesh goes with the first frame's state
 };
 
 // Says where the run stopped and what it kept; writes the report of the frames written.
@@ -365,19 +379,12 @@ int run_scene(const RunOptions& options) {
     throw SceneError("--export-cache: not with --checkpoint-every or --resume (the point cache "
                      "holds every frame and is not checkpointed; export meshes per frame with "
                      "--export-meshes)");
-  if (scene.sim.remesh.enabled) {
-    // What assumes one mesh for the whole run (docs/remeshing.md).
-    const char* option = every > 0          ? "--checkpoint-every"
-                          : resumed          ? "--resume"
-                          : options.save_states ? "--save-states"
-                          : !options.export_cache.empty() ? "--export-cache"
-                                                          : nullptr;
-    if (option)
-      throw SceneError(std::string(option) + ": not with simulation.remesh (" + scene.source +
-                       "): a remeshed cloth's vertices change from frame to frame, and the "
-                       "checkpoints, saved states and point caches hold one mesh's; export each "
-                       "frame's mesh with --export-meshes");
-  }
+  // A point cache holds one mesh's vertices (docs/remeshing.md); checkpoints and saved states
+  // hold each frame's mesh (docs/checkpoints.md).
+  if (scene.sim.remesh.enabled && !options.export_cache.empty())
+    throw SceneError("--export-cache: not with simulation.remesh (" + scene.source +
+                     "): a remeshed cloth's vertices change from frame to frame, and a point "
+                     "cache holds one mesh's; export each frame's mesh with --export-meshes");
   if (resumed && resumed->frame >= scene.frames)
     throw SceneError("--resume " + options.resume->string() + ": the checkpoint is of frame " +
                      std::to_string(resumed->frame) + ", the scene's last: nothing to resume");

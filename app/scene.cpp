@@ -269,6 +269,16 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
                           "remeshed cloth is curved, so a threshold at c or below would remesh "
                           "at every check), got " + std::to_string(m.indicator));
   }
+  if (r.has("coarsen")) {
+    m.coarsen = r.number("coarsen", std::nullopt, Range::gt(0.0).lt(1e6));
+    if (m.indicator <= 0.0)
+      r.fail("coarsen", "needs \"indicator\": without it every check remeshes, which coarsens "
+                        "flat regions already");
+    if (m.coarsen <= 1.0)
+      r.fail("coarsen", "expected a ratio above 1 (how many times finer than the curvature asks "
+                        "the mesh may grow before it is coarsened), got " +
+                            std::to_string(m.coarsen));
+  }
   m.transfer = r.enumeration<sim::RemeshTransfer>(
       "transfer",
       {{"quadratic", sim::RemeshTransfer::quadratic}, {"linear", sim::RemeshTransfer::linear}},

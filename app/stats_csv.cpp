@@ -12,7 +12,7 @@ StatsCsv::StatsCsv(const std::filesystem::path& path)
            "elastic_energy_J,gravity_energy_J,max_speed_m_s,projection_iterations,"
            "max_step_iterations,unconverged_steps,solve_ms,failed_implicit_solves,cg_iterations,"
            "min_step_ms,max_step_ms,rejected_steps,vertices,remeshes,remesh_energy_J,"
-           "remesh_indicator_m,self_intersections,max_self_contacts\n") {}
+           "remesh_indicator_m,remesh_excess,coarsenings,self_intersections,max_self_contacts\n") {}
 
 namespace {
 
@@ -28,7 +28,8 @@ std::string row_text(const FrameStats& r) {
         << s.unconverged_steps << ',' << 1e3 * s.solve_s << ',' << s.failed_implicit_solves << ','
         << s.cg_iterations << ',' << 1e3 * s.min_step_s << ',' << 1e3 * s.max_step_s << ','
         << s.rejected_steps << ',' << r.vertices << ',' << s.remeshes << ',' << s.remesh_energy_J
-        << ',' << s.max_remesh_indicator_m << ',' << r.self_intersections << ',' << s.max_self_contacts << '\n';
+        << ',' << s.max_remesh_indicator_m << ',' << s.max_remesh_excess << ',' << s.coarsenings
+        << ',' << r.self_intersections << ',' << s.max_self_contacts << '\n';
   return line.str();
 }
 

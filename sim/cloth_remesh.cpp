@@ -6,6 +6,7 @@
 
 #include "sim/remesh/curvature.h"
 #include "sim/remesh/remesh.h"
+#include "sim/remesh/size_field.h"
 #include "sim/triangle_cloth.h"
 
 namespace weft::sim {
@@ -73,11 +74,17 @@ remesh::SizeFieldParams remesh_size_params(const RemeshSettings& settings) {
 
 double cloth_remesh_indicator_m(const ClothMesh& mesh, const Matrix3X& x,
                                 const RemeshSettings& settings) {
+  return cloth_remesh_criteria(mesh, x, settings).indicator_m;
+}
+
+ClothRemeshCriteria cloth_remesh_criteria(const ClothMesh& mesh, const Matrix3X& x,
+                                          const RemeshSettings& settings) {
   const remesh::Matrix2X material = remesh_material_rows(mesh);
   const remesh::Triangles triangles = remesh_triangle_rows(mesh);
-  return remesh::remesh_indicator(material, triangles,
-                                  remesh::vertex_curvature(material, triangles, x),
-                                  remesh_size_params(settings));
+  const Eigen::VectorXd curvature = remesh::vertex_curvature(material, triangles, x);
+  const remesh::SizeFieldParams size = remesh_size_params(settings);
+  return {remesh::remesh_indicator(material, triangles, curvature, size),
+          remesh::refinement_excess(material, triangles, curvature, size)};
 }
 
 RemeshedCloth remesh_cloth(const ClothMesh& mesh, const Matrix3X& x, const Matrix3X& v,

@@ -35,6 +35,15 @@ void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings);
 double cloth_remesh_indicator_m(const ClothMesh& mesh, const Matrix3X& x,
                                 const RemeshSettings& settings);
 
+// Both criteria at once (one curvature fit): seed 002's indicator as cloth_remesh_indicator_m,
+// and the refinement excess (sim/remesh/size_field.h refinement_excess) for coarsening.
+struct ClothRemeshCriteria {
+  double indicator_m = 0.0;
+  double excess = 0.0;
+};
+ClothRemeshCriteria cloth_remesh_criteria(const ClothMesh& mesh, const Matrix3X& x,
+                                          const RemeshSettings& settings);
+
 // One remeshing step: the cloth at positions x and velocities v (#V×3), with initial_x (#V×3)
 // carried along and `keep` (pins) kept. Throws std::invalid_argument from the remesher (a size
 // field asking for more than settings.max_vertices vertices, ...).

@@ -23,4 +23,10 @@ double cloth_remesh_indicator_m(const ClothMesh&, const Matrix3X&, const RemeshS
                               "CGAL)");
 }
 
+ClothRemeshCriteria cloth_remesh_criteria(const ClothMesh&, const Matrix3X&,
+                                          const RemeshSettings&) {
+  throw std::invalid_argument("cloth_remesh_criteria: this build of weft has no remesher (no "
+                              "CGAL)");
+}
+
 }  // namespace weft::sim

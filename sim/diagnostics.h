@@ -41,6 +41,10 @@ struct StepStatistics {
   double remesh_energy_J = 0.0;  // the total energy's change by those remeshes (the transfer's)
   // The largest remesh criterion max |κ|h² at the indicator checks, metres (0: none checked).
   double max_remesh_indicator_m = 0.0;
+  // With simulation.remesh.coarsen: the largest refinement excess at those checks relative to
+  // its value just after the last remesh (remesh when it passes coarsen; 0: none checked).
+  double max_remesh_excess = 0.0;
+  long coarsenings = 0;  // of the remeshes, those the coarsening criterion asked for
 };
 
 enum class Phase {

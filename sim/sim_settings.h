@@ -50,6 +50,10 @@ struct RemeshSettings {
   // > 0: remesh only when max |κ| h² > indicator × c (dimensionless, > 1: after a remesh the
   // criterion is about c where the cloth is curved); 0: remesh at every check.
   double indicator = 0.0;
+  // > 0 (with indicator): also remesh when the mesh has grown this many times finer than the
+  // curvature asks for, relative to just after the last remesh (the cloth flattened under a
+  // fine mesh; remesh::refinement_excess); 0: the indicator only refines.
+  double coarsen = 0.0;
   RemeshTransfer transfer = RemeshTransfer::quadratic;  // of positions; velocities are linear
   long max_vertices = 200'000;  // a mesh finer than this is an error, not a frozen run
 };

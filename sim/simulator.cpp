@@ -261,12 +261,24 @@ bool Simulator::attempt_step(double h_s, bool may_reject) {
 
 // At a check (every every_steps steps): always, or with an indicator threshold when seed 002's
 // criterion max |κ| h² has passed indicator × c (its largest value goes to the statistics).
+// With `coarsen`, also when the refinement excess has grown `coarsen` times above its value
+// just after the last remesh (before the first: at the first check): the cloth flattened under
+// a mesh made for folds.
 bool Simulator::remesh_due() {
   const RemeshSettings& r = m_settings.remesh;
   if (r.indicator <= 0.0) return true;
-  const double indicator_m = cloth_remesh_indicator_m(m_mesh, m_state.x, r);
-  m_stats.max_remesh_indicator_m = std::max(m_stats.max_remesh_indicator_m, indicator_m);
-  return indicator_m > r.indicator * r.c_m;
+  const ClothRemeshCriteria criteria = cloth_remesh_criteria(m_mesh, m_state.x, r);
+  m_stats.max_remesh_indicator_m = std::max(m_stats.max_remesh_indicator_m, criteria.indicator_m);
+  if (criteria.indicator_m > r.indicator * r.c_m) return true;
+  if (r.coarsen <= 0.0) return false;
+  if (!m_excess_reference) {
+    m_excess_reference = criteria.excess;
+    return false;
+  }
+  m_stats.max_remesh_excess = std::max(m_stats.max_remesh_excess, criteria.excess / *m_excess_reference);
+  if (criteria.excess <= r.coarsen * *m_excess_reference) return false;
+  ++m_stats.coarsenings;
+  return true;
 }
 
 void Simulator::remesh_now() {
@@ -285,13 +297,10 @@ void Simulator::remesh_now() {
   m_state.x = std::move(cloth.x);
   m_state.v = std::move(cloth.v);
   m_initial_x = std::move(cloth.initial_x);
-  m_system = make_system(m_mesh, m_material, m_pinned, m_settings);
-  m_system.timers = &m_timers;
-  m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
-                                            Eigen::VectorXd::Ones(m_mesh.vertex_count()));
-  m_critical_step_s = critical_step_s(m_system);
-  m_taut = {};  // none without fast projection
-  build_solvers();
+  rebuild_for_mesh();
+  // The coarsening criterion's reference: the new mesh's excess for the curvature it was made for.
+  if (m_settings.remesh.coarsen > 0.0)
+    m_excess_reference = cloth_remesh_criteria(m_mesh, m_state.x, m_settings.remesh).excess;
   // The energy guard (check_growth) watches what the dynamics gain; the transfer's own change of
   // energy (new vertices on the old mesh's flat facets: edges shorter than their rest length
   // where the cloth is curved, docs/remeshing.md) is the remesh's, so the reference moves by it.
@@ -300,6 +309,16 @@ void Simulator::remesh_now() {
   m_stats.remesh_energy_J += jump_J;
   ++m_remeshes;
   ++m_stats.remeshes;
+}
+
+void Simulator::rebuild_for_mesh() {
+  m_system = make_system(m_mesh, m_material, m_pinned, m_settings);
+  m_system.timers = &m_timers;
+  m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
+                                            Eigen::VectorXd::Ones(m_mesh.vertex_count()));
+  m_critical_step_s = critical_step_s(m_system);
+  m_taut = {};  // none without fast projection
+  build_solvers();
 }
 
 // Every integrator leaves a pinned vertex's velocity as it is (zero acceleration), so the

@@ -86,7 +86,9 @@ class Simulator {
   long remesh_count() const { return m_remeshes; }
   // Whether a remesh check (every every_steps steps) remeshes now: always without an indicator
   // threshold, else when cloth_remesh_indicator_m of the current positions passes it (recorded
-  // in the step statistics' max_remesh_indicator_m).
+  // in the step statistics' max_remesh_indicator_m), or, with simulation.remesh.coarsen, when
+  // the mesh has grown that many times finer than the curvature asks for since it was made
+  // (the ratio in max_remesh_excess).
   bool remesh_due();
 
   const State& state() const { return m_state; }
@@ -120,11 +122,14 @@ class Simulator {
 
   // Everything the simulation carries from one step to the next (sim/simulator_state.cpp):
   // positions, velocities, time, step count, the energy guard, the step statistics not yet
-  // taken, the integrator's, projector's, carried tension's and self-collision's memory. A
-  // Simulator made from the same scene and restored from it continues with the same bits as
-  // the one saved. restore_state() throws StateArchiveError when the bytes do not fit this
-  // simulation (another mesh, integrator or setting). A remeshed simulation's state is not
-  // saved (its mesh is no longer the scene's): save_state() throws std::logic_error.
+  // taken, the integrator's, projector's, carried tension's and self-collision's memory; and,
+  // once the cloth has been remeshed, its current mesh (sim/cloth_mesh_archive.h), the pins'
+  // and moving pins' vertex numbers on it and the remesh count. A Simulator made from the same
+  // scene (and pin paths) and restored from it continues with the same bits as the one saved:
+  // restoring a remeshed state rebuilds everything made from the mesh, as remesh_now() does.
+  // restore_state() throws StateArchiveError when the bytes do not fit this simulation
+  // (another mesh, integrator or setting; a remeshed state into a simulation without
+  // simulation.remesh or with another number of pins or moving pins).
   void save_state(StateWriter& out) const;
   void restore_state(StateReader& in);
 
@@ -153,6 +158,10 @@ class Simulator {
   TautChains current_taut_chains() const;  // none unless fast projection
 
   void build_solvers();
+  // After m_mesh and m_pinned changed (a remesh, a restored remeshed state): masses, force
+  // terms, the strain diagnostic's edges, the critical step, the contacts and constraints and
+  // the integrator, whose memory starts afresh.
+  void rebuild_for_mesh();
 
   ClothMesh m_mesh;
   Material m_material;  // to rebuild the force terms after a remesh
@@ -180,6 +189,9 @@ class Simulator {
   double m_time_step_s = 0.0;
   long m_steps = 0;
   long m_remeshes = 0;
+  // simulation.remesh.coarsen: the refinement excess just after the last remesh (the scene's
+  // mesh: at the first check).
+  std::optional<double> m_excess_reference;
   StepStatistics m_stats;
   PhaseTimers m_timers;
 };

@@ -22,8 +22,11 @@ std::vector<std::string> Simulator::explain() const {
     remesh << "remesh: ";
     if (r.indicator > 0.0)
       remesh << "when max |curvature| h^2 > " << r.indicator << " c, checked every "
-             << r.every_steps << (r.every_steps == 1 ? " step" : " steps");
-    else
+             << r.every_steps << (r.every_steps == 1 ? " step" : " steps")
+             << (r.coarsen > 0.0 ? ", or when the mesh grew " : "");
+    if (r.indicator > 0.0 && r.coarsen > 0.0)
+      remesh << r.coarsen << "x finer than the curvature asks (coarsening)";
+    if (r.indicator <= 0.0)
       remesh << "every " << r.every_steps << " steps";
     remesh << ", h = clamp(sqrt(c / |curvature|), " << 1e3 * r.h_min_m << " mm, "
            << 1e3 * r.h_max_m << " mm), c = " << 1e3 * r.c_m

@@ -62,4 +62,24 @@ double remesh_indicator(const Matrix2X& material, const Triangles& triangles,
   return worst;
 }
 
+double refinement_excess(const Matrix2X& material, const Triangles& triangles,
+                         const Eigen::VectorXd& curvature, const SizeFieldParams& params) {
+  check_size_field_params(params);
+  const Eigen::VectorXd h = triangle_sizes(material, triangles);
+  double current = 0.0, target = 0.0;
+  for (Index t = 0; t < triangles.rows(); ++t) {
+    const Eigen::RowVector2d a = material.row(triangles(t, 0));
+    const Eigen::RowVector2d e1 = material.row(triangles(t, 1)) - a;
+    const Eigen::RowVector2d e2 = material.row(triangles(t, 2)) - a;
+    const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    const double kappa =
+        (curvature(triangles(t, 0)) + curvature(triangles(t, 1)) + curvature(triangles(t, 2))) /
+        3.0;
+    const double h_target = target_size(kappa, params);
+    current += area / (h(t) * h(t));
+    target += area / (h_target * h_target);
+  }
+  return target > 0.0 ? current / target : 0.0;
+}
+
 }  // namespace weft::sim::remesh

@@ -42,4 +42,16 @@ Eigen::VectorXd triangle_sizes(const Matrix2X& material, const Triangles& triang
 double remesh_indicator(const Matrix2X& material, const Triangles& triangles,
                         const Eigen::VectorXd& curvature, const SizeFieldParams& params);
 
+// The coarsening criterion (docs/remeshing.md, "Coarsening under the indicator"): how many
+// times more triangles the mesh has than one graded by eq. 29 for this curvature,
+//   (Σ_t A_t / h_t²) / (Σ_t A_t / h_target,t²),
+// with A_t the triangle's material area, h_t its mean side and h_target,t eq. 29 of |κ_t| (the
+// mean of its vertex curvatures, as in remesh_indicator). A triangle of side h covers an area
+// proportional to h², so each sum counts triangles up to the same shape factor, which cancels.
+// Dimensionless; a mesh made for this curvature gives about 1/0.69² ≈ 2 (the mesher's mean side
+// is about 0.69 h) plus what its kept boundary vertices add; it grows as the cloth flattens
+// under a fine mesh (h_target grows, h_t does not).
+double refinement_excess(const Matrix2X& material, const Triangles& triangles,
+                         const Eigen::VectorXd& curvature, const SizeFieldParams& params);
+
 }  // namespace weft::sim::remesh

@@ -117,6 +117,17 @@ TEST(RemeshScene, BadIndicatorsAndTransfersAreErrorsNamingTheKey) {
   EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.indicator");
   scene["simulation"]["remesh"]["indicator"] = "2 mm";
   EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.indicator");
+  // coarsen: a ratio above 1, and only with the indicator.
+  scene = remeshed_hang(dir);
+  scene["simulation"]["remesh"]["coarsen"] = 2;
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"),
+                  "simulation.remesh.coarsen: needs \"indicator\"");
+  scene["simulation"]["remesh"]["indicator"] = 3;
+  scene["simulation"]["remesh"]["coarsen"] = 1;
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"),
+                  "simulation.remesh.coarsen: expected a ratio above 1");
+  scene["simulation"]["remesh"]["coarsen"] = 2.5;
+  EXPECT_EQ(parse_scene(scene.dump(), (dir / "scene.json").string()).sim.remesh.coarsen, 2.5);
   scene = remeshed_hang(dir);
   scene["simulation"]["remesh"]["transfer"] = "cubic";
   const std::string transfer = test::scene_error_of(scene, dir / "scene.json");

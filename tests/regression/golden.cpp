@@ -10,6 +10,7 @@
 #include "app/frame_stream.h"
 #include "app/obstacle_meshes.h"
 #include "app/scene.h"
+#include "app/scene_options.h"
 #include "app/renderer_choice.h"
 #include "tests/app/coarse_scene.h"
 
@@ -25,12 +26,15 @@ bool update_mode() {
 
 void write_page(const fs::path& dir, const GoldenCase& c, const render::ImageDifference& d,
                 const std::string& verdict) {
+  std::string overrides;
+  for (const auto& [key, value] : c.settings) overrides += " --set " + key + "=" + value;
   std::ofstream html(dir / "index.html");
   html << "<!doctype html><meta charset=\"utf-8\"><title>weft regression: " << c.name
        << "</title>\n<style>body{font-family:sans-serif} img{image-rendering:pixelated;"
           "width:480px;border:1px solid #888;cursor:pointer} td{padding:6px;vertical-align:top}"
-          "</style>\n<h1>" << c.name << ": " << verdict << "</h1>\n<p>scene " << c.scene << ", "
-       << c.resolution << "² grid, " << c.frames << " frames, " << c.renderer << ", " << c.width
+          "</style>\n<h1>" << c.name << ": " << verdict << "</h1>\n<p>scene " << c.scene << overrides << ", "
+       << (c.settings.empty() ? std::to_string(c.resolution) + "² grid" : "its own mesh")
+       << ", " << c.frames << " frames, " << c.renderer << ", " << c.width
        << "×" << c.height << ". PSNR " << d.psnr_db << " dB (fail below " << c.min_psnr_db
        << "), SSIM " << d.ssim << ", max difference " << d.max_abs << ", "
        << 100.0 * d.fraction_over << " % of pixels differ by more than " << d.pixel_threshold
@@ -46,8 +50,13 @@ void write_page(const fs::path& dir, const GoldenCase& c, const render::ImageDif
 
 }  // namespace
 
-render::Image render_case(const GoldenCase& c, double density_scale) {
-  app::Scene scene = app::test::coarse_scene(c.scene, c.resolution);
+render::Image render_case(const GoldenCase& c, double density_scale, long* remeshes) {
+  std::vector<app::Setting> settings;
+  for (const auto& [key, value] : c.settings) settings.push_back({key, value});
+  app::Scene scene =
+      settings.empty()
+          ? app::test::coarse_scene(c.scene, c.resolution)
+          : app::load_scene_with(fs::path(WEFT_SOURCE_DIR) / "assets" / "scenes" / c.scene, settings);
   scene.material.density_kg_m2 *= density_scale;
   scene.render.width = c.width;
   scene.render.height = c.height;
@@ -58,6 +67,7 @@ render::Image render_case(const GoldenCase& c, double density_scale) {
   // The frames weft run writes: the frame stream, frame by frame to the last.
   const app::FrameStreamEnd end = app::stream_frames(scene, *simulator, {});
   if (end.divergence) throw end.divergence->error;
+  if (remeshes) *remeshes = simulator->remesh_count();
   const auto renderer = app::make_chosen_renderer(scene.render);
   return renderer->render(app::to_render_mesh(simulator->mesh(), simulator->state().x),
                           scene.render, app::obstacle_render_objects(scene.sim.obstacles, scene.render));

@@ -10,6 +10,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "render/image.h"
 #include "render/image_diff.h"
@@ -28,14 +30,19 @@ struct GoldenCase {
   // than pixel_threshold. The frames are deterministic, so an unchanged build gives the same
   // bytes (PSNR ∞); the margins allow for a different CPU's rounding in llvmpipe, and a cloth
   // 10 % heavier crosses them (regression_test.cpp).
+  // --set KEY=VALUE overrides of the scene file (a mesh scene has no grid to make coarse).
+  std::vector<std::pair<std::string, std::string>> settings{};
   double min_psnr_db = render::default_min_psnr_db;
   double max_over = render::default_max_over;
   int pixel_threshold = render::default_pixel_threshold;
 };
 
-// Simulates the case's scene on its coarse grid (cloth density × density_scale) through the
-// frame stream of weft run (app/frame_stream.h) and renders its last frame. Throws what the scene or renderer throws.
-render::Image render_case(const GoldenCase& c, double density_scale = 1.0);
+// Simulates the case's scene on its coarse grid (cloth density × density_scale; with
+// `settings`, the scene file with those overrides instead) through the frame stream of weft run
+// (app/frame_stream.h) and renders its last frame; `remeshes`, when given, gets the number of
+// times the cloth was remeshed. Throws what the scene or renderer throws.
+render::Image render_case(const GoldenCase& c, double density_scale = 1.0,
+                          long* remeshes = nullptr);
 
 std::filesystem::path golden_path(const GoldenCase& c);
 

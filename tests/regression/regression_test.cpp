@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -25,6 +26,11 @@ const std::vector<GoldenCase>& cases() {
       {"sphere_drape_raytrace", "sphere_drape_30.json", 17, 12, "raytrace"},
       // The tension-field curtain (no dynamics): the fold generator's shape.
       {"curtain_tension_field_raster", "curtain_tension_field.json", 31, 0, "raster"},
+      // Adaptive remeshing (issue 21): the remeshed sphere drape after 1/3 s, drawn with its
+      // mesh lines, h_min 1.2 cm (8 mm in the scene) to keep it to seconds: remeshed in frames
+      // 4 and 7 (441 → 1227 → 1997 vertices; TheRemeshedDrapeDependsOnItsRemeshes).
+      {"sphere_drape_remeshed_raster", "sphere_drape_20_remeshed.json", 0, 8, "raster", 256, 192,
+       4, {{"simulation.remesh.h_min", "1.2 cm"}}},
   };
   return all;
 }
@@ -69,6 +75,35 @@ TEST(GoldenSuite, AClothTenPercentHeavierFailsWithItsEvidence) {
   EXPECT_NE(std::string(r.message()).find(evidence_page(c, folder).string()), std::string::npos)
       << r.message();
   std::filesystem::remove_all(dir);  // evidence of a deliberate failure, not of a regression
+}
+
+// The remeshed drape's golden shows the remeshing: the case is remeshed, and the same drape
+// with its remeshes left out (a check every 10⁶ steps: never) does not match it.
+TEST(GoldenSuite, TheRemeshedDrapeDependsOnItsRemeshes) {
+  const char* update = std::getenv("WEFT_REGRESSION_UPDATE");
+  if (update && std::string(update) == "1") GTEST_SKIP() << "update mode writes goldens only";
+  const auto remeshed_case = std::find_if(cases().begin(), cases().end(), [](const GoldenCase& c) {
+    return c.name == "sphere_drape_remeshed_raster";
+  });
+  ASSERT_NE(remeshed_case, cases().end());
+  long remeshes = 0;
+  try {
+    render_case(*remeshed_case, 1.0, &remeshes);
+  } catch (const std::runtime_error& e) {
+    if (std::string(e.what()).find("OSMesa") != std::string::npos) GTEST_SKIP() << e.what();
+    throw;
+  }
+  EXPECT_GE(remeshes, 2);
+  GoldenCase unremeshed = *remeshed_case;
+  unremeshed.settings.push_back({"simulation.remesh.every", "1000000"});
+  long none = -1;
+  const render::Image image = render_case(unremeshed, 1.0, &none);
+  EXPECT_EQ(none, 0);
+  const std::string folder = unremeshed.name + "_not_remeshed";
+  const ::testing::AssertionResult r = matches_golden(unremeshed, image, folder);
+  EXPECT_FALSE(r) << "the drape without its remeshes should not match the remeshed golden";
+  std::printf("not remeshed: %s\n", r.message());
+  std::filesystem::remove_all(evidence_page(unremeshed, folder).parent_path());
 }
 
 }  // namespace

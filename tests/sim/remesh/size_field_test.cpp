@@ -75,5 +75,42 @@ TEST(SizeField, IndicatorIsCurvatureTimesSizeSquaredOnACylinder) {
   EXPECT_NEAR(remesh_indicator(m.material, m.triangles, sharp, p), 4.0 * p.c_m, 1e-15);
 }
 
+// The coarsening criterion counts triangles against what eq. 29 asks for: on uniform cells
+// of 1 cm (triangle h = (2 + √2)/3 cm) it is (h_target/h)², with h_target = h_max for a flat
+// cloth and √(c/|κ|) on a cylinder; half the sheet flat, half curved: the area-weighted ratio.
+TEST(SizeField, RefinementExcessIsTheRatioOfTriangleCounts) {
+  const auto m = testing::grid_mesh(0.2, 0.2, 21, 21);
+  const double h = 0.01 * (2.0 + std::sqrt(2.0)) / 3.0;
+  const SizeFieldParams p{1e-3, 0.002, 0.05};
+  const Eigen::VectorXd flat = Eigen::VectorXd::Zero(m.material.rows());
+  EXPECT_NEAR(refinement_excess(m.material, m.triangles, flat, p), std::pow(0.05 / h, 2), 1e-12);
+  const Eigen::VectorXd cylinder = Eigen::VectorXd::Constant(m.material.rows(), 4.0);
+  const double h_target = std::sqrt(1e-3 / 4.0);  // 1.58 cm
+  EXPECT_NEAR(refinement_excess(m.material, m.triangles, cylinder, p), std::pow(h_target / h, 2),
+              1e-12);
+  // Curved where u < 10 cm (the triangles whose three corners are there), flat elsewhere: the
+  // current mesh's count over the target's, Σ A/h² / (A_curved/h_target² + A_flat/h_max²).
+  Eigen::VectorXd half = flat;
+  for (Index k = 0; k < m.material.rows(); ++k)
+    if (m.material(k, 0) < 0.1 - 1e-12) half(k) = 4.0;
+  double curved_area = 0.0, total_area = 0.0;
+  for (Index t = 0; t < m.triangles.rows(); ++t) {
+    const double area = 0.5 * 0.01 * 0.01;
+    total_area += area;
+    // A triangle straddling u = 10 cm has a mean |κ| of 4/3 or 8/3: eq. 29 of that.
+    int curved = 0;
+    for (int c = 0; c < 3; ++c) curved += half(m.triangles(t, c)) > 0.0;
+    const double ht = target_size(4.0 * curved / 3.0, p);
+    curved_area += area * (1.0 / (ht * ht) - 1.0 / (0.05 * 0.05));
+  }
+  const double expected = (total_area / (h * h)) / (total_area / (0.05 * 0.05) + curved_area);
+  EXPECT_NEAR(refinement_excess(m.material, m.triangles, half, p), expected, 1e-12 * expected);
+  // A finer mesh of the same flat sheet has 4× the excess.
+  const auto fine = testing::grid_mesh(0.2, 0.2, 41, 41);
+  EXPECT_NEAR(refinement_excess(fine.material, fine.triangles,
+                                Eigen::VectorXd::Zero(fine.material.rows()), p),
+              4.0 * std::pow(0.05 / h, 2), 1e-9);
+}
+
 }  // namespace
 }  // namespace weft::sim::remesh
