@@ -222,6 +222,8 @@ std::string ContactsAndConstraints::explain_collide() const {
     line << "collide: " << m_settings.obstacles.size() << " obstacles (" << meshes << " meshes, "
          << moving << " moving), thickness " << 1e3 * m_settings.collision_thickness_m
          << " mm, friction " << m_settings.collision_friction;
+    if (m_settings.resting_contacts && m_settings.integrator == Integrator::implicit_euler)
+      line << ", resting contacts held in the solve";
   }
   if (m_self) {
     line << "; self-collision over " << m_self->triangle_count() << " triangles and "
