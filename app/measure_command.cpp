@@ -114,7 +114,7 @@ sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh) {
   int used = 0;
   for (sim::Index v = 0; v < mesh.vertex_count(); ++v) {
     if (!mesh.is_used(v)) continue;
-    sum += mesh.rest_positions.row(v).transpose();
+    sum += mesh.start().row(v).transpose();  // a mesh cloth's rest shape is its flat pattern
     ++used;
   }
   return used ? sim::Vec3(sum / used) : sum;

@@ -56,7 +56,8 @@ struct SceneMeasurement {
 // top corners pinned — the folds are then counted down its centre column (analysis/measure/curtain_folds.h).
 bool hangs_as_curtain(const Scene& scene);
 
-// The cloth centre a support is looked for under: the mean rest position of the used vertices.
+// The cloth centre a support is looked for under: the mean start position of the used vertices
+// (ClothMesh::start(): a grid's rest positions; a mesh cloth's placement, not its flat pattern).
 sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh);
 
 // The scene's drape support (sim::find_support under cloth_center_m), or none. With

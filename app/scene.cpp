@@ -322,6 +322,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   s.collision_thickness_m =
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
   s.collision_friction = r.number("collision_friction", s.collision_friction, Range::ge(0.0));
+  s.resting_contacts = r.boolean("resting_contacts", s.resting_contacts);
   if (r.has("aerodynamics")) s.aero = read_aerodynamics(r.object("aerodynamics"));
   if (r.has("self_collision"))
     s.self_collision = read_self_collision(r.object("self_collision"), crossings);

@@ -89,6 +89,28 @@ bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, doubl
   return true;
 }
 
+void ContactsAndConstraints::resting_contacts(const Matrix3X& x,
+                                              std::vector<ObstacleContact>& out) const {
+  out.clear();
+  const std::vector<Obstacle>& obstacles = m_posed_obstacles;
+  if (obstacles.empty() || any_moves(m_settings.obstacle_motions)) return;
+  const double reach_m = resting_reach * m_settings.collision_thickness_m;
+  for (Index i = 0; i < x.rows(); ++i) {
+    if (!(m_inv_mass[i] > 0.0)) continue;
+    const Vec3 p = x.row(i).transpose();
+    std::size_t nearest = 0;
+    double nearest_m = signed_distance(obstacles[0], p);
+    for (std::size_t k = 1; k < obstacles.size(); ++k) {
+      const double d = signed_distance(obstacles[k], p);
+      if (d < nearest_m) {
+        nearest_m = d;
+        nearest = k;
+      }
+    }
+    if (nearest_m <= reach_m) out.push_back({i, outward_normal(obstacles[nearest], p)});
+  }
+}
+
 ProjectionResult ContactsAndConstraints::project(Matrix3X& x, double h_s) {
   const ProjectionResult r = m_projector->project(x);
   if (m_tension) m_tension->accumulate(m_projector->multipliers(), h_s);
@@ -200,6 +222,8 @@ std::string ContactsAndConstraints::explain_collide() const {
     line << "collide: " << m_settings.obstacles.size() << " obstacles (" << meshes << " meshes, "
          << moving << " moving), thickness " << 1e3 * m_settings.collision_thickness_m
          << " mm, friction " << m_settings.collision_friction;
+    if (m_settings.resting_contacts && m_settings.integrator == Integrator::implicit_euler)
+      line << ", resting contacts held in the solve";
   }
   if (m_self) {
     line << "; self-collision over " << m_self->triangle_count() << " triangles and "

@@ -21,6 +21,7 @@
 #include "sim/diagnostics.h"
 #include "sim/grid.h"
 #include "sim/sim_settings.h"
+#include "sim/system.h"
 
 namespace weft::sim {
 
@@ -42,6 +43,16 @@ class ContactsAndConstraints {
   // True when x was changed (a projection ran or a contact moved a vertex).
   bool resolve(const Matrix3X& x_start, Matrix3X& x, double h_s, PhaseTimers& timers,
                StepStatistics& stats);
+
+  // The vertices of x (#V×3, m; free ones, inv_mass > 0) within resting_reach × the collision
+  // thickness of an obstacle's surface, each with the outward normal of the nearest obstacle:
+  // the candidates for the implicit solve's resting contacts (System::contacts), which keeps
+  // those that free flight would move into the obstacle. Empty when an obstacle moves (their
+  // surfaces' velocities are not modelled in the solve yet) or there are none.
+  void resting_contacts(const Matrix3X& x, std::vector<ObstacleContact>& out) const;
+  // A vertex the push-out left on the offset surface is at 1 × the thickness (up to rounding);
+  // the margin takes in the small drift of one that slides over a convex surface.
+  static constexpr double resting_reach = 1.1;
 
   // `weft run --explain`'s "project:" and "collide:" lines.
   std::string explain_project() const;

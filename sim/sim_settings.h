@@ -107,6 +107,12 @@ struct SimSettings {
   // applied by the push-out from the step's start positions (sim/collision/obstacle.h). 0: the
   // frictionless push-out; a cloth rests on a slope of angle θ when μ > tan θ.
   double collision_friction = 0.0;
+  // Implicit Euler: the vertices resting on an obstacle at a step's start and pressed into it
+  // have their normal velocity held at zero within the solve (System::contacts), so that the
+  // obstacle's normal force acts on the whole cloth in the solve instead of only on the
+  // vertices the push-out moves after it (docs/collisions.md, "Resting contacts"). Off by
+  // default for now: a held vertex gets friction only from what the push-out still moves.
+  bool resting_contacts = false;
   // The cloth against itself (the "collide" phase, after the obstacles; off unless enabled):
   // sim/collision/self_collision.h.
   SelfCollisionSettings self_collision;

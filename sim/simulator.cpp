@@ -222,6 +222,8 @@ bool Simulator::attempt_step(double h_s, bool may_reject) {
   m_x_start = m_state.x;
   if (may_reject) m_v_start = m_state.v;
   m_timers.time(Phase::pins, [&] { drive_pins(h_s); });
+  if (m_settings.resting_contacts && m_settings.integrator == Integrator::implicit_euler)
+    m_timers.time(Phase::collide, [&] { m_contacts->resting_contacts(m_state.x, m_system.contacts); });
   const StepReport integrated =
       m_timers.time(Phase::integrate, [&] { return m_integrator->step(m_system, m_state, h_s); });
   m_stats.solve_s += integrated.solve_s;

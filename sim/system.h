@@ -15,12 +15,25 @@
 
 namespace weft::sim {
 
+// A vertex resting on an obstacle at the start of a step: within the collision thickness of
+// its surface (where the collide phase leaves it) and, in free flight over the step, moving
+// into it (ContactsAndConstraints::resting_contacts). The implicit solve holds its velocity
+// along `normal` at zero (sim/integrators/implicit_euler.h): the obstacle's normal force acts
+// within the solve, as Baraff & Witkin 1998 §5 constrain a vertex in contact.
+struct ObstacleContact {
+  Index vertex = 0;
+  Vec3 normal = Vec3::UnitZ();  // unit, out of the obstacle
+};
+
 struct System {
   Eigen::VectorXd mass_kg;   // #V lumped masses, kg
   Eigen::VectorXd inv_mass;  // #V, 1/kg; 0 for pinned (and unused, massless) vertices
   Vec3 gravity_m_s2 = Vec3::Zero();
   double damping_1_s = 0.0;  // α ≥ 0: f = −α m v at every vertex (seed 002 eq. 27)
   ForceTerms terms;                   // position-dependent: f(x) = −∇E(x)
+  // The resting contacts of the next step (the Simulator sets them before each step when
+  // simulation.resting_contacts is on; only implicit Euler reads them).
+  std::vector<ObstacleContact> contacts;
   VelocityForceTerms velocity_terms;  // f_v(x, v, t): drag and wind
   // Optional: force evaluations are timed as Phase::forces here (the Simulator's timers).
   PhaseTimers* timers = nullptr;

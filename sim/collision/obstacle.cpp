@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace weft::sim {
 namespace {
@@ -254,6 +255,24 @@ int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
 
 double signed_distance(const Obstacle& obstacle, const Vec3& p) {
   return std::visit([&](const auto& shape) { return shape_distance(shape, p); }, obstacle);
+}
+
+Vec3 outward_normal(const Obstacle& obstacle, const Vec3& p) {
+  if (const auto* s = std::get_if<SphereObstacle>(&obstacle)) {
+    const Vec3 r = p - s->center_m;
+    const double length = r.norm();
+    return length > 0.0 ? Vec3(r / length) : Vec3::UnitZ();  // as to_offset_surface
+  }
+  if (const auto* plane = std::get_if<PlaneObstacle>(&obstacle)) return plane->normal;
+  return std::visit(
+      [&](const auto& shape) -> Vec3 {
+        using Shape = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<Shape, SphereObstacle> || std::is_same_v<Shape, PlaneObstacle>)
+          return Vec3::UnitZ();  // handled above
+        else
+          return closest_surface_point(shape, p).normal;
+      },
+      obstacle);
 }
 
 void check_obstacles(const std::vector<Obstacle>& obstacles) {

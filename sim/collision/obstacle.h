@@ -33,6 +33,10 @@ using Obstacle = std::variant<SphereObstacle, PlaneObstacle, BoxObstacle, Cylind
 // Signed distance from p to the obstacle's surface, positive outside, metres.
 double signed_distance(const Obstacle& obstacle, const Vec3& p);
 
+// The unit normal out of the obstacle's surface at its point closest to p: the direction the
+// push-out moves p (from a sphere's centre, a plane's normal, closest_surface_point's normal).
+Vec3 outward_normal(const Obstacle& obstacle, const Vec3& p);
+
 // Throws std::invalid_argument naming the obstacle ("obstacle 1: …") unless every sphere has a
 // finite centre and a finite radius > 0, every plane a finite point and a unit normal (±1e-6),
 // every box a finite centre, half sizes finite and > 0 and a finite yaw, every cylinder a

@@ -48,6 +48,11 @@ struct ImplicitEuler::Impl {
   void fill(const System& system, const Matrix3X& x, const Matrix3X& v, double h_s);
   // h (f − h K v + M (g − α v)) on the free DOFs, 0 on the pinned ones, N·s.
   Eigen::VectorXd right_hand_side(const System& system, const Matrix3X& v, double h_s) const;
+  // Holds the normal velocity of each resting contact of `system` that free flight would move
+  // into its obstacle at zero: A and rhs as in implicit_euler.h. Returns how many it held.
+  int hold_contacts(const System& system, const Matrix3X& v, double h_s, Eigen::VectorXd& rhs);
+  // The stored (lower-triangle) entry of A at (row, col), row ≥ col, in A's pattern.
+  double& lower_entry(int row, int col);
   // Adds the pair (a, b) with stiffness block H: [H −H; −H H] to K v and h² of it to A, at the
   // slots from k on (in build_pattern()'s order); returns the next slot.
   std::size_t add_pair(Index a, Index b, const Mat3& H, const Matrix3X& v, double h2,
@@ -269,6 +274,51 @@ Eigen::VectorXd ImplicitEuler::Impl::right_hand_side(const System& system, const
   return rhs;
 }
 
+double& ImplicitEuler::Impl::lower_entry(int row, int col) {
+  const int* inner = A.innerIndexPtr();
+  const int* begin = inner + A.outerIndexPtr()[col];
+  const int* end = inner + A.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, row);
+  if (it == end || *it != row)
+    throw std::logic_error("ImplicitEuler: entry (" + std::to_string(row) + ", " +
+                           std::to_string(col) + ") is not in the pattern");
+  return A.valuePtr()[it - inner];
+}
+
+// Each held contact i with normal n adds κ n nᵀ to A's block (i, i) and κ n (−n·v_i) to rhs_i,
+// κ = kContactWeight × the block's mean diagonal: row i then reads
+//   n·Δv_i + (A Δv − rhs)_i·n / κ = −n·v_i,
+// so n·v_{n+1} = 0 up to about 1/kContactWeight of the solve's own scale, while the tangential
+// rows are unchanged (friction stays with the collide phase). A penalty on the diagonal keeps
+// A's pattern and its SPD-ness; it is the limit of Baraff & Witkin's filtered constraint.
+int ImplicitEuler::Impl::hold_contacts(const System& system, const Matrix3X& v, double h_s,
+                                       Eigen::VectorXd& rhs) {
+  constexpr double kContactWeight = 1e6;
+  int held = 0;
+  for (const ObstacleContact& c : system.contacts) {
+    const Index i = c.vertex;
+    if (i < 0 || i >= static_cast<Index>(pinned.size()))
+      throw std::logic_error("ImplicitEuler: contact vertex " + std::to_string(i) + " of " +
+                             std::to_string(pinned.size()));
+    if (pinned[static_cast<std::size_t>(i)]) continue;
+    const Vec3& n = c.normal;
+    // Free flight over the step: v + h (f/m + g − α v), along n.
+    const Vec3 vi = v.row(i).transpose();
+    const Vec3 accel = forces.row(i).transpose() / system.mass_kg[i] + system.gravity_m_s2 -
+                       system.damping_1_s * vi;
+    if (n.dot(vi + h_s * accel) >= 0.0) continue;  // leaving or sliding: not pressed in
+    const int d = 3 * static_cast<int>(i);
+    const double weight =
+        kContactWeight *
+        (lower_entry(d, d) + lower_entry(d + 1, d + 1) + lower_entry(d + 2, d + 2)) / 3.0;
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col <= r; ++col) lower_entry(d + r, d + col) += weight * n[r] * n[col];
+    rhs.segment<3>(d) -= weight * n.dot(vi) * n;
+    ++held;
+  }
+  return held;
+}
+
 std::size_t ImplicitEuler::Impl::add_element(const Index* vertices, int size,
                                              const ElementMatrix& K, const Matrix3X& v, double h2,
                                              std::size_t k) {
@@ -326,9 +376,10 @@ StepReport ImplicitEuler::step(const System& system, State& state, double h_s) {
     system.add_velocity_forces(x, v, state.time_s, im.velocity_forces);
     im.forces += im.velocity_forces;
   }
-  const Eigen::VectorXd rhs = im.right_hand_side(system, v, h_s);
+  Eigen::VectorXd rhs = im.right_hand_side(system, v, h_s);
 
   StepReport result;
+  if (!system.contacts.empty()) result.held_contacts = im.hold_contacts(system, v, h_s, rhs);
   Eigen::VectorXd dv;  // m/s
   result.solved = im.solve_system(rhs, dv, result);
   if (result.solved) {

@@ -21,6 +21,7 @@ struct StepReport {
   double solve_s = 0.0;        // implicit Euler: assembly, factorization and solve, s
   int cg_iterations = 0;       // implicit Euler by conjugate gradients
   bool kinetic_reset = false;  // dynamic relaxation: a kinetic-damping reset (v is now 0)
+  int held_contacts = 0;       // implicit Euler: resting contacts held (System::contacts)
 };
 
 class TimeIntegrator {
