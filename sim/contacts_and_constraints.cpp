@@ -98,16 +98,8 @@ void ContactsAndConstraints::resting_contacts(const Matrix3X& x,
   for (Index i = 0; i < x.rows(); ++i) {
     if (!(m_inv_mass[i] > 0.0)) continue;
     const Vec3 p = x.row(i).transpose();
-    std::size_t nearest = 0;
-    double nearest_m = signed_distance(obstacles[0], p);
-    for (std::size_t k = 1; k < obstacles.size(); ++k) {
-      const double d = signed_distance(obstacles[k], p);
-      if (d < nearest_m) {
-        nearest_m = d;
-        nearest = k;
-      }
-    }
-    if (nearest_m <= reach_m) out.push_back({i, outward_normal(obstacles[nearest], p)});
+    const Obstacle& nearest = obstacles[nearest_obstacle(obstacles, p)];
+    if (signed_distance(nearest, p) <= reach_m) out.push_back({i, outward_normal(nearest, p)});
   }
 }
 

@@ -204,20 +204,6 @@ void check_arguments(const std::vector<Obstacle>& obstacles, double thickness_m,
   check_obstacles(obstacles);
 }
 
-// The obstacle a pushed-out vertex at p rests on: the nearest (the first of equally near ones).
-std::size_t contact_obstacle(const std::vector<Obstacle>& obstacles, const Vec3& p) {
-  std::size_t nearest = 0;
-  double nearest_m = signed_distance(obstacles[0], p);
-  for (std::size_t k = 1; k < obstacles.size(); ++k) {
-    const double d = signed_distance(obstacles[k], p);
-    if (d < nearest_m) {
-      nearest_m = d;
-      nearest = k;
-    }
-  }
-  return nearest;
-}
-
 // Every push_out_of_obstacles overload; x_start is null without friction, step_motions null or
 // empty when no obstacle moves.
 // `vertices`: those to check, or null for all.
@@ -238,7 +224,7 @@ int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
     if (x_start && friction > 0.0) {
       Vec3 start = x_start->row(i).transpose();
       if (step_motions && !step_motions->empty()) {  // friction against the moving surface
-        const std::size_t contact = obstacles.size() > 1 ? contact_obstacle(obstacles, p) : 0;
+        const std::size_t contact = obstacles.size() > 1 ? nearest_obstacle(obstacles, p) : 0;
         start = (*step_motions)[contact].apply(start);
       }
       apply_friction(obstacles, thickness_m, friction, start, predicted, p);
@@ -255,6 +241,19 @@ int push_out(const std::vector<Obstacle>& obstacles, double thickness_m,
 
 double signed_distance(const Obstacle& obstacle, const Vec3& p) {
   return std::visit([&](const auto& shape) { return shape_distance(shape, p); }, obstacle);
+}
+
+std::size_t nearest_obstacle(const std::vector<Obstacle>& obstacles, const Vec3& p) {
+  std::size_t nearest = 0;
+  double nearest_m = signed_distance(obstacles[0], p);
+  for (std::size_t k = 1; k < obstacles.size(); ++k) {
+    const double d = signed_distance(obstacles[k], p);
+    if (d < nearest_m) {
+      nearest_m = d;
+      nearest = k;
+    }
+  }
+  return nearest;
 }
 
 Vec3 outward_normal(const Obstacle& obstacle, const Vec3& p) {

@@ -33,6 +33,10 @@ using Obstacle = std::variant<SphereObstacle, PlaneObstacle, BoxObstacle, Cylind
 // Signed distance from p to the obstacle's surface, positive outside, metres.
 double signed_distance(const Obstacle& obstacle, const Vec3& p);
 
+// The index of the obstacle nearest to p by signed distance (the first of equally near ones):
+// the one a pushed-out vertex at p rests on. `obstacles` must not be empty.
+std::size_t nearest_obstacle(const std::vector<Obstacle>& obstacles, const Vec3& p);
+
 // The unit normal out of the obstacle's surface at its point closest to p: the direction the
 // push-out moves p (from a sphere's centre, a plane's normal, closest_surface_point's normal).
 Vec3 outward_normal(const Obstacle& obstacle, const Vec3& p);
