@@ -31,7 +31,7 @@ from pathlib import Path
 
 
 def read_png(path):
-    """8-bit grey or RGB, non-interlaced PNG -> (width, height, channels, bytearray)."""
+    """8-bit grey, RGB or RGBA, non-interlaced PNG -> (width, height, channels, bytearray)."""
     data = Path(path).read_bytes()
     if data[:8] != b"\x89PNG\r\n\x1a\n":
         sys.exit(f"{path}: not a PNG")
@@ -44,9 +44,9 @@ def read_png(path):
         elif kind == b"IDAT":
             idat += body
         at += 12 + length
-    channels = {0: 1, 2: 3}.get(ctype)
+    channels = {0: 1, 2: 3, 6: 4}.get(ctype)
     if depth != 8 or channels is None or interlace:
-        sys.exit(f"{path}: expected an 8-bit grey or RGB non-interlaced PNG")
+        sys.exit(f"{path}: expected an 8-bit grey, RGB or RGBA non-interlaced PNG")
     raw, stride = zlib.decompress(idat), width * channels
     out, prev = bytearray(stride * height), bytearray(stride)
     for y in range(height):

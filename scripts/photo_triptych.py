@@ -17,6 +17,8 @@ def rgb(path):
     w, h, ch, px = read_png(path)
     if ch == 1:
         px = bytearray(v for g in px for v in (g, g, g))
+    elif ch == 4:
+        px = bytearray(v for i, v in enumerate(px) if i % 4 != 3)
     return w, h, px
 
 
