@@ -323,6 +323,9 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
       r.quantity("collision_thickness", Quantity::length, s.collision_thickness_m, Range::ge(0.0));
   s.collision_friction = r.number("collision_friction", s.collision_friction, Range::ge(0.0));
   s.resting_contacts = r.boolean("resting_contacts", s.resting_contacts);
+  if (s.resting_contacts && s.integrator != sim::Integrator::implicit_euler)
+    r.fail("resting_contacts", "applies only with integrator \"implicit_euler\" (it holds "
+                               "contacts inside the implicit solve)");
   if (r.has("aerodynamics")) s.aero = read_aerodynamics(r.object("aerodynamics"));
   if (r.has("self_collision"))
     s.self_collision = read_self_collision(r.object("self_collision"), crossings);

@@ -144,6 +144,17 @@ TEST(SolverScene, AnAdaptiveTimeStepParsesWithItsSettings) {
   EXPECT_FALSE(parse_json_scene(solver_scene()).sim.adaptive_step.enabled);
 }
 
+TEST(SolverScene, RestingContactsNeedTheImplicitSolve) {
+  Json j = solver_scene();
+  j["simulation"]["integrator"] = "implicit_euler";
+  j["simulation"]["resting_contacts"] = true;
+  EXPECT_TRUE(parse_json_scene(j).sim.resting_contacts);
+  j["simulation"]["integrator"] = "symplectic_euler";
+  EXPECT_EQ(scene_error_of(j),
+            "scene.json: simulation.resting_contacts: applies only with integrator "
+            "\"implicit_euler\" (it holds contacts inside the implicit solve)");
+}
+
 TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   Json j = solver_scene();
   j["simulation"]["time_step"] = "adaptve";
