@@ -90,9 +90,7 @@ void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& o
 // at 2. Empty when there is nothing to warn of.
 std::string projection_jitter_warning(const Scene& scene, double time_step) {
   const sim::ProjectionSettings& projection = scene.sim.projection;
-  const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
-                             scene.sim.integrator != sim::Integrator::dynamic_relaxation;
-  if (!explicit_step || projection.method != sim::ProjectionMethod::fast_projection || scene.mesh)
+  if (!sim::is_explicit(scene.sim.integrator) || projection.method != sim::ProjectionMethod::fast_projection || scene.mesh)
     return {};
   const double edge = std::min(scene.grid.size_u_m / static_cast<double>(scene.grid.nu - 1),
                                scene.grid.size_v_m / static_cast<double>(scene.grid.nv - 1));
@@ -117,9 +115,7 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
       scene.source.c_str(), scene.frames, scene.frames == 1 ? "" : "s", scene.fps,
       cloth_size_text(scene).c_str(), 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
       renderer.description().c_str());
-  const bool explicit_step = scene.sim.integrator != sim::Integrator::implicit_euler &&
-                             scene.sim.integrator != sim::Integrator::dynamic_relaxation;
-  if (explicit_step && simulator.time_step() > simulator.critical_time_step())
+  if (sim::is_explicit(scene.sim.integrator) && simulator.time_step() > simulator.critical_time_step())
     std::fprintf(stderr,
                  "weft: warning: the time step %.3g ms exceeds the predicted critical step %.3g ms "
                  "of the explicit integrator: the run will probably diverge (lower "
@@ -195,7 +191,7 @@ class FrameWriter {
   }
 
   void write(const Frame& frame) {
-    const bool remeshed_states = m_options.save_states && m_scene.sim.remesh.enabled;
+    const bool remeshed_states = m_initial_mesh != nullptr;  // --save-states of a remeshed run
     if (m_rows.empty()) {
       prepare_output(m_dir, m_scene, m_options);
       if (m_options.save_states)

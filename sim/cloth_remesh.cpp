@@ -30,8 +30,7 @@ void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings) {
         "\": RFT bending needs a non-degenerate six-node patch around every triangle, which a "
         "Delaunay remesh does not guarantee (a remeshed drape stopped on a degenerate patch); "
         "use baraff_witkin");
-  if (settings.integrator != Integrator::implicit_euler &&
-      settings.integrator != Integrator::dynamic_relaxation)
+  if (is_explicit(settings.integrator))
     throw std::invalid_argument(
         key + "needs simulation.integrator implicit_euler or dynamic_relaxation: an explicit "
               "integrator's step is set once from the first mesh's critical step, which a finer "

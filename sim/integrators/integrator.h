@@ -34,6 +34,13 @@ inline constexpr bool integrates_physical_time(Integrator integrator) {
   return integrator != Integrator::dynamic_relaxation;
 }
 
+// True for the integrators whose step is bounded by the critical step (their step is fixed
+// from the mesh's stiffness): all but implicit Euler and dynamic relaxation.
+inline constexpr bool is_explicit(Integrator integrator) {
+  return integrator != Integrator::implicit_euler &&
+         integrator != Integrator::dynamic_relaxation;
+}
+
 // all_integrators without dynamic relaxation, in the same order.
 inline std::vector<Integrator> physical_time_integrators() {
   std::vector<Integrator> result;
