@@ -73,8 +73,9 @@ def adaptive_runs(weft, out_dir, options):
     rows = [("adaptive (the scene)", "adaptive", [])]
     for option in options:
         label, _, settings = option.partition(":")
-        if not label or not settings or re.search(r"[^\w.-]", label):
-            sys.exit("--adaptive %r: expected LABEL:KEY=VALUE,... with a LABEL of letters, "
+        if not label or not settings or re.search(r"[^\w.-]", label) or \
+                any(row[1] == "adaptive_" + label for row in rows):
+            sys.exit("--adaptive %r: expected LABEL:KEY=VALUE,... with a new LABEL of letters, "
                      "digits, '.', '-' or '_'" % option)
         extra = []
         for setting in settings.split(","):
