@@ -7,12 +7,15 @@ coefficient and fold count of the last frame (weft run's "last frame:" line, as 
 and the distance of the last frame's mesh to the finest uniform run's (scripts/mesh_distance.py:
 area-weighted mean both ways, and the largest).
 
-    python3 scripts/remesh_trade.py WEFT OUT_DIR [CELLS ...]
+    python3 scripts/remesh_trade.py WEFT OUT_DIR [CELLS ...] [--adaptive 'LABEL:KEY=VALUE,...' ...]
 
 WEFT: the weft binary; OUT_DIR: where the meshes and runs go; CELLS: the uniform meshes' cells
-per side (default 20 40 62 100; the last is the reference). A run whose folder already holds
-its stats.csv and last mesh is not run again (delete the folder to rerun it).
+per side (default 20 40 62 100; the last is the reference). Each --adaptive adds a row: the
+remeshed scene with each KEY=VALUE passed as `--set simulation.remesh.KEY=VALUE` (e.g.
+'coarse:h_min=1cm,h_max=5cm,c=2mm'), run in OUT_DIR/adaptive_LABEL. A run whose folder already
+holds its trade_log.txt is not run again (delete the folder to rerun it).
 """
+import argparse
 import csv
 import os
 import re
@@ -64,15 +67,40 @@ def distance(a, b):
     return [float(t) for t in text[:4]]  # mean_ab mean_ba max_ab max_ba, mm
 
 
+def adaptive_runs(weft, out_dir, options):
+    """The scene's own adaptive row, then one per --adaptive 'LABEL:KEY=VALUE,...'."""
+    scene = os.path.join(SCENES, "disc_drape_50_remeshed.json")
+    rows = [("adaptive (the scene)", "adaptive", [])]
+    for option in options:
+        label, _, settings = option.partition(":")
+        if not label or not settings or re.search(r"[^\w.-]", label) or \
+                any(row[1] == "adaptive_" + label for row in rows):
+            sys.exit("--adaptive %r: expected LABEL:KEY=VALUE,... with a new LABEL of letters, "
+                     "digits, '.', '-' or '_'" % option)
+        extra = []
+        for setting in settings.split(","):
+            if "=" not in setting:
+                sys.exit("--adaptive %r: %r is not KEY=VALUE" % (option, setting))
+            extra += ["--set", "simulation.remesh." + setting.strip()]
+        rows.append(("adaptive %s (%s)" % (label, settings), "adaptive_" + label, extra))
+    runs = []
+    for label, folder, extra in rows:
+        out = os.path.join(out_dir, folder)
+        runs.append((label, out) + run_scene(weft, scene, out, extra))
+    return runs
+
+
 def main():
-    if len(sys.argv) < 3:
-        sys.exit(__doc__)
-    weft, out_dir = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-    cells = [int(c) for c in sys.argv[3:]] or [20, 40, 62, 100]
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("weft")
+    parser.add_argument("out_dir")
+    parser.add_argument("cells", nargs="*", type=int, default=[20, 40, 62, 100])
+    parser.add_argument("--adaptive", action="append", default=[], metavar="LABEL:KEY=VALUE,...")
+    args = parser.parse_args()
+    weft, out_dir, cells = os.path.abspath(args.weft), os.path.abspath(args.out_dir), args.cells
     os.makedirs(out_dir, exist_ok=True)
-    out = os.path.join(out_dir, "adaptive")
-    cpu, line = run_scene(weft, os.path.join(SCENES, "disc_drape_50_remeshed.json"), out, [])
-    adaptive = ("adaptive (the scene)", out, cpu, line)
+    adaptive = adaptive_runs(weft, out_dir, args.adaptive)
     runs = []  # (label, out folder, cpu, last line)
     for n in cells:
         mesh = os.path.join(out_dir, "square_%d.obj" % n)
@@ -84,7 +112,7 @@ def main():
         cpu, line = run_scene(weft, os.path.join(SCENES, "disc_drape_50_uniform.json"), out,
                               ["--set", "cloth.mesh=" + mesh])
         runs.append(("uniform %.3g mm (%d cells)" % (500.0 / n, n), out, cpu, line))
-    runs.insert(len(runs) - 1, adaptive)
+    runs[-1:-1] = adaptive
 
     reference = last_mesh(runs[-1][1])
     print("| mesh | vertices at the end | remeshes | CPU | drape coefficient | folds | "
