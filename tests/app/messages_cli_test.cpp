@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <string>
 
 #include "tests/app/cli_test_support.h"
@@ -75,10 +76,9 @@ TEST_F(MessagesCli, AnExplicitStepWithAProjectionThatWouldJitterIsWarnedOf) {
                             tolerance + "}' --last --size 64x48 --out " + out.string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     output = r.output;
-    const auto rows = weft::test_files::read_csv(out / "stats.csv");
-    const auto& header = rows.front();
-    const auto column = std::find(header.begin(), header.end(), "kinetic_energy_J") - header.begin();
-    return std::stod(rows.back().at(static_cast<std::size_t>(column)));
+    return weft::test_files::csv_column(weft::test_files::read_csv(out / "stats.csv"),
+                                        "kinetic_energy_J")
+        .back();
   };
   std::string loose_output, tight_output;
   const double loose = kinetic_energy_at_the_end("3e-3", loose_output);
@@ -94,8 +94,9 @@ TEST_F(MessagesCli, AnExplicitStepWithAProjectionThatWouldJitterIsWarnedOf) {
 // iterations per step: the predictions lie far from the constraints and nearly every step
 // misses; the adaptive step shortens the steps until 2 iterations do.
 TEST_F(MessagesCli, MissedProjectionsOfAFixedStepAreToldOfTheAdaptiveStep) {
-  const auto missed = [&](const std::string& step, std::string& output) {
-    const std::filesystem::path out = m_dir / ("step_" + std::to_string(output.size()));
+  // The fraction of the steps that missed; `output` gets weft's messages.
+  const auto missed = [&](const std::string& name, const std::string& step, std::string& output) {
+    const std::filesystem::path out = m_dir / name;
     const auto r = run_weft("run " + std::string(WEFT_SOURCE_DIR) + "/assets/scenes/hang_inextensible.json" +
                             " --set cloth.resolution=[41,41] --set 'simulation.time_step=" + step +
                             "' --set simulation.constraints.max_iterations=2 --frames 24 --last "
@@ -103,20 +104,14 @@ TEST_F(MessagesCli, MissedProjectionsOfAFixedStepAreToldOfTheAdaptiveStep) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     output = r.output;
     const auto rows = weft::test_files::read_csv(out / "stats.csv");
-    const auto& header = rows.front();
-    const auto column = [&](const char* name) {
-      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
-    };
-    double unconverged = 0.0, steps = 0.0;
-    for (std::size_t i = 1; i < rows.size(); ++i) {
-      unconverged += std::stod(rows[i].at(column("unconverged_steps")));
-      steps += std::stod(rows[i].at(column("steps")));
-    }
-    return unconverged / steps;
+    const std::vector<double> unconverged = weft::test_files::csv_column(rows, "unconverged_steps");
+    const std::vector<double> steps = weft::test_files::csv_column(rows, "steps");
+    return std::accumulate(unconverged.begin(), unconverged.end(), 0.0) /
+           std::accumulate(steps.begin(), steps.end(), 0.0);
   };
-  std::string fixed_output, adaptive_output = "x";
-  const double fixed = missed("\"0.0416667 s\"", fixed_output);
-  const double adaptive = missed("\"adaptive\"", adaptive_output);
+  std::string fixed_output, adaptive_output;
+  const double fixed = missed("fixed", "\"0.0416667 s\"", fixed_output);
+  const double adaptive = missed("adaptive", "\"adaptive\"", adaptive_output);
   EXPECT_CONTAINS(fixed_output, "\"time_step\": \"adaptive\" shortens the steps");
   EXPECT_EQ(adaptive_output.find("shortens the steps"), std::string::npos) << adaptive_output;
   EXPECT_GT(fixed, 0.5);

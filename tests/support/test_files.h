@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -49,6 +51,19 @@ inline std::vector<std::vector<std::string>> read_csv(const std::filesystem::pat
   std::vector<std::vector<std::string>> rows;
   for (std::string line; std::getline(in, line);) rows.push_back(csv_fields(line));
   return rows;
+}
+
+// The values of the column `name` of read_csv's rows, below the header; throws
+// std::invalid_argument when there is no such column.
+inline std::vector<double> csv_column(const std::vector<std::vector<std::string>>& rows,
+                                      const std::string& name) {
+  const auto& header = rows.at(0);
+  const auto found = std::find(header.begin(), header.end(), name);
+  if (found == header.end()) throw std::invalid_argument("no CSV column " + name);
+  const auto column = static_cast<std::size_t>(found - header.begin());
+  std::vector<double> values;
+  for (std::size_t i = 1; i < rows.size(); ++i) values.push_back(std::stod(rows[i].at(column)));
+  return values;
 }
 
 }  // namespace weft::test_files
