@@ -306,8 +306,8 @@ void Simulator::remesh_now() {
   if (m_settings.remesh.coarsen > 0.0)
     m_excess_reference = cloth_remesh_criteria(m_mesh, m_state.x, m_settings.remesh).excess;
   // The energy guard (check_growth) watches what the dynamics gain; the transfer's own change of
-  // energy (new vertices on the old mesh's flat facets: edges shorter than their rest length
-  // where the cloth is curved, docs/remeshing.md) is the remesh's, so the reference moves by it.
+  // energy (new vertices strained where the old mesh did not resolve the curvature,
+  // docs/remeshing.md) and the relaxation's are the remesh's, so the reference moves by them.
   const double jump_J = diagnostics().total_energy_J() - energy_before_J;
   if (m_start_energy_J) *m_start_energy_J += jump_J;
   m_stats.remesh_energy_J += jump_J;
