@@ -283,6 +283,7 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
       "transfer",
       {{"quadratic", sim::RemeshTransfer::quadratic}, {"linear", sim::RemeshTransfer::linear}},
       m.transfer);
+  m.relax_steps = r.integer("relax", m.relax_steps, Range::closed(0, 1000));
   if (m.h_max_m < m.h_min_m)
     r.fail("h_max", "expected at least h_min (" + std::to_string(m.h_min_m) + " m), got " +
                         std::to_string(m.h_max_m) + " m");

@@ -55,6 +55,10 @@ struct RemeshSettings {
   // fine mesh; remesh::refinement_excess); 0: the indicator only refines.
   double coarsen = 0.0;
   RemeshTransfer transfer = RemeshTransfer::quadratic;  // of positions; velocities are linear
+  // Steps relaxing the new vertices after the transfer (the cloth model's elastic energy alone;
+  // the kept vertices and those resting on an obstacle held, after the obstacles' push-out:
+  // sim/remesh_relaxation.h, Simulator::relax_new_vertices); 0: none (the transfer as it is).
+  long relax_steps = 4;
   long max_vertices = 200'000;  // a mesh finer than this is an error, not a frozen run
 };
 

@@ -6,6 +6,7 @@
 
 #include "sim/cloth_remesh.h"
 #include "sim/constraints/inextensibility.h"
+#include "sim/remesh_relaxation.h"
 
 
 namespace weft::sim {
@@ -300,12 +301,13 @@ void Simulator::remesh_now() {
   m_state.v = std::move(cloth.v);
   m_initial_x = std::move(cloth.initial_x);
   rebuild_for_mesh();
+  relax_new_vertices(cloth.old_to_new);
   // The coarsening criterion's reference: the new mesh's excess for the curvature it was made for.
   if (m_settings.remesh.coarsen > 0.0)
     m_excess_reference = cloth_remesh_criteria(m_mesh, m_state.x, m_settings.remesh).excess;
   // The energy guard (check_growth) watches what the dynamics gain; the transfer's own change of
-  // energy (new vertices on the old mesh's flat facets: edges shorter than their rest length
-  // where the cloth is curved, docs/remeshing.md) is the remesh's, so the reference moves by it.
+  // energy (new vertices strained where the old mesh did not resolve the curvature,
+  // docs/remeshing.md) and the relaxation's are the remesh's, so the reference moves by them.
   const double jump_J = diagnostics().total_energy_J() - energy_before_J;
   if (m_start_energy_J) *m_start_energy_J += jump_J;
   m_stats.remesh_energy_J += jump_J;
@@ -321,6 +323,31 @@ void Simulator::rebuild_for_mesh() {
   m_critical_step_s = critical_step_s(m_system);
   m_taut = {};  // none without fast projection
   build_solvers();
+}
+
+// The new vertices are held by nothing but the kept old ones: where the cloth folds more sharply
+// than the old mesh resolved, the transfer leaves them strained (1 J of membrane energy on the
+// disc drape's first remesh, docs/remeshing.md), which the dynamics would turn into motion.
+void Simulator::relax_new_vertices(const std::vector<Index>& old_to_new) {
+  if (m_settings.remesh.relax_steps <= 0) return;
+  // The transfer interpolates across obstacles' edges too (a coarse triangle over the
+  // pedestal's rim puts new vertices inside its corner): the push-out the next step would do
+  // is part of each trial, so that those vertices end on the surface, relaxed, rather than
+  // thrown out of it by the next step.
+  StepStatistics scratch;
+  const auto push_out = [&](Matrix3X& x) {
+    const Matrix3X start = x;
+    m_contacts->resolve(start, x, m_time_step_s, m_timers, scratch);
+  };
+  push_out(m_state.x);
+  std::vector<char> free(static_cast<std::size_t>(m_state.x.rows()), 1);
+  for (Index k : old_to_new)
+    if (k >= 0) free[static_cast<std::size_t>(k)] = 0;
+  std::vector<ObstacleContact> resting;
+  m_contacts->resting_contacts(m_state.x, resting);
+  for (const ObstacleContact& c : resting) free[static_cast<std::size_t>(c.vertex)] = 0;
+  relax_vertices(m_system, free, m_state.x, static_cast<int>(m_settings.remesh.relax_steps),
+                 m_time_step_s, m_integrator_settings.implicit_solve, push_out);
 }
 
 // Every integrator leaves a pinned vertex's velocity as it is (zero acceleration), so the

@@ -76,7 +76,9 @@ class Simulator {
   // after the first step, for a wrong size, or naming a vertex with a non-finite position.
   void set_initial_positions(const Matrix3X& x);
 
-  // Remeshes the cloth now (sim/cloth_remesh.h) and rebuilds everything made from the mesh:
+  // Remeshes the cloth now (sim/cloth_remesh.h), relaxes the new vertices (simulation.remesh.relax:
+  // the obstacles' push-out, then steps of the elastic terms alone with the kept vertices and
+  // those on an obstacle held, sim/remesh_relaxation.h) and rebuilds everything made from the mesh:
   // masses, force terms, pins' and moving pins' vertex indices, the contacts and constraints
   // (self-collision's structures included) and the integrator, whose memory starts afresh.
   // The vertex count changes: state(), mesh(), pinned() and masses_kg() are the new mesh's.
@@ -162,6 +164,10 @@ class Simulator {
   // terms, the strain diagnostic's edges, the critical step, the contacts and constraints and
   // the integrator, whose memory starts afresh.
   void rebuild_for_mesh();
+  // After a remesh: simulation.remesh.relax steps of the elastic terms alone over the new
+  // vertices (old_to_new: the remesh's), the kept vertices and those resting on an obstacle held
+  // (sim/remesh_relaxation.h).
+  void relax_new_vertices(const std::vector<Index>& old_to_new);
 
   ClothMesh m_mesh;
   Material m_material;  // to rebuild the force terms after a remesh

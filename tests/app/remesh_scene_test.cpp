@@ -85,6 +85,14 @@ TEST(RemeshScene, KeysOutOfRangeAreErrorsNamingThem) {
   scene["simulation"]["remesh"]["every"] = 0;
   EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.every");
   scene = remeshed_hang(dir);
+  EXPECT_EQ(parse_scene(scene.dump(), (dir / "scene.json").string()).sim.remesh.relax_steps, 4);
+  scene["simulation"]["remesh"]["relax"] = 0;
+  EXPECT_EQ(parse_scene(scene.dump(), (dir / "scene.json").string()).sim.remesh.relax_steps, 0);
+  scene["simulation"]["remesh"]["relax"] = -1;
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.relax");
+  scene["simulation"]["remesh"]["relax"] = 2.5;
+  EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "simulation.remesh.relax");
+  scene = remeshed_hang(dir);
   scene["simulation"]["remesh"]["h_mni"] = "1 cm";
   EXPECT_CONTAINS(test::scene_error_of(scene, dir / "scene.json"), "h_mni");
 }
