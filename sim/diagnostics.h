@@ -38,7 +38,7 @@ struct StepStatistics {
   double min_step_s = 0.0, max_step_s = 0.0;  // the shortest and longest step (0: none taken)
   long rejected_steps = 0;  // adaptive steps redone shorter (sim/adaptive_step.h)
   long remeshes = 0;        // adaptive remeshing steps (simulation.remesh)
-  double remesh_energy_J = 0.0;  // the total energy's change by those remeshes (the transfer's)
+  double remesh_energy_J = 0.0;  // the total energy's change by those remeshes (transfer, push-out and relaxation)
   // The largest remesh criterion max |κ|h² at the indicator checks, metres (0: none checked).
   double max_remesh_indicator_m = 0.0;
   // With simulation.remesh.coarsen: the largest refinement excess at those checks relative to
