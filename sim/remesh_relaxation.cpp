@@ -41,8 +41,7 @@ RelaxationReport relax_vertices(const System& system, const std::vector<char>& f
     any_free = free[static_cast<std::size_t>(i)] && system.inv_mass[i] > 0.0;
   if (!any_free) return report;
   const System relax = relaxation_system(system, free);
-  ImplicitSolveSettings settings = solve;
-  ImplicitEuler newton(relax, settings);
+  ImplicitEuler newton(relax, solve);
   State state;
   state.v = Matrix3X::Zero(x.rows(), 3);
   double energy = report.energy_after_J;

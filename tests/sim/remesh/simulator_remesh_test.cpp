@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -190,6 +191,51 @@ TEST(SimulatorRemesh, RelaxingTheNewVerticesTakesOutWhatAnUnresolvedFoldInjects)
   EXPECT_GT(plain.elastic_after_J, 100.0 * bending_J) << "the defect this guards against";
   EXPECT_NEAR(relaxed.elastic_after_J, bending_J, 0.1 * bending_J);
   EXPECT_LT(relaxed.jump_J, 0.0) << "the relaxed remesh adds no energy";
+}
+
+// A 30 cm square on 3 cm cells laid over a box's straight edge at u = 13.5 cm, between two
+// columns of vertices: flat on the top (its surface a collision thickness above it), then down
+// the side. The old triangles across the edge cut the box's corner, so new vertices interpolated
+// on them land inside the box (the disc drape's pedestal rim, docs/remeshing.md); the remesh's
+// relaxation pushes them out first. Returns the smallest signed distance of a vertex from the box
+// after one remesh at rest, without gravity.
+double deepest_vertex_after_remeshing_over_an_edge(long relax_steps) {
+  SimSettings s = remeshing_settings(1000);
+  s.gravity_m_s2.setZero();
+  s.remesh.h_min_m = 0.005;
+  s.remesh.relax_steps = relax_steps;
+  const double edge_u = 0.135, t = s.collision_thickness_m;
+  BoxObstacle box;
+  box.center_m = {edge_u - 0.5, 0.15, -0.5};
+  box.half_size_m = {0.5, 0.5, 0.5};
+  s.obstacles.push_back(box);
+  ClothMesh mesh = triangle_square(0.3, 11, {0.0, 0.0, 0.0}, {1, 0, 0}, {0, 1, 0});
+  Matrix3X x(mesh.vertex_count(), 3);
+  for (Index k = 0; k < mesh.vertex_count(); ++k) {
+    const Vec2& uv = mesh.material_coords[static_cast<std::size_t>(k)];
+    if (uv.x() <= edge_u)
+      x.row(k) << uv.x(), uv.y(), t;
+    else
+      x.row(k) << edge_u + t, uv.y(), t - (uv.x() - edge_u);
+  }
+  Simulator sim(std::move(mesh), Material{}, {}, s);
+  sim.set_initial_positions(x);
+  sim.remesh_now();
+  EXPECT_GT(sim.mesh().vertex_count(), 121) << "the bend is refined";
+  const Obstacle obstacle = box;
+  double deepest = std::numeric_limits<double>::infinity();
+  for (Index k = 0; k < sim.mesh().vertex_count(); ++k)
+    deepest = std::min(deepest, signed_distance(obstacle, sim.state().x.row(k).transpose()));
+  return deepest;
+}
+
+TEST(SimulatorRemesh, RelaxingTheNewVerticesLeavesNoneInsideAnObstacle) {
+  const double plain = deepest_vertex_after_remeshing_over_an_edge(0);
+  const double relaxed = deepest_vertex_after_remeshing_over_an_edge(4);
+  std::printf("deepest vertex over the box's edge after a remesh: plain %.3g m, relaxed %.3g m\n",
+              plain, relaxed);
+  EXPECT_LT(plain, 0.0) << "the defect this guards against: new vertices inside the box";
+  EXPECT_GT(relaxed, 0.99 * SimSettings{}.collision_thickness_m) << "pushed out to the thickness";
 }
 
 struct HangRun {
