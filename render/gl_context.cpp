@@ -1,6 +1,6 @@
 // What the GL contexts share (gl_context.h): choosing one — OSMesa or EGL surfaceless, or
 // "auto" (OSMesa first, EGL when OSMesa is not built or cannot start); the environment variable
-// WEFT_GL is read by app/ (app/renderer_choice.h), not here — and the renderer/version text of
+// WEFT_GL is read by app/ (app/run/renderer_choice.h), not here — and the renderer/version text of
 // their descriptions.
 
 #include <cstring>

@@ -1,7 +1,7 @@
 #pragma once
 // A triangle-mesh cloth (ClothMesh without a grid) as a section of a StateWriter, and back: what
 // a remeshed simulation's checkpoint holds besides its state (Simulator::save_state), and what
-// weft run --save-states writes beside the positions of a remeshed run (app/cloth_mesh_states.h).
+// weft run --save-states writes beside the positions of a remeshed run (app/io/cloth_mesh_states.h).
 // Every array the simulator and the renderer use is saved as it is (material coordinates,
 // triangles, rest and start positions, lumped areas, which vertices are used), so the mesh read
 // back is the same bits as the one saved, not a remake of it. The name of the source (for

@@ -21,7 +21,7 @@ struct PinBox {
   Vec3 lo, hi;
   bool world = false;
 };
-// Vertices the scene chose by what the mesh file gives them (app/scene_cloth.cpp: a vertex
+// Vertices the scene chose by what the mesh file gives them (app/scene/scene_cloth.cpp: a vertex
 // colour); `what` names the selection in errors.
 struct PinVertexSet {
   std::vector<Index> indices;

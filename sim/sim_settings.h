@@ -67,7 +67,7 @@ struct SimSettings {
   Integrator integrator = Integrator::symplectic_euler;
   Vec3 gravity_m_s2{0.0, 0.0, -9.81};
   double air_damping_1_s = 0.5;        // mass-proportional damping α: f = −α m v (seed 002 eq. 27)
-  // The scene's simulation.time_step (app/scene.cpp; "auto" leaves it empty). Empty:
+  // The scene's simulation.time_step (app/scene/scene.cpp; "auto" leaves it empty). Empty:
   // automatic. Every explicit integrator: time_step_safety × the critical step 2/ω_max,
   // with ω_max² estimated from a Gershgorin bound on the largest eigenvalue of M⁻¹K (an upper
   // bound, so 1.0 is still stable at rest; measured: the default scene with symplectic Euler is

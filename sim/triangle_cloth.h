@@ -1,5 +1,5 @@
 #pragma once
-// A cloth mesh from a flat pattern of polygons (a mesh file: app/cloth_mesh_file.h): each
+// A cloth mesh from a flat pattern of polygons (a mesh file: app/io/cloth_mesh_file.h): each
 // vertex's material coordinates (the flat pattern, metres, u along the warp) and its start
 // position, and the polygons joining them.
 //

@@ -1,7 +1,7 @@
 #pragma once
 // Drape measurements (issue 5 item 5): the cloth's shadow on the horizontal plane and its area,
 // the drape coefficient, the outline radius r(θ) about the support's axis and the fold count.
-// Pure functions of positions and triangles; `weft measure` (app/measure_command.h) applies
+// Pure functions of positions and triangles; `weft measure` (app/cli/measure_command.h) applies
 // them frame by frame. docs/measure.md states the rules and their error bounds.
 //
 // The drape coefficient follows the Cusick drape test (Cusick 1968, "The measurement of fabric
@@ -145,7 +145,7 @@ struct DrapeShape {
 };
 
 // The drape measured from a shadow, whatever made it — a simulation's triangles
-// (measure_drape) or a top-view photo's silhouette (app/drape_photo.h): one ruler. The shadow's
+// (measure_drape) or a top-view photo's silhouette (app/run/drape_photo.h): one ruler. The shadow's
 // area, DC against support_m2 and specimen_m2 (drape_coefficient), r(θ) about axis_m
 // (outline_radii) and the folds (count_folds, min_prominence_m raised to at least 2 cells).
 DrapeShape measure_shadow(const ShadowMask& shadow, const Vec2& axis_m, double support_m2,

@@ -1,5 +1,5 @@
-// app/chamfer_3d.h: the 3D Chamfer distance on point sets whose distances are known.
-#include "app/chamfer_3d.h"
+// app/fit/chamfer_3d.h: the 3D Chamfer distance on point sets whose distances are known.
+#include "app/fit/chamfer_3d.h"
 
 #include <gtest/gtest.h>
 

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "scene_test_support.h"
 #include "tests/support/test_files.h"
 
@@ -272,7 +272,7 @@ TEST(ClothMeshErrors, FastProjectionOnATriangleMeshNamesTheReason) {
   try {
     make_simulator(s);
     FAIL() << "no error";
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     EXPECT_CONTAINS(std::string(e.what()), "warp/weft edges");
     EXPECT_CONTAINS(std::string(e.what()), "needs the cloth's warp/weft grid");
     EXPECT_CONTAINS(std::string(e.what()), "triangles.obj");

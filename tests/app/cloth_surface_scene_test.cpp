@@ -1,4 +1,4 @@
-// The render block's cloth aids (app/cloth_surface_scene.h): subdivision, thickness and texture
+// The render block's cloth aids (app/scene/cloth_surface_scene.h): subdivision, thickness and texture
 // are read into RenderSettings::cloth_surface; a texture file is found relative to the scene
 // file; bad values and a missing or unreadable image get an error naming the key and the file.
 
@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "render/image.h"
 #include "tests/app/scene_test_support.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <variant>
 
-#include "app/scene.h"
+#include "app/scene/scene.h"
 
 namespace weft::app::test {
 

@@ -1,6 +1,6 @@
-// Contact sheets (app/contact_sheet.h): the box-filtered thumbnail keeps the mean colour, and
+// Contact sheets (app/report/contact_sheet.h): the box-filtered thumbnail keeps the mean colour, and
 // the sheet lays the thumbnails out in the grid its size says, each framed and labelled.
-#include "app/contact_sheet.h"
+#include "app/report/contact_sheet.h"
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "app/measure_command.h"
-#include "app/scene.h"
+#include "app/run/measure.h"
+#include "app/scene/scene.h"
 #include "coarse_scene.h"
 #include "sim/material_presets.h"
 

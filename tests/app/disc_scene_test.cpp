@@ -1,5 +1,5 @@
 // "cloth.shape": disc specimens in scene files (the Cusick drape test), pins on them, and what
-// is drawn of them (app/frame_mesh.h): the used vertices only.
+// is drawn of them (app/run/frame_mesh.h): the used vertices only.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <vector>
 #include <string>
 
-#include "app/frame_mesh.h"
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/run/frame_mesh.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "sim/material_presets.h"
 #include "tests/app/scene_test_support.h"
 

@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "app/scene.h"
+#include "app/scene/scene.h"
 #include "coarse_scene.h"
 #include "sim/collision/self_intersection.h"
 

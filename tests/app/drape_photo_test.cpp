@@ -1,4 +1,4 @@
-// Drape from a top-view photo (issue 17 item 5, app/drape_photo.h): silhouettes drawn from a
+// Drape from a top-view photo (issue 17 item 5, app/run/drape_photo.h): silhouettes drawn from a
 // known polar outline r(θ) = R + a cos(nθ + φ) (+ other terms), whose area ½∫r²dθ and hence DC
 // are exact and whose node count is n, measured through the same ruler as a simulation. With
 // ragged edges, speckle, a shifted disc, uneven nodes, and a noisy grey "photo" segmented by
@@ -12,8 +12,8 @@
 #include <random>
 #include <string>
 
-#include "app/drape_photo.h"
-#include "app/scene.h"
+#include "app/run/drape_photo.h"
+#include "app/scene/scene.h"
 #include "base/constants.h"
 #include "render/photo_compare/photo_compare.h"
 
@@ -187,7 +187,7 @@ void expect_error(const Mask& m, const DrapePhotoSetup& s, const std::string& wo
   try {
     measure_drape_silhouette(m, s, "drape.png");
     ADD_FAILURE() << "no error; expected one mentioning '" << words << "'";
-  } catch (const weft::app::SceneError& e) {
+  } catch (const weft::app::InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("drape.png"), std::string::npos) << what;
     EXPECT_NE(what.find(words), std::string::npos) << what;

@@ -1,5 +1,5 @@
 // The classic drape scenes of assets/scenes (issue 5; seed 002, Zhou & Sze, sections 4.4, 4.6
-// and 6.2), simulated and measured as `weft measure` does (app/measure_command.h), against the
+// and 6.2), simulated and measured as `weft measure` does (app/run/measure.h), against the
 // paper's numbers:
 // - 50 × 50 cm on a Ø20 cm disc: 8–12 folds (12 by static equilibrium, Fig. 10; 8 by dynamic
 //   relaxation, Fig. 15);
@@ -17,8 +17,8 @@
 #include <memory>
 #include <string>
 
-#include "app/measure_command.h"
-#include "app/scene.h"
+#include "app/run/measure.h"
+#include "app/scene/scene.h"
 #include "coarse_scene.h"
 
 namespace weft::app {

@@ -1,4 +1,4 @@
-// The render block's image-based lighting (app/environment_scene.h): render.environment is read
+// The render block's image-based lighting (app/scene/environment_scene.h): render.environment is read
 // into RenderSettings::environment with its map found relative to the scene file; bad values
 // and a missing or unreadable map get an error naming the key and the file.
 
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "render/environment.h"
 #include "tests/app/scene_test_support.h"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "app/fit_optimizer.h"
+#include "app/fit/fit_optimizer.h"
 
 namespace weft::app {
 namespace {

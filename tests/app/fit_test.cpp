@@ -9,8 +9,8 @@
 #include <fstream>
 #include <string>
 
-#include "app/fit_optimizer.h"
-#include "app/npy_file.h"
+#include "app/fit/fit_optimizer.h"
+#include "app/io/npy_file.h"
 
 namespace weft::app {
 namespace {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "app/folds_command.h"
-#include "app/folds_overlay.h"
-#include "app/scene.h"
+#include "app/cli/folds_command.h"
+#include "app/report/folds_overlay.h"
+#include "app/scene/scene.h"
 
 namespace weft::app {
 namespace {
@@ -96,7 +96,7 @@ TEST(FoldsOverlay, BadPlacementIsAnErrorNamingTheFlag) {
   const auto message = [&](const OverlayPlacement& placement) -> std::string {
     try {
       (void)overlay_mapping(p, placement, 400, 300);
-    } catch (const SceneError& e) {
+    } catch (const InputError& e) {
       return e.what();
     }
     return "no error";
@@ -108,10 +108,10 @@ TEST(FoldsOverlay, BadPlacementIsAnErrorNamingTheFlag) {
   OverlayPlacement above = supports(40, 100, 360, 100);
   above.bottom_px = 50;  // above the supports
   EXPECT_NE(message(above).find("--bottom"), std::string::npos);
-  EXPECT_THROW(parse_supports("1,2,3"), SceneError);
-  EXPECT_THROW(parse_supports("1,2,3,x"), SceneError);
-  EXPECT_THROW(parse_supports("1,2,3,4,5"), SceneError);
-  EXPECT_THROW(parse_supports("1,2,3,nan"), SceneError);
+  EXPECT_THROW(parse_supports("1,2,3"), InputError);
+  EXPECT_THROW(parse_supports("1,2,3,x"), InputError);
+  EXPECT_THROW(parse_supports("1,2,3,4,5"), InputError);
+  EXPECT_THROW(parse_supports("1,2,3,nan"), InputError);
   const OverlayPlacement ok = parse_supports("10,20.5,30,40");
   EXPECT_EQ(ok.right_support_px, Eigen::Vector2d(30, 40));
 }

@@ -1,6 +1,6 @@
 // The render block's "gl" key: which OpenGL context the rasterizer gets (render/gl_context.h),
 // "auto" by default; an unknown value is an error naming the key and listing the choices. And
-// the environment variable WEFT_GL, which app/ (app/renderer_choice.h) lets override it.
+// the environment variable WEFT_GL, which app/ (app/run/renderer_choice.h) lets override it.
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/renderer_choice.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/run/renderer_choice.h"
+#include "app/scene/scene.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "app/mesh_file.h"
+#include "app/io/mesh_file.h"
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
 

@@ -11,10 +11,10 @@
 #include <sstream>
 #include <string>
 
-#include "app/command.h"
-#include "app/json_reader.h"
-#include "app/scene.h"
-#include "app/units.h"
+#include "app/cli/command.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
+#include "app/scene/units.h"
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
 

@@ -1,8 +1,8 @@
-#include "app/json_reader.h"
+#include "app/scene/json_reader.h"
 
 #include <gtest/gtest.h>
 
-#include "app/scene.h"
+#include "app/scene/scene.h"
 
 namespace weft::app {
 namespace {
@@ -11,7 +11,7 @@ template <class F>
 std::string reader_error_of(F&& f) {
   try {
     f();
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     return e.what();
   }
   return "no error";

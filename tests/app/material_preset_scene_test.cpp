@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "sim/material_presets.h"
 #include "tests/app/scene_test_support.h"
 

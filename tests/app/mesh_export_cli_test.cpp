@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/mesh_file.h"
+#include "app/io/mesh_file.h"
 #include "render/image.h"
 #include "tests/app/cli_test_support.h"
 

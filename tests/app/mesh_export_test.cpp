@@ -1,7 +1,7 @@
-// Cloth frames exported through assimp (app/mesh_export.h) and read back: every format keeps the
+// Cloth frames exported through assimp (app/io/mesh_export.h) and read back: every format keeps the
 // vertex positions (to float precision), the triangle count, the normals and the UVs = material
 // coordinates; every format is y-up unless asked for weft's z-up (OBJ/PLY).
-#include "app/mesh_export.h"
+#include "app/io/mesh_export.h"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -12,9 +12,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/frame_mesh.h"
-#include "app/mesh_file.h"
-#include "app/scene.h"
+#include "app/run/frame_mesh.h"
+#include "app/io/mesh_file.h"
+#include "app/scene/scene.h"
 #include "sim/grid.h"
 
 namespace fs = std::filesystem;
@@ -125,7 +125,7 @@ TEST(MeshExport, FormatNames) {
   try {
     weft::app::parse_mesh_format("stl", "--export-meshes");
     FAIL() << "no error";
-  } catch (const weft::app::SceneError& e) {
+  } catch (const weft::app::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--export-meshes: expected one of obj, ply, gltf"),
               std::string::npos)
         << e.what();

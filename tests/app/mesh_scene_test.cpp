@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "app/mesh_file.h"
-#include "app/scene.h"
+#include "app/io/mesh_file.h"
+#include "app/scene/scene.h"
 #include "base/constants.h"
 #include "scene_test_support.h"
 #include "tests/support/test_files.h"
@@ -224,13 +224,13 @@ TEST(MeshScene, MeshKeysScaleTurnAndPlaceTheFileRelativeToTheScene) {
     EXPECT_NEAR(sim::signed_distance(s.sim.obstacles[0], p), sim::signed_distance(box, p), 1e-7);
 }
 
-TEST(MeshScene, BadMeshFilesAreSceneErrorsNamingTheKeyAndTheFile) {
+TEST(MeshScene, BadMeshFilesAreInputErrorsNamingTheKeyAndTheFile) {
   const fs::path dir = mesh_scene_dir();
   const std::string source = (dir / "scene.json").string();
   const auto error = [&](const Json& obstacle) -> std::string {
     try {
       parse_scene(mesh_scene(obstacle).dump(), source);
-    } catch (const SceneError& e) {
+    } catch (const InputError& e) {
       return e.what();
     }
     return "no error";

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "sim/pins.h"
 #include "tests/app/scene_test_support.h"
 
@@ -88,7 +88,7 @@ TEST(ModelScene, OnlyTheNeededTermsAreBuilt) {
 std::string make_simulator_error(const Scene& scene) {
   try {
     make_simulator(scene);
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     return e.what();
   }
   return "no error";

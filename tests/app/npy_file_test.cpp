@@ -1,5 +1,5 @@
-// app/npy_file.h: .npy arrays read strictly, written back, and every bad file named.
-#include "app/npy_file.h"
+// app/io/npy_file.h: .npy arrays read strictly, written back, and every bad file named.
+#include "app/io/npy_file.h"
 
 #include <gtest/gtest.h>
 

@@ -1,15 +1,15 @@
 // Obstacles in scene files: "obstacles" (spheres, planes, boxes, cylinders, capsules),
 // "simulation.collision_thickness" and "render.colors.obstacle" land in SI units; every mistake
-// names its key path. And the render objects made from them (app/obstacle_meshes.h).
+// names its key path. And the render objects made from them (app/run/obstacle_meshes.h).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/obstacle_meshes.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/run/obstacle_meshes.h"
+#include "app/scene/scene.h"
 #include "base/constants.h"
 #include "tests/app/scene_test_support.h"
 

@@ -1,7 +1,7 @@
-// The turntable's camera path (app/orbit_camera.h) and the framing of a mesh file
-// (app/turntable_command.h): azimuths 360°·i/N about the vertical through the centre, constant
+// The turntable's camera path (app/run/orbit_camera.h) and the framing of a mesh file
+// (app/cli/turntable_command.h): azimuths 360°·i/N about the vertical through the centre, constant
 // distance and elevation, frame 0 = the base camera; the whole mesh inside the field of view.
-#include "app/orbit_camera.h"
+#include "app/run/orbit_camera.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "app/turntable_command.h"
+#include "app/cli/turntable_command.h"
 #include "base/constants.h"
 
 namespace {

@@ -11,12 +11,12 @@
 #include <memory>
 #include <stdexcept>
 
-#include "app/chamfer_3d.h"
-#include "app/frame_mesh.h"
-#include "app/mesh_file.h"
-#include "app/renderer_choice.h"
-#include "app/npy_file.h"
-#include "app/scene.h"
+#include "app/fit/chamfer_3d.h"
+#include "app/run/frame_mesh.h"
+#include "app/io/mesh_file.h"
+#include "app/run/renderer_choice.h"
+#include "app/io/npy_file.h"
+#include "app/scene/scene.h"
 #include "render/image.h"
 #include "render/photo_compare/metrics.h"
 #include "render/photo_compare/silhouette.h"

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {

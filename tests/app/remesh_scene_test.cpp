@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "scene_test_support.h"
 
 namespace weft::app {
@@ -46,7 +46,7 @@ Json remeshed_hang(const fs::path& dir) {
 std::string simulator_error(const Json& scene, const fs::path& dir) {
   try {
     make_simulator(parse_scene(scene.dump(), (dir / "scene.json").string()));
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     return e.what();
   }
   return "no error";
@@ -143,7 +143,7 @@ TEST(RemeshScene, BadIndicatorsAndTransfersAreErrorsNamingTheKey) {
   EXPECT_CONTAINS(transfer, "quadratic");
 }
 
-TEST(RemeshScene, WhatCannotBeRemeshedIsASceneErrorNamingTheReason) {
+TEST(RemeshScene, WhatCannotBeRemeshedIsAInputErrorNamingTheReason) {
   const fs::path dir = remesh_test_dir();
   Json springs = remeshed_hang(dir);
   springs["simulation"]["model"] = "mass_spring";

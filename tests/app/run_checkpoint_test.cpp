@@ -1,4 +1,4 @@
-// The checkpoint's identity of the running build (app/run_checkpoint.h): FNV-1a of the GNU build
+// The checkpoint's identity of the running build (app/io/run_checkpoint.h): FNV-1a of the GNU build
 // ID note the linker wrote, found here independently, by its bytes in the executable file.
 
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/run_checkpoint.h"
+#include "app/io/run_checkpoint.h"
 
 namespace weft::app {
 namespace {

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "app/run_report.h"
+#include "app/report/run_report.h"
 
 namespace {
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {
@@ -32,11 +32,11 @@ Json valid_scene() {
   })");
 }
 
-TEST(SceneErrors, TheValidSceneIsValid) {
+TEST(InputErrors, TheValidSceneIsValid) {
   EXPECT_EQ(scene_error_of(valid_scene()), "no error");
 }
 
-TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
+TEST(InputErrors, MalformedJsonNamesLineAndColumn) {
   const std::string text = "{\n  \"description\": \"x\",\n  \"cloth\": {\"size\": [1, 1,]}\n}\n";
   const std::string message = scene_error_of_text(text);
   EXPECT_EQ(message.rfind("scene.json:3:27: malformed JSON: ", 0), 0u) << message;
@@ -48,12 +48,12 @@ TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
             "scene.json: expected a JSON object at the top level, got the array [1,2]");
 }
 
-TEST(SceneErrors, DuplicateKey) {
+TEST(InputErrors, DuplicateKey) {
   EXPECT_EQ(scene_error_of_text(R"({"description": "x", "output": {"fps": 24, "fps": 30}})"),
             "scene.json: output.fps: duplicate key (each key may appear once in an object)");
 }
 
-TEST(SceneErrors, UnknownKeyAtTopLevel) {
+TEST(InputErrors, UnknownKeyAtTopLevel) {
   Json s = valid_scene();
   s["simulaton"] = Json::object();
   EXPECT_EQ(scene_error_of(s),
@@ -64,7 +64,7 @@ TEST(SceneErrors, UnknownKeyAtTopLevel) {
   EXPECT_CONTAINS(scene_error_of(s), "scene.json: comment: unknown key (known keys here:");
 }
 
-TEST(SceneErrors, UnknownKeyNestedNamesItsPath) {
+TEST(InputErrors, UnknownKeyNestedNamesItsPath) {
   Json s = valid_scene();
   s["cloth"]["materal"] = Json::object();
   EXPECT_EQ(scene_error_of(s),
@@ -82,7 +82,7 @@ TEST(SceneErrors, UnknownKeyNestedNamesItsPath) {
   EXPECT_CONTAINS(scene_error_of(s), "scene.json: render.camera.fov_deg: unknown key");
 }
 
-TEST(SceneErrors, RequiredKeysMissing) {
+TEST(InputErrors, RequiredKeysMissing) {
   Json s = valid_scene();
   s.erase("description");
   EXPECT_EQ(scene_error_of(s), "scene.json: description: required key is missing (expected a string)");
@@ -100,7 +100,7 @@ TEST(SceneErrors, RequiredKeysMissing) {
   EXPECT_CONTAINS(scene_error_of(s), "scene.json: description: expected a non-empty string");
 }
 
-TEST(SceneErrors, WrongType) {
+TEST(InputErrors, WrongType) {
   Json s = valid_scene();
   s["cloth"]["resolution"] = "33x33";
   EXPECT_EQ(scene_error_of(s),
@@ -139,7 +139,7 @@ TEST(SceneErrors, WrongType) {
   EXPECT_CONTAINS(scene_error_of(s), "scene.json: cloth.pins[0]: expected an object, got 5");
 }
 
-TEST(SceneErrors, WrongDimension) {
+TEST(InputErrors, WrongDimension) {
   Json s = valid_scene();
   s["cloth"]["material"]["density"] = "0.019 gf/cm";
   EXPECT_EQ(scene_error_of(s),
@@ -153,7 +153,7 @@ TEST(SceneErrors, WrongDimension) {
             "'fast' (it does not start with a number)");
 }
 
-TEST(SceneErrors, OutOfRange) {
+TEST(InputErrors, OutOfRange) {
   Json s = valid_scene();
   s["cloth"]["resolution"] = {0, 33};
   EXPECT_EQ(scene_error_of(s),
@@ -206,7 +206,7 @@ TEST(SceneErrors, OutOfRange) {
             "scene.json: render.camera.fov: expected an angle in (0, 180) deg, got '180 deg'");
 }
 
-TEST(SceneErrors, NonFinite) {
+TEST(InputErrors, NonFinite) {
   Json s = valid_scene();
   s["cloth"]["material"]["density"] = "nan";
   EXPECT_EQ(scene_error_of(s),
@@ -227,7 +227,7 @@ TEST(SceneErrors, NonFinite) {
             "large for a double)");
 }
 
-TEST(SceneErrors, WrongEnumListsTheChoices) {
+TEST(InputErrors, WrongEnumListsTheChoices) {
   Json s = valid_scene();
   s["render"]["shading"] = "flat";
   EXPECT_EQ(scene_error_of(s),
@@ -243,7 +243,7 @@ TEST(SceneErrors, WrongEnumListsTheChoices) {
   EXPECT_EQ(scene_error_of(s), "scene.json: simulation.model: expected one of 'mass_spring', 'baraff_witkin', 'rft3', 'rft6', got 1");
 }
 
-TEST(SceneErrors, PinsOutsideTheMesh) {
+TEST(InputErrors, PinsOutsideTheMesh) {
   Json s = valid_scene();
   s["cloth"]["pins"][1] = {{"vertex", 5000}};
   EXPECT_EQ(scene_error_of(s), "scene.json: cloth.pins[1]: vertex 5000 is outside the mesh (0..1088)");
@@ -275,7 +275,7 @@ TEST(SceneErrors, PinsOutsideTheMesh) {
                   "'grid', 'region', 'box', 'color', got none of them");
 }
 
-TEST(SceneErrors, Geometry) {
+TEST(InputErrors, Geometry) {
   Json s = valid_scene();
   s["cloth"]["warp_axis"] = {1, 1, 0};
   EXPECT_EQ(
@@ -296,11 +296,11 @@ TEST(SceneErrors, Geometry) {
   EXPECT_CONTAINS(scene_error_of(s), "scene.json: render.light.direction: expected a non-zero vector");
 }
 
-TEST(SceneErrors, MissingOrUnreadableFile) {
+TEST(InputErrors, MissingOrUnreadableFile) {
   try {
     load_scene("/nonexistent/weft/missing.json");
     FAIL() << "no error";
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     EXPECT_STREQ(
         e.what(),
         "/nonexistent/weft/missing.json: cannot read scene file (No such file or directory)");
@@ -309,12 +309,12 @@ TEST(SceneErrors, MissingOrUnreadableFile) {
   try {
     load_scene(dir);
     FAIL() << "no error";
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), dir.string() + ": cannot read scene file (Is a directory)");
   }
 }
 
-TEST(SceneErrors, ErrorsFromAFileNameItsPath) {
+TEST(InputErrors, ErrorsFromAFileNameItsPath) {
   const std::filesystem::path path =
       std::filesystem::temp_directory_path() / "weft_scene_errors_bad.json";
   Json s = valid_scene();
@@ -323,14 +323,14 @@ TEST(SceneErrors, ErrorsFromAFileNameItsPath) {
   try {
     load_scene(path);
     FAIL() << "no error";
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               path.string() + ": output.frames: expected an integer in [1, 100000], got -3");
   }
   std::filesystem::remove(path);
 }
 
-TEST(SceneErrors, RendererAndRayTraceSettings) {
+TEST(InputErrors, RendererAndRayTraceSettings) {
   Json s = valid_scene();
   s["render"]["renderer"] = "pathtracer";
   EXPECT_CONTAINS(scene_error_of(s), "render.renderer: expected one of 'raster', 'raytrace'");

@@ -1,6 +1,6 @@
 // Valid scene files: every key lands in the right field, in SI units.
 
-#include "app/scene.h"
+#include "app/scene/scene.h"
 
 #include <gtest/gtest.h>
 

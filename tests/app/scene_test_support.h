@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 
 #define EXPECT_CONTAINS(message, part) \
   EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
@@ -27,13 +27,13 @@ inline Scene parse_json_scene(const Json& scene) {
   return parse_scene(scene.dump(2), "scene.json");
 }
 
-// The SceneError message of the text read as `source` (its relative paths resolve from there),
+// The InputError message of the text read as `source` (its relative paths resolve from there),
 // or "no error".
 inline std::string scene_error_of_text(const std::string& text,
                                        const std::string& source = "scene.json") {
   try {
     parse_scene(text, source);
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     return e.what();
   }
   return "no error";

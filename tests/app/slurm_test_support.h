@@ -19,7 +19,7 @@ namespace weft::app::test {
 inline const std::string kSixPointSweep =
     " --set 'cloth.resolution=[5,5],[7,7],[9,9]'"
     " --set simulation.integrator=symplectic_euler,implicit_euler";
-// Wall times from the step count (the test hook of app/sweep_command.cpp), so that sweep.csv
+// Wall times from the step count (the test hook of app/cli/sweep_command.cpp), so that sweep.csv
 // and sweep.png are the same bits however and wherever the points ran.
 inline const std::string kModelWallTime = "WEFT_SWEEP_SECONDS_PER_VERTEX_STEP=1e-6";
 

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <string>
 
-#include "app/json_reader.h"
-#include "app/scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene.h"
 #include "sim/pins.h"
 #include "tests/app/scene_test_support.h"
 
@@ -176,7 +176,7 @@ TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   try {
     (void)make_simulator(scene);
     ADD_FAILURE() << "an adaptive step without fast projection was accepted";
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     EXPECT_CONTAINS(std::string(e.what()), "\"adaptive\" follows fast projection's iterations");
   }
 }

@@ -1,4 +1,4 @@
-// `weft stability` (app/stability_command.h) on a small cloth: every swept cell is stable exactly
+// `weft stability` (app/cli/stability_command.h) on a small cloth: every swept cell is stable exactly
 // when its step is below the predicted critical step, implicit Euler everywhere, the bisection
 // lands on the prediction, and bad options are reported naming the option.
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "app/scene.h"
-#include "app/stability_command.h"
+#include "app/scene/scene.h"
+#include "app/cli/stability_command.h"
 #include "render/image.h"
 
 namespace weft::app {
@@ -100,23 +100,23 @@ TEST(StabilityCommand, BadOptionsNameTheOption) {
   try {
     (void)parse_integrator_list({"rk4", "rk5"}, "--integrators");
     FAIL() << "rk5 accepted";
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("--integrators: unknown integrator 'rk5'"), std::string::npos) << message;
     EXPECT_NE(message.find("'central_difference'"), std::string::npos) << message;
   }
-  EXPECT_THROW((void)parse_integrator_list({"rk4", "rk4"}, "--integrators"), SceneError);
+  EXPECT_THROW((void)parse_integrator_list({"rk4", "rk4"}, "--integrators"), InputError);
 
   StabilityOptions options;
   options.out = fs::path(WEFT_BINARY_DIR) / "test_output" / "stability_bad_options";
   fs::remove_all(options.out);
   options.size = 2;
-  EXPECT_THROW(run_stability(options), SceneError);
+  EXPECT_THROW(run_stability(options), InputError);
   options.size = 5;
   options.stiffness_scales = {1.0, 0.0};
-  EXPECT_THROW(run_stability(options), SceneError);
+  EXPECT_THROW(run_stability(options), InputError);
   options.stiffness_scales = {1.0, 1.0};
-  EXPECT_THROW(run_stability(options), SceneError);
+  EXPECT_THROW(run_stability(options), InputError);
   EXPECT_FALSE(fs::exists(options.out));  // nothing written for bad input
 }
 

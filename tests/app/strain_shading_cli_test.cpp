@@ -1,5 +1,5 @@
 // `weft run --shading strain` (issue 20 item 10): the per-vertex strain weft draws
-// (app/frame_mesh.h vertex_strains) on known deformations, and the frames the real command
+// (app/run/frame_mesh.h vertex_strains) on known deformations, and the frames the real command
 // writes: the cloth in the map's colours (render/strain_colour.h) and the legend in the corner.
 
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "app/frame_mesh.h"
+#include "app/run/frame_mesh.h"
 #include "render/image.h"
 #include "sim/grid.h"
 #include "tests/app/cli_test_support.h"

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/scene.h"
-#include "app/scene_patch.h"
+#include "app/scene/scene.h"
+#include "app/scene/scene_patch.h"
 #include "analysis/sweep_metrics.h"
 #include "sim/grid.h"
 #include "tests/app/scene_test_support.h"
@@ -166,7 +166,7 @@ TEST(SweepMetrics, ParetoFrontKeepsRunsNoOtherBeatsInBoth) {
 std::string error_of(const std::function<void()>& f) {
   try {
     f();
-  } catch (const SceneError& e) {
+  } catch (const InputError& e) {
     return e.what();
   }
   return "no error";

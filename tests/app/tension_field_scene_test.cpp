@@ -1,4 +1,4 @@
-// The tension-field shape as a scene's initial shape (app/tension_field_scene.h): the cloth
+// The tension-field shape as a scene's initial shape (app/scene/tension_field_scene.h): the cloth
 // starts laid on Conci's folds — supports l = L − d apart, n + 1 bulges down its centre, every
 // vertical fibre its rest length —, pins hold it there, simulation.dynamics false keeps it,
 // and bad scenes name the key at fault.
@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "app/measure_command.h"
-#include "app/scene.h"
+#include "app/run/measure.h"
+#include "app/scene/scene.h"
 #include "analysis/measure/curtain_folds.h"
 #include "tests/app/coarse_scene.h"
 #include "tests/app/scene_test_support.h"

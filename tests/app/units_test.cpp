@@ -1,4 +1,4 @@
-#include "app/units.h"
+#include "app/scene/units.h"
 
 #include <gtest/gtest.h>
 

@@ -6,12 +6,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/frame_mesh.h"
-#include "app/frame_stream.h"
-#include "app/obstacle_meshes.h"
-#include "app/scene.h"
-#include "app/scene_options.h"
-#include "app/renderer_choice.h"
+#include "app/run/frame_mesh.h"
+#include "app/run/frame_stream.h"
+#include "app/run/obstacle_meshes.h"
+#include "app/scene/scene.h"
+#include "app/cli/options.h"
+#include "app/run/renderer_choice.h"
 #include "tests/app/coarse_scene.h"
 
 namespace weft::test {

@@ -39,7 +39,7 @@ struct GoldenCase {
 
 // Simulates the case's scene on its coarse grid (cloth density × density_scale; with
 // `settings`, the scene file with those overrides instead) through the frame stream of weft run
-// (app/frame_stream.h) and renders its last frame; `remeshes`, when given, gets the number of
+// (app/run/frame_stream.h) and renders its last frame; `remeshes`, when given, gets the number of
 // times the cloth was remeshed. Throws what the scene or renderer throws.
 render::Image render_case(const GoldenCase& c, double density_scale = 1.0,
                           long* remeshes = nullptr);

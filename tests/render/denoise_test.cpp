@@ -15,7 +15,7 @@
 namespace weft::render {
 namespace {
 
-constexpr int side = 64;
+constexpr int image_side = 64;
 
 // A deterministic standard normal number for (pixel, salt) (Box–Muller on a hash).
 double gaussian(std::uint32_t pixel, std::uint32_t salt) {
@@ -42,13 +42,13 @@ struct Case {
 
 DenoiseInput make_input(const Case& c) {
   DenoiseInput in;
-  in.width = in.height = side;
-  for (int y = 0; y < side; ++y) {
-    for (int x = 0; x < side; ++x) {
-      const bool left = x < side / 2;
+  in.width = in.height = image_side;
+  for (int y = 0; y < image_side; ++y) {
+    for (int x = 0; x < image_side; ++x) {
+      const bool left = x < image_side / 2;
       const Eigen::Vector3f albedo = left ? c.albedo_left : c.albedo_right;
       const float light = left ? c.light_left : c.light_right;
-      const auto pixel = static_cast<std::uint32_t>(y * side + x);
+      const auto pixel = static_cast<std::uint32_t>(y * image_side + x);
       const float noisy = light + c.sigma * static_cast<float>(gaussian(pixel, 1));
       in.radiance.push_back(noisy * albedo);
       in.variance.push_back(c.sigma * c.sigma);
@@ -68,9 +68,9 @@ struct Stats {
 Stats column_stats(const std::vector<Eigen::Vector3f>& image, const DenoiseInput& in, int x0, int x1) {
   double sum = 0.0, squares = 0.0;
   int n = 0;
-  for (int y = 0; y < side; ++y) {
+  for (int y = 0; y < image_side; ++y) {
     for (int x = x0; x < x1; ++x) {
-      const std::size_t p = static_cast<std::size_t>(y * side + x);
+      const std::size_t p = static_cast<std::size_t>(y * image_side + x);
       const double v = image[p].x() / in.albedo[p].x();
       sum += v;
       squares += v * v;
@@ -91,9 +91,9 @@ TEST(Denoise, ReducesNoiseAndKeepsASurfaceEdge) {
   EXPECT_LT(after.variance, before.variance / 8.0);
   // The edge: the columns on either side keep their own surface's colour — red stays red, blue
   // stays blue (a blur across the edge would mix them half and half).
-  for (int y = 0; y < side; ++y) {
-    const Eigen::Vector3f l = out[static_cast<std::size_t>(y * side + 31)];
-    const Eigen::Vector3f r = out[static_cast<std::size_t>(y * side + 32)];
+  for (int y = 0; y < image_side; ++y) {
+    const Eigen::Vector3f l = out[static_cast<std::size_t>(y * image_side + 31)];
+    const Eigen::Vector3f r = out[static_cast<std::size_t>(y * image_side + 32)];
     EXPECT_GT(l.x(), 3.0f * l.z()) << "row " << y;
     EXPECT_GT(r.z(), 3.0f * r.x()) << "row " << y;
   }

@@ -1,0 +1,86 @@
+// Output-folder helpers; see output_files.h.
+
+#include "app/io/output_files.h"
+
+#include <cstdio>
+#include <fstream>
+#include <cctype>
+#include <regex>
+#include <stdexcept>
+
+#include "app/io/version.h"
+
+namespace weft::app {
+
+namespace fs = std::filesystem;
+
+void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  const fs::path partial = path.string() + ".partial";
+  try {
+    write(partial);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(partial, ignored);
+    throw;
+  }
+  std::error_code error;
+  fs::rename(partial, path, error);
+  if (error) throw std::runtime_error(path.string() + ": cannot write (" + error.message() + ")");
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  write_atomically(path, [&](const fs::path& partial) {
+    std::ofstream out(partial);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  });
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  return fs::equivalent(a, b, error) && !error;
+}
+
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+int remove_numbered_files(const fs::path& dir, const std::string& prefix,
+                          const std::string& extension) {
+  const std::regex pattern(prefix + R"(_\d{4,}\.)" + extension);
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
+      ++removed;
+  return removed;
+}
+
+void start_output(const fs::path& dir, const std::vector<NumberedFiles>& earlier,
+                  const std::vector<std::pair<std::string, std::string>>& files) {
+  fs::create_directories(dir);
+  int removed = 0;
+  for (const NumberedFiles& kind : earlier)
+    removed += remove_numbered_files(dir, kind.prefix, kind.extension);
+  if (removed)
+    std::fprintf(stderr, "weft: replaced %d files of an earlier run in %s\n", removed,
+                 dir.c_str());
+  for (const auto& [name, text] : files) write_text(dir / name, text);
+}
+
+std::string run_record(const std::string& command_line,
+                       const std::vector<std::pair<std::string, std::string>>& inputs) {
+  std::string text = "weft " + std::string(version()) + "\ncommand: " + command_line + "\n";
+  for (const auto& [key, value] : inputs) text += key + ": " + value + "\n";
+  return text;
+}
+
+std::string numbered_file_name(const char* prefix, int frame, const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_%04d.%s", prefix, frame, extension);
+  return name;
+}
+
+}  // namespace weft::app

@@ -1,0 +1,173 @@
+// weft run's checkpoint file (see run_checkpoint.h).
+//
+// Layout: the magic line "weft checkpoint 2\n" (version 2: the simulator's state begins with its
+// mesh section, the remeshed cloth's mesh; version 1 had none), the build hash and the scene text's hash (8
+// bytes each, native order), then the sections of a sim::StateWriter: "run" (frame, interval,
+// scene source and text), "rows", "crossings", "simulator" (Simulator::save_state's bytes) and
+// "end".
+
+#include "app/io/run_checkpoint.h"
+
+#include <elf.h>
+#include <link.h>
+
+#include <cstdio>
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <type_traits>
+
+#include "app/io/output_files.h"
+#include "app/io/input_error.h"
+#include "sim/state_archive.h"
+
+namespace weft::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kMagicPrefix = "weft checkpoint ";
+constexpr int kCheckpointVersion = 2;
+const std::string kMagic = std::string(kMagicPrefix) + std::to_string(kCheckpointVersion) + "\n";
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot read it (no checkpoint here?)");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+std::string hex(std::uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+// The GNU build ID note of the main program (its first loaded object), or "" without one.
+std::string gnu_build_id() {
+  std::string id;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) -> int {
+        for (int i = 0; i < info->dlpi_phnum; ++i) {
+          const ElfW(Phdr)& segment = info->dlpi_phdr[i];
+          if (segment.p_type != PT_NOTE) continue;
+          const char* p = reinterpret_cast<const char*>(info->dlpi_addr + segment.p_vaddr);
+          const char* const end = p + segment.p_memsz;
+          const auto align4 = [](size_t n) { return (n + 3) & ~size_t{3}; };
+          while (p + sizeof(ElfW(Nhdr)) <= end) {
+            const auto* note = reinterpret_cast<const ElfW(Nhdr)*>(p);
+            const char* name = p + sizeof(ElfW(Nhdr));
+            const char* desc = name + align4(note->n_namesz);
+            if (desc + note->n_descsz > end) break;
+            if (note->n_type == NT_GNU_BUILD_ID && note->n_namesz == 4 &&
+                std::memcmp(name, "GNU", 4) == 0) {
+              static_cast<std::string*>(out)->assign(desc, note->n_descsz);
+              return 1;
+            }
+            p = desc + align4(note->n_descsz);
+          }
+        }
+        return 1;  // the main program only
+      },
+      &id);
+  return id;
+}
+
+}  // namespace
+
+std::uint64_t fnv1a_64(const std::string& bytes) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (const char c : bytes) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+std::uint64_t build_hash() {
+  static const std::uint64_t hash = [] {
+    const std::string id = gnu_build_id();
+    return fnv1a_64(id.empty() ? read_bytes("/proc/self/exe") : id);
+  }();
+  return hash;
+}
+
+void write_checkpoint(const fs::path& dir, const RunCheckpoint& c) {
+  static_assert(std::is_trivially_copyable_v<FrameStats>, "stats rows are saved as bytes");
+  sim::StateWriter out;
+  out.section("run");
+  out.pod(c.frame);
+  out.pod(c.every);
+  out.text(c.scene_source);
+  out.text(c.scene_text);
+  out.section("rows");
+  out.pods(c.rows);
+  out.section("crossings");
+  out.pods(c.crossing_frames);
+  out.section("simulator");
+  out.text(c.simulator_state);
+  out.section("end");
+  std::string bytes(kMagic);
+  const std::uint64_t hashes[2] = {build_hash(), fnv1a_64(c.scene_text)};
+  bytes.append(reinterpret_cast<const char*>(hashes), sizeof hashes);
+  bytes += out.bytes();
+  write_atomically(dir / checkpoint_file_name, [&](const fs::path& path) {
+    std::ofstream file(path, std::ios::binary);
+    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    file.close();
+    if (!file) throw std::runtime_error(path.string() + ": cannot write the checkpoint");
+  });
+}
+
+RunCheckpoint read_checkpoint(const fs::path& dir) {
+  const fs::path path = fs::is_directory(dir) ? dir / checkpoint_file_name : dir;
+  const std::string bytes = read_bytes(path);
+  const std::string name = path.string();
+  std::uint64_t hashes[2];
+  if (bytes.compare(0, kMagicPrefix.size(), kMagicPrefix) == 0 &&
+      bytes.compare(0, kMagic.size(), kMagic) != 0) {
+    const std::size_t end = bytes.find('\n', kMagicPrefix.size());
+    const std::string version =
+        bytes.substr(kMagicPrefix.size(), std::min<std::size_t>(end, 40) - kMagicPrefix.size());
+    throw InputError(name + ": a weft checkpoint of format version " + version + "; this weft "
+                     "reads version " + std::to_string(kCheckpointVersion) + " only (rerun the "
+                     "scene from the start)");
+  }
+  if (bytes.compare(0, kMagic.size(), kMagic) != 0 || bytes.size() < kMagic.size() + sizeof hashes)
+    throw InputError(name + ": not a weft checkpoint (weft run --checkpoint-every writes them)");
+  std::memcpy(hashes, bytes.data() + kMagic.size(), sizeof hashes);
+  if (hashes[0] != build_hash())
+    throw InputError(name + ": written by another build of weft (build " + hex(hashes[0]) +
+                     ", this one " + hex(build_hash()) +
+                     "): a checkpoint resumes only with the executable that wrote it; rerun "
+                     "the scene from the start");
+  RunCheckpoint c;
+  try {
+    sim::StateReader in(std::string_view(bytes).substr(kMagic.size() + sizeof hashes), name);
+    in.section("run");
+    in.pod(c.frame);
+    in.pod(c.every);
+    c.scene_source = in.text();
+    c.scene_text = in.text();
+    in.section("rows");
+    in.pods(c.rows);
+    in.section("crossings");
+    in.pods(c.crossing_frames);
+    in.section("simulator");
+    c.simulator_state = in.text();
+    in.section("end");
+    if (!in.at_end()) in.fail("bytes after the end");
+  } catch (const sim::StateArchiveError& e) {
+    throw InputError(std::string(e.what()) + " (a damaged checkpoint)");
+  }
+  if (fnv1a_64(c.scene_text) != hashes[1])
+    throw InputError(name + ": the scene it holds does not match its hash (a damaged checkpoint)");
+  if (c.frame < 1 || c.rows.size() != static_cast<std::size_t>(c.frame))
+    throw InputError(name + ": " + std::to_string(c.rows.size()) + " stats rows for frame " +
+                     std::to_string(c.frame) + " (a damaged checkpoint)");
+  return c;
+}
+
+}  // namespace weft::app

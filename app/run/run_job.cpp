@@ -1,0 +1,443 @@
+#include "app/run/run_job.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <regex>
+#include <string>
+
+#include "app/run/auto_camera.h"
+#include "app/io/cloth_mesh_states.h"
+#include "app/run/frame_mesh.h"
+#include "app/run/frame_painter.h"
+#include "app/io/npy_file.h"
+#include "app/scene/json_reader.h"
+#include "app/run/frame_stream.h"
+#include "app/run/measure.h"
+#include "app/run/obstacle_meshes.h"
+#include "app/io/output_files.h"
+#include "app/io/progress.h"
+#include "app/io/run_checkpoint.h"
+#include "app/report/run_report.h"
+#include "app/run/renderer_choice.h"
+#include "app/scene/scene.h"
+#include "app/io/stats_csv.h"
+#include "sim/collision/self_intersection.h"
+#include "sim/pins.h"
+#include "sim/simulator.h"
+
+namespace weft::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The cloth's texture beside glTF meshes (--export-meshes gltf), which name it.
+constexpr const char* texture_file_name = "mesh_texture.png";
+
+// How --export-meshes writes the cloth: the --up axis, the scene's front colour and texture.
+MeshExportOptions mesh_export_options(const Scene& scene, const RunOptions& options) {
+  MeshExportOptions o;
+  o.up = options.up;
+  o.base_color = scene.render.front_color;
+  const render::ClothTexture& texture = scene.render.cloth_surface.texture;
+  if (texture.image && options.export_meshes == MeshFormat::gltf) {
+    o.texture_uri = texture_file_name;
+    o.texture_repeat_m = texture.repeat_m;
+  }
+  return o;
+}
+
+// mesh_0001.obj, ... (--export-meshes), beside frame_0001.png.
+std::string mesh_name(int frame, MeshFormat format) {
+  return numbered_file_name("mesh", frame, mesh_extension(format));
+}
+
+// Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
+// folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
+// first frame is ready: a run that fails before it leaves an earlier run's files as they were.
+void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
+  start_output(dir,
+               {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
+                {"state", "npy"}, {cloth_mesh_state_prefix, cloth_mesh_state_extension}},
+               {{"scene.json", scene.text},
+                {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
+  std::filesystem::remove(dir / texture_file_name);
+  std::filesystem::remove(dir / checkpoint_file_name);  // an earlier run's: --resume must not find it
+  if (!mesh_export_options(scene, options).texture_uri.empty())
+    render::write_png(*scene.render.cloth_surface.texture.image, dir / texture_file_name);
+}
+
+// An explicit step with fast projection jitters when the tolerance is large against the strain
+// one step's fall adds to an edge, |g| h² / ℓ: the projection then acts only every few steps, and
+// each correction, up to tolerance × ℓ, becomes a velocity of up to tolerance × ℓ / h that nothing
+// damps. On the default hang the cloth settled at every tolerance up to 1.4 times that strain and
+// never at 2.8 times or more (docs/inextensibility.md, "Explicit integrators"); the warning starts
+// at 2. Empty when there is nothing to warn of.
+std::string projection_jitter_warning(const Scene& scene, double time_step) {
+  const sim::ProjectionSettings& projection = scene.sim.projection;
+  if (!sim::is_explicit(scene.sim.integrator) || projection.method != sim::ProjectionMethod::fast_projection || scene.mesh)
+    return {};
+  const double edge = std::min(scene.grid.size_u_m / static_cast<double>(scene.grid.nu - 1),
+                               scene.grid.size_v_m / static_cast<double>(scene.grid.nv - 1));
+  const double fall_strain = scene.sim.gravity_m_s2.norm() * time_step * time_step / edge;
+  if (projection.tolerance <= 2.0 * fall_strain) return {};
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "simulation.constraints.tolerance %.3g is more than twice the strain one step's "
+                "fall adds to an edge (|g| h^2 / edge = %.2g at h = %.3g ms): the projection will act "
+                "only every few steps and the cloth may jitter without settling; use a tolerance "
+                "of at most %.2g, or implicit_euler",
+                projection.tolerance, fall_strain, 1e3 * time_step, fall_strain);
+  return text;
+}
+
+void print_header(const Scene& scene, const sim::Simulator& simulator,
+                  const render::Renderer& renderer, bool explain) {
+  std::fprintf(
+      stderr,
+      "weft: %s — %d frame%s at %g fps, %s, time step %.3g ms (critical %.3g ms), "
+      "%s\n",
+      scene.source.c_str(), scene.frames, scene.frames == 1 ? "" : "s", scene.fps,
+      cloth_size_text(scene).c_str(), 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step(),
+      renderer.description().c_str());
+  if (sim::is_explicit(scene.sim.integrator) && simulator.time_step() > simulator.critical_time_step())
+    std::fprintf(stderr,
+                 "weft: warning: the time step %.3g ms exceeds the predicted critical step %.3g ms "
+                 "of the explicit integrator: the run will probably diverge (lower "
+                 "simulation.time_step or use implicit_euler)\n",
+                 1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step());
+  if (const std::string jitter = projection_jitter_warning(scene, simulator.time_step());
+      !jitter.empty())
+    std::fprintf(stderr, "weft: warning: %s\n", jitter.c_str());
+  if (scene.tension_field) {
+    const sim::TensionFieldResult folds = sim::solve_tension_field(tension_field_inputs(
+        *scene.tension_field, scene.grid, scene.material, scene.sim.gravity_m_s2));
+    std::fprintf(stderr, "weft: initial shape: tension-field folds (seed 001): %s\n",
+                 folds.message.c_str());
+  }
+  if (!scene.dynamics)
+    std::fprintf(stderr, "weft: simulation.dynamics is false: every frame shows the initial shape\n");
+  if (explain) {
+    std::printf("weft: the simulation runs, per step:\n");
+    for (const std::string& line : simulator.explain()) std::printf("  %s\n", line.c_str());
+    std::fflush(stdout);
+  }
+}
+
+// "weft: time per phase: integrate 61 % (2.1 s), project 37 % (1.3 s), ..." — phases that ran.
+void print_phase_shares(const sim::PhaseTimers& timers) {
+  const double total = timers.total_seconds();
+  if (total <= 0.0) return;
+  std::string text;
+  for (int p = 0; p < static_cast<int>(sim::Phase::count); ++p) {
+    const double s = timers.seconds(static_cast<sim::Phase>(p));
+    if (s <= 0.0) continue;
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s %.0f %% (%s)", text.empty() ? "" : ", ",
+                  std::string(sim::phase_names[static_cast<std::size_t>(p)]).c_str(),
+                  100.0 * s / total, format_duration(s).c_str());
+    text += part;
+  }
+  std::printf("weft: time per phase: %s\n", text.c_str());
+}
+
+// Thrown by FrameWriter after writing a frame in which a self-colliding cloth passes through
+// itself, when the scene makes that an error (simulation.self_collision.crossings).
+struct CrossingStop {
+  int frame;
+  int crossings;
+};
+
+// "9–12, 15, 20–48": ascending frame numbers as ranges.
+std::string frame_ranges(const std::vector<int>& frames) {
+  std::string text;
+  for (std::size_t i = 0; i < frames.size();) {
+    std::size_t j = i;
+    while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+    if (!text.empty()) text += ", ";
+    text += std::to_string(frames[i]);
+    if (j > i) text += "–" + std::to_string(frames[j]);
+    i = j + 1;
+  }
+  return text;
+}
+
+// Renders, writes and records each frame of the stream: frame_NNNN.png, the exported mesh,
+// its row of stats.csv, and the progress line.
+class FrameWriter {
+ public:
+  FrameWriter(const Scene& scene, const RunOptions& options, const fs::path& dir,
+              sim::Simulator& simulator, render::Renderer& renderer)
+      : m_scene(scene), m_options(options), m_dir(dir), m_simulator(simulator),
+        m_stats(dir / "stats.csv"), m_painter(scene, renderer, simulator.mesh()),
+        m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {
+    if (options.save_states && scene.sim.remesh.enabled)
+      m_initial_mesh = std::make_unique<sim::ClothMesh>(simulator.mesh());
+  }
+
+  void write(const Frame& frame) {
+    const bool remeshed_states = m_initial_mesh != nullptr;  // --save-states of a remeshed run
+    if (m_rows.empty()) {
+      prepare_output(m_dir, m_scene, m_options);
+      if (m_options.save_states)
+        write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
+      if (remeshed_states) write_cloth_mesh_state(m_dir, 0, *m_initial_mesh);
+    }
+    FrameStats row;
+    row.frame = frame.index;
+    row.sim_ms = 1e3 * frame.sim_s;
+    row.steps = m_simulator.take_step_statistics();
+    // Every simulated frame's state, for weft render (its camera frames them all); with
+    // remeshing, the mesh of each frame whose steps remeshed the cloth (cloth_mesh_states.h).
+    if (m_options.save_states)
+      write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
+                       m_simulator.state().x);
+    // After a resume too: the interrupted run may not have saved states (nor meshes).
+    if (remeshed_states && (row.steps.remeshes > 0 || m_resumed_mesh_unsaved))
+      write_cloth_mesh_state(m_dir, frame.index, m_simulator.mesh());
+    m_resumed_mesh_unsaved = false;
+    row.diagnostics = m_simulator.diagnostics();
+    // The frame's own mesh: with simulation.remesh it changes from frame to frame, so its
+    // triangles and edges are taken anew after each remesh (and only then).
+    if (m_triangles.empty() || m_topology_remeshes != m_simulator.remesh_count()) {
+      m_triangles = m_simulator.mesh().triangles();
+      m_edges = sim::unique_edges(m_triangles);
+      m_topology_remeshes = m_simulator.remesh_count();
+    }
+    row.self_intersections =
+        sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
+    row.vertices = m_simulator.mesh().used_vertex_count();
+    const auto start = std::chrono::steady_clock::now();
+    if (m_options.selection.selects(frame.index, m_scene.frames)) render_frame(frame.index);
+    row.render_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    m_stats.write(row);
+    m_rows.push_back(row);
+    char detail[128];
+    std::snprintf(detail, sizeof detail, "t = %.2f s, max strain %.2f %%%s", row.diagnostics.time_s,
+                  100.0 * row.diagnostics.max_strain,
+                  row.steps.unconverged_steps ? ", projection missed its tolerance" : "");
+    m_progress.update(frame.index, detail);
+    if (m_scene.sim.self_collision.enabled && row.self_intersections > 0) {
+      m_crossing_frames.push_back(frame.index);
+      if (m_scene.crossings == Scene::CrossingPolicy::error)
+        throw CrossingStop{frame.index, row.self_intersections};
+    }
+  }
+  void finish() {
+    m_progress.finish();
+    for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
+      std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
+  }
+  // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
+  void resume(const RunCheckpoint& checkpoint) {
+    m_resumed_mesh_unsaved = true;
+    m_rows = checkpoint.rows;
+    m_crossing_frames = checkpoint.crossing_frames;
+    m_stats.restore(m_rows);
+  }
+  // The checkpoint of the frames written so far (the simulator at the last one's end).
+  RunCheckpoint checkpoint(int every) const {
+    RunCheckpoint c{static_cast<int>(m_rows.size()), every, m_scene.source, m_scene.text,
+                    m_rows, m_crossing_frames, {}};
+    sim::StateWriter state;
+    m_simulator.save_state(state);
+    c.simulator_state = state.bytes();
+    return c;
+  }
+  // The frames in which a self-colliding cloth passes through itself, in order.
+  const std::vector<int>& crossing_frames() const { return m_crossing_frames; }
+  const std::vector<FrameStats>& rows() const { return m_rows; }
+  double elapsed_s() const { return m_progress.elapsed_s(); }
+
+ private:
+  void render_frame(int index) {
+    const render::RenderMesh cloth =
+        m_painter.paint(index, m_simulator.state().x, m_simulator.state().time_s, m_dir);
+    if (!m_options.export_cache.empty()) m_cache.add(cloth, m_simulator.state().time_s);
+    if (const auto format = m_options.export_meshes)
+      export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
+                  mesh_export_options(m_scene, m_options));
+  }
+
+  const Scene& m_scene;
+  const RunOptions& m_options;
+  fs::path m_dir;
+  sim::Simulator& m_simulator;
+  StatsCsv m_stats;
+  FramePainter m_painter;  // draws the simulator's mesh as it is at each frame
+  // The current mesh's triangles and edges (crossings), of the mesh after this many remeshes.
+  std::vector<std::array<sim::Index, 3>> m_triangles;
+  std::vector<std::array<sim::Index, 2>> m_edges;
+  long m_topology_remeshes = 0;
+  Progress m_progress;
+  std::vector<FrameStats> m_rows;
+  PointCache m_cache;  // --export-cache: the frames so far
+  std::vector<int> m_crossing_frames;
+  sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
+  std::unique_ptr<sim::ClothMesh> m_initial_mesh;  // and its mesh, with simulation.remesh
+  bool m_resumed_mesh_unsaved = false;  // resumed: the mesh goes with the first frame's state
+};
+
+// Says where the run stopped and what it kept; writes the report of the frames written.
+int report_divergence(const FrameDivergence& d, const fs::path& dir, const Scene& scene,
+                      const RunOptions& options, const std::vector<FrameStats>& rows) {
+  std::fprintf(stderr, "weft: error: frame %d: %s\n", d.frame, d.error.what());
+  if (d.frame > 1)
+    std::fprintf(stderr, "weft: kept frames 1..%d and stats.csv in %s\n", d.frame - 1,
+                 dir.c_str());
+  else
+    std::fprintf(stderr, "weft: no frame was finished; %s is as it was\n", dir.c_str());
+  if (options.report && !rows.empty())
+    std::printf("weft: report of the frames written: %s\n",
+                write_run_report(dir, scene, options.command_line, rows).c_str());
+  return exit_diverged;
+}
+
+// Fast projection after a fixed implicit step misses its tolerance where the step is long for
+// the mesh: its prediction then lies far from the constraints (the 256² hang at 1/120 s missed
+// in 11 of 240 steps; the adaptive step chose about 1/276 s there and missed none, at 0.28 of
+// the CPU time: docs/benchmarks.md, "Issue 18: 256² converged"). Empty when that is not the case.
+std::string shorter_step_advice(const Scene& scene) {
+  if (scene.sim.integrator != sim::Integrator::implicit_euler || scene.sim.adaptive_step.enabled ||
+      scene.sim.projection.method != sim::ProjectionMethod::fast_projection)
+    return {};
+  return "; \"time_step\": \"adaptive\" shortens the steps where the projection needs it";
+}
+
+void print_summary(const Scene& scene, const RunOptions& options, const fs::path& dir,
+                   const sim::Simulator& simulator, const FrameWriter& writer) {
+  double sim_ms = 0.0, render_ms = 0.0;
+  long unconverged = 0, steps = 0;
+  for (const FrameStats& row : writer.rows()) {
+    sim_ms += row.sim_ms;
+    render_ms += row.render_ms;
+    unconverged += row.steps.unconverged_steps;
+    steps += row.steps.steps;
+  }
+  if (unconverged > 0)
+    std::fprintf(
+        stderr,
+        "weft: warning: the constraint projection missed its tolerance in %ld of %ld steps "
+        "(see unconverged_steps in stats.csv)%s\n",
+        unconverged, steps, shorter_step_advice(scene).c_str());
+  if (const std::vector<int>& crossed = writer.crossing_frames(); !crossed.empty()) {
+    int most = 0;
+    for (const FrameStats& row : writer.rows()) most = std::max(most, row.self_intersections);
+    std::fprintf(stderr,
+                 "weft: warning: the cloth passes through itself despite self-collision in %zu of "
+                 "%zu frames (%s; up to %d edge–triangle crossings: self_intersections in "
+                 "stats.csv)\n",
+                 crossed.size(), writer.rows().size(), frame_ranges(crossed).c_str(), most);
+  }
+  if (options.explain) print_phase_shares(simulator.timers());
+  int written = 0;
+  for (int k = 1; k <= scene.frames; ++k) written += options.selection.selects(k, scene.frames);
+  std::fprintf(stderr, "weft: wrote %d frame%s to %s (simulation %s, rendering %s, total %s)\n",
+              written, written == 1 ? "" : "s",
+              dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
+              format_duration(render_ms / 1e3).c_str(), format_duration(writer.elapsed_s()).c_str());
+  if (options.report)
+    std::printf("weft: report: %s\n",
+                write_run_report(dir, scene, options.command_line, writer.rows()).c_str());
+  if (const auto drape = drape_summary(scene, simulator))
+    std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
+}
+
+// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same.
+Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) {
+  Scene scene = parse_scene(checkpoint.scene_text, checkpoint.scene_source);
+  if (options.scene || !options.overrides.empty()) {
+    const Scene given = load_scene_with(options.scene, options.overrides);
+    if (given.text != scene.text)
+      throw InputError("--resume " + options.resume->string() + ": the checkpoint belongs to " +
+                       "another scene (" + checkpoint.scene_source + " with the overrides in its "
+                       "scene.json, hash " + std::to_string(fnv1a_64(scene.text)) + "; given: " +
+                       given.source + ", hash " + std::to_string(fnv1a_64(given.text)) +
+                       "); give no scene to go on with the checkpoint's");
+  }
+  return scene;
+}
+
+}  // namespace
+
+int run_scene(const RunOptions& options) {
+  std::optional<RunCheckpoint> resumed;
+  if (options.resume) resumed = read_checkpoint(*options.resume);
+  Scene scene = resumed ? resumed_scene(*resumed, options)
+                        : load_scene_with(options.scene, options.overrides);
+  const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
+  if ((every > 0 || resumed) && !options.export_cache.empty())
+    throw InputError("--export-cache: not with --checkpoint-every or --resume (the point cache "
+                     "holds every frame and is not checkpointed; export meshes per frame with "
+                     "--export-meshes)");
+  // A point cache holds one mesh's vertices (docs/remeshing.md); checkpoints and saved states
+  // hold each frame's mesh (docs/checkpoints.md).
+  if (scene.sim.remesh.enabled && !options.export_cache.empty())
+    throw InputError("--export-cache: not with simulation.remesh (" + scene.source +
+                     "): a remeshed cloth's vertices change from frame to frame, and a point "
+                     "cache holds one mesh's; export each frame's mesh with --export-meshes");
+  if (resumed && resumed->frame >= scene.frames)
+    throw InputError("--resume " + options.resume->string() + ": the checkpoint is of frame " +
+                     std::to_string(resumed->frame) + ", the scene's last: nothing to resume");
+  const FrameSelection& f = options.selection;
+  if (!f.last_only && (f.start > scene.frames || f.end.value_or(scene.frames) < f.start))
+    throw InputError("--start/--end: expected 1 <= start <= end <= " +
+                     std::to_string(scene.frames) + " (the scene's frames), got start " +
+                     std::to_string(f.start) + ", end " + std::to_string(f.end.value_or(scene.frames)));
+  apply_threads(scene, options.threads);
+  // Everything that can reject the input happens before the output folder is touched.
+  const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+  if (resumed) {
+    sim::StateReader state(resumed->simulator_state, options.resume->string());
+    try {
+      simulator->restore_state(state);
+    } catch (const sim::StateArchiveError& e) {
+      throw InputError(std::string(e.what()) + " (a damaged checkpoint)");
+    }
+  }
+  const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
+  if (frame_cloth_if_no_camera(scene))
+    std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
+                         "over the run (simulated once for it)\n");
+
+  const fs::path dir = options.resume ? (fs::is_directory(*options.resume)
+                                              ? *options.resume
+                                              : options.resume->parent_path())
+                                       : options.out.value_or(fs::path("out") / scene.name);
+  print_header(scene, *simulator, *renderer, options.explain);
+  FrameWriter writer(scene, options, dir, *simulator, *renderer);
+  if (resumed) {
+    writer.resume(*resumed);
+    std::fprintf(stderr, "weft: resuming from the checkpoint of frame %d in %s\n", resumed->frame,
+                 dir.c_str());
+  }
+  FrameStreamEnd end;
+  try {
+    end = stream_frames(
+        scene, *simulator,
+        [&](const Frame& frame) {
+          writer.write(frame);
+          if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
+            write_checkpoint(dir, writer.checkpoint(every));
+        },
+        {}, resumed ? resumed->frame + 1 : 1);
+  } catch (const CrossingStop& stop) {
+    writer.finish();
+    std::fprintf(stderr,
+                 "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
+                 "crossings; simulation.self_collision.crossings is \"error\")\n"
+                 "weft: kept what frames 1..%d wrote and stats.csv in %s\n",
+                 stop.frame, stop.crossings, stop.frame, dir.c_str());
+    return exit_diverged;
+  }
+  writer.finish();
+  if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
+  print_summary(scene, options, dir, *simulator, writer);
+  return exit_ok;
+}
+
+}  // namespace weft::app

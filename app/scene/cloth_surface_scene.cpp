@@ -1,0 +1,80 @@
+// Scene keys of the cloth's rendering aids (cloth_surface_scene.h).
+
+#include "app/scene/cloth_surface_scene.h"
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "app/scene/units.h"
+#include "render/image.h"
+#include "render/loop_subdivision.h"
+#include "render/texture.h"
+
+namespace weft::app {
+
+namespace {
+
+render::WovenCheck read_woven_check(ObjectReader r) {
+  render::WovenCheck check;
+  check.warp_color = read_color(r, "warp", check.warp_color);
+  check.weft_color = read_color(r, "weft", check.weft_color);
+  check.ground_color = read_color(r, "ground", check.ground_color);
+  check.stripes = static_cast<int>(r.integer("stripes", check.stripes, Range::closed(1, 64)));
+  r.finish();
+  return check;
+}
+
+render::ClothTexture read_texture(ObjectReader r) {
+  render::ClothTexture texture;
+  const bool has_file = r.has("file"), has_check = r.has("woven_check");
+  if (has_file == has_check)
+    r.fail("file", "expected exactly one of \"file\" (an image) and \"woven_check\" (an object)");
+  if (has_file) {
+    const std::filesystem::path file = r.string("file", required);
+    const std::filesystem::path path =
+        file.is_absolute() ? file : std::filesystem::path(r.file()).parent_path() / file;
+    try {
+      texture.image = std::make_shared<const render::Image>(render::read_image(path));
+    } catch (const std::exception& e) {
+      r.fail("file", "expected a PNG or JPG image: " + std::string(e.what()));
+    }
+  } else {
+    texture.image = std::make_shared<const render::Image>(
+        render::make_woven_check(read_woven_check(r.object("woven_check"))));
+  }
+  const auto scale =
+      r.quantities("scale", Quantity::length, 2, std::vector<double>{0.1, 0.1}, Range::gt(0.0));
+  texture.repeat_m = {scale[0], scale[1]};
+  r.finish();
+  return texture;
+}
+
+// "wireframe": true (the defaults), false, or {"width": pixels, "color": [r, g, b]}.
+void read_wireframe(ObjectReader& render, render::Wireframe& wireframe) {
+  if (render.holds_boolean("wireframe")) {
+    wireframe.enabled = render.boolean("wireframe", required);
+    return;
+  }
+  ObjectReader r = render.object("wireframe");
+  wireframe.enabled = true;
+  wireframe.width_px =
+      r.number("width", wireframe.width_px, Range::gt(0.0).le(max_wireframe_width_px));
+  wireframe.color = read_color(r, "color", wireframe.color);
+  r.finish();
+}
+
+}  // namespace
+
+void read_cloth_surface(ObjectReader& render, render::ClothSurface& surface) {
+  surface.subdivision_levels = static_cast<int>(render.integer(
+      "subdivision", surface.subdivision_levels, Range::closed(0, render::max_subdivision_levels)));
+  surface.thickness_m =
+      render.quantity("thickness", Quantity::length, surface.thickness_m, Range::ge(0.0));
+  if (render.has("texture")) surface.texture = read_texture(render.object("texture"));
+  if (render.has("wireframe")) read_wireframe(render, surface.wireframe);
+}
+
+}  // namespace weft::app

@@ -1,7 +1,0 @@
-#include "app/version.h"
-
-namespace weft::app {
-
-const char* version() { return WEFT_VERSION; }
-
-}  // namespace weft::app
