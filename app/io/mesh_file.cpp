@@ -1,6 +1,6 @@
 // Mesh files through assimp (see mesh_file.h).
 
-#include "app/mesh_file.h"
+#include "app/io/mesh_file.h"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -28,119 +28,144 @@ Position transformed(const aiMatrix4x4& m, const aiVector3D& v) {
           m.c1 * x + m.c2 * y + m.c3 * z + m.c4};
 }
 
+// The file's meshes merged into one PolygonMesh (mesh_file.h): vertices at the same position
+// joined across meshes, polygons triangulated or not, corners that the join collapses dropped.
+class MeshMerger {
+ public:
+  MeshMerger(std::string name, bool triangulate) : m_name(std::move(name)), m_triangulate(triangulate) {}
+
+  void add(const aiMesh& mesh, unsigned mesh_index, const aiMatrix4x4& to_root) {
+    m_all_uv = m_all_uv && mesh.HasTextureCoords(0);
+    m_all_colour = m_all_colour && mesh.HasVertexColors(0);
+    const std::vector<sim::Index> merged = add_vertices(mesh, mesh_index, to_root);
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) add_face(mesh, mesh.mFaces[f], merged);
+  }
+
+  PolygonMesh finish(unsigned mesh_count) {
+    const char* what = m_triangulate ? "triangles" : "polygons";
+    if (m_out.faces.empty()) {
+      throw MeshFileError(m_name + ": no " + what + " in the mesh file (" +
+                          std::to_string(mesh_count) + " meshes, " +
+                          std::to_string(m_points_and_lines) + " points or lines, " +
+                          std::to_string(m_dropped) + " collapsed " + what + ")");
+    }
+    m_out.vertices.resize(static_cast<Eigen::Index>(m_positions.size()), 3);
+    for (std::size_t i = 0; i < m_positions.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        m_out.vertices(static_cast<Eigen::Index>(i), k) = m_positions[i][k];
+    if (m_all_uv) m_out.uv = std::move(m_uv);
+    else m_out.uv_seam_vertex = -1;
+    if (m_all_colour) m_out.colour = std::move(m_colour);
+    return std::move(m_out);
+  }
+
+ private:
+  // The merged vertex of each of the mesh's vertices.
+  std::vector<sim::Index> add_vertices(const aiMesh& mesh, unsigned mesh_index,
+                                       const aiMatrix4x4& to_root) {
+    std::vector<sim::Index> merged(mesh.mNumVertices);
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const Position p = transformed(to_root, mesh.mVertices[v]);
+      // A NaN would also break the map's ordering and join the vertex to an arbitrary one.
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        throw MeshFileError(m_name + ": vertex " + std::to_string(v) + " of mesh " +
+                            std::to_string(mesh_index) + " is at (" + std::to_string(p[0]) +
+                            ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) +
+                            "), not a finite position (or beyond the range of assimp's "
+                            "single-precision floats)");
+      const auto [it, inserted] = m_index_of.emplace(p, static_cast<sim::Index>(m_positions.size()));
+      const sim::Vec2 t = mesh.HasTextureCoords(0)
+                              ? sim::Vec2(mesh.mTextureCoords[0][v].x, mesh.mTextureCoords[0][v].y)
+                              : sim::Vec2::Zero();
+      if (inserted) {
+        m_positions.push_back(p);
+        m_uv.push_back(t);
+        m_colour.push_back(mesh.HasVertexColors(0)
+                               ? Eigen::Vector3d(mesh.mColors[0][v].r, mesh.mColors[0][v].g,
+                                                 mesh.mColors[0][v].b)
+                               : Eigen::Vector3d::Zero());
+      } else if (mesh.HasTextureCoords(0) && m_uv[static_cast<std::size_t>(it->second)] != t &&
+                 m_out.uv_seam_vertex < 0) {
+        m_out.uv_seam_vertex = it->second;
+      }
+      merged[v] = it->second;
+    }
+    return merged;
+  }
+
+  void add_face(const aiMesh& mesh, const aiFace& face, const std::vector<sim::Index>& merged) {
+    if (face.mNumIndices < 3 || (m_triangulate && face.mNumIndices != 3)) {
+      ++m_points_and_lines;
+      return;
+    }
+    std::vector<sim::Index> corners;
+    for (unsigned c = 0; c < face.mNumIndices; ++c) {
+      if (face.mIndices[c] >= mesh.mNumVertices)
+        throw MeshFileError(m_name + ": cannot read mesh file: a face refers to vertex " +
+                            std::to_string(face.mIndices[c]) + " of a mesh of " +
+                            std::to_string(mesh.mNumVertices));
+      corners.push_back(merged[face.mIndices[c]]);
+    }
+    // Corners that the join collapses: a triangle with two equal corners is dropped, a polygon
+    // loses its repeated corners.
+    if (m_triangulate) {
+      if (corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0]) {
+        ++m_dropped;
+        return;
+      }
+    } else {
+      std::vector<sim::Index> kept;
+      for (std::size_t c = 0; c < corners.size(); ++c)
+        if (corners[c] != corners[(c + 1) % corners.size()]) kept.push_back(corners[c]);
+      if (kept.size() < 3) {
+        ++m_dropped;
+        return;
+      }
+      corners = std::move(kept);
+    }
+    m_out.faces.push_back(std::move(corners));
+  }
+
+  std::string m_name;
+  bool m_triangulate;
+  PolygonMesh m_out;
+  std::vector<Position> m_positions;
+  std::map<Position, sim::Index> m_index_of;  // exact position → merged vertex
+  bool m_all_uv = true, m_all_colour = true;
+  std::vector<sim::Vec2> m_uv;
+  std::vector<Eigen::Vector3d> m_colour;
+  long m_dropped = 0, m_points_and_lines = 0;
+};
+
 // What both readers share: the file's meshes merged (mesh_file.h), polygons triangulated or not.
 PolygonMesh read_mesh(const std::filesystem::path& path, bool triangulate) {
   const std::string name = path.string();
   Assimp::Importer importer;
-  // Join identical vertices within each mesh (positions are joined across meshes below, where
-  // normals and texture coordinates no longer matter). No aiProcess_ValidateDataStructure: it
-  // rejects a mesh without faces as "Validation failed", where we say "no triangles"; the
-  // indices are checked below instead.
+  // Join identical vertices within each mesh (positions are joined across meshes by
+  // MeshMerger, where normals and texture coordinates no longer matter). No
+  // aiProcess_ValidateDataStructure: it rejects a mesh without faces as "Validation failed",
+  // where we say "no triangles"; MeshMerger checks the indices instead.
   const aiScene* scene = importer.ReadFile(
       name, (triangulate ? aiProcess_Triangulate : 0u) | aiProcess_JoinIdenticalVertices);
   if (!scene) {
     throw MeshFileError(name + ": cannot read mesh file: " + importer.GetErrorString());
   }
-
-  PolygonMesh out;
-  std::vector<Position> positions;
-  std::map<Position, sim::Index> index_of;  // exact position → merged vertex
-  bool all_uv = true, all_colour = true;
-  std::vector<sim::Vec2> uv;
-  std::vector<Eigen::Vector3d> colour;
-  long dropped = 0, points_and_lines = 0;
+  MeshMerger merger(name, triangulate);
+  // The node tree depth first, in the file's order (children pushed in reverse).
   std::vector<PlacedNode> stack;
   if (scene->mRootNode) stack.push_back({scene->mRootNode, scene->mRootNode->mTransformation});
   while (!stack.empty()) {
     const PlacedNode placed = stack.back();
     stack.pop_back();
     const aiNode* node = placed.node;
-    // Children pushed in reverse, so that they are visited in the file's order.
     for (unsigned c = node->mNumChildren; c-- > 0;) {
       const aiNode* child = node->mChildren[c];
       stack.push_back({child, placed.to_root * child->mTransformation});
     }
-    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
-      const aiMesh* mesh = scene->mMeshes[node->mMeshes[k]];
-      all_uv = all_uv && mesh->HasTextureCoords(0);
-      all_colour = all_colour && mesh->HasVertexColors(0);
-      std::vector<sim::Index> merged(mesh->mNumVertices);
-      for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-        const Position p = transformed(placed.to_root, mesh->mVertices[v]);
-        // A NaN would also break the map's ordering and join the vertex to an arbitrary one.
-        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-          throw MeshFileError(name + ": vertex " + std::to_string(v) + " of mesh " +
-                              std::to_string(node->mMeshes[k]) + " is at (" +
-                              std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " +
-                              std::to_string(p[2]) +
-                              "), not a finite position (or beyond the range of assimp's "
-                              "single-precision floats)");
-        const auto [it, inserted] = index_of.emplace(p, static_cast<sim::Index>(positions.size()));
-        const sim::Vec2 t = mesh->HasTextureCoords(0)
-                                ? sim::Vec2(mesh->mTextureCoords[0][v].x, mesh->mTextureCoords[0][v].y)
-                                : sim::Vec2::Zero();
-        if (inserted) {
-          positions.push_back(p);
-          uv.push_back(t);
-          colour.push_back(mesh->HasVertexColors(0)
-                               ? Eigen::Vector3d(mesh->mColors[0][v].r, mesh->mColors[0][v].g,
-                                                 mesh->mColors[0][v].b)
-                               : Eigen::Vector3d::Zero());
-        } else if (mesh->HasTextureCoords(0) && uv[static_cast<std::size_t>(it->second)] != t &&
-                   out.uv_seam_vertex < 0) {
-          out.uv_seam_vertex = it->second;
-        }
-        merged[v] = it->second;
-      }
-      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-        const aiFace& face = mesh->mFaces[f];
-        if (face.mNumIndices < 3 || (triangulate && face.mNumIndices != 3)) {
-          ++points_and_lines;
-          continue;
-        }
-        std::vector<sim::Index> corners;
-        for (unsigned c = 0; c < face.mNumIndices; ++c) {
-          if (face.mIndices[c] >= mesh->mNumVertices)
-            throw MeshFileError(name + ": cannot read mesh file: a face refers to vertex " +
-                                std::to_string(face.mIndices[c]) + " of a mesh of " +
-                                std::to_string(mesh->mNumVertices));
-          corners.push_back(merged[face.mIndices[c]]);
-        }
-        // Corners that join collapses: a triangle with two equal corners is dropped, a polygon
-        // loses its repeated corners.
-        if (triangulate) {
-          if (corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0]) {
-            ++dropped;
-            continue;
-          }
-        } else {
-          std::vector<sim::Index> kept;
-          for (std::size_t c = 0; c < corners.size(); ++c)
-            if (corners[c] != corners[(c + 1) % corners.size()]) kept.push_back(corners[c]);
-          if (kept.size() < 3) {
-            ++dropped;
-            continue;
-          }
-          corners = std::move(kept);
-        }
-        out.faces.push_back(std::move(corners));
-      }
-    }
+    for (unsigned k = 0; k < node->mNumMeshes; ++k)
+      merger.add(*scene->mMeshes[node->mMeshes[k]], node->mMeshes[k], placed.to_root);
   }
-  if (out.faces.empty()) {
-    throw MeshFileError(name + ": no " + (triangulate ? "triangles" : "polygons") +
-                        " in the mesh file (" + std::to_string(scene->mNumMeshes) + " meshes, " +
-                        std::to_string(points_and_lines) + " points or lines, " +
-                        std::to_string(dropped) + " collapsed " +
-                        (triangulate ? "triangles" : "polygons") + ")");
-  }
-  out.vertices.resize(static_cast<Eigen::Index>(positions.size()), 3);
-  for (std::size_t i = 0; i < positions.size(); ++i)
-    for (int k = 0; k < 3; ++k) out.vertices(static_cast<Eigen::Index>(i), k) = positions[i][k];
-  if (all_uv) out.uv = std::move(uv);
-  else out.uv_seam_vertex = -1;
-  if (all_colour) out.colour = std::move(colour);
-  return out;
+  return merger.finish(scene->mNumMeshes);
 }
 
 }  // namespace
