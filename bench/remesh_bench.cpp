@@ -117,22 +117,27 @@ std::array<double, 2> spring_energy_and_min_strain(const Matrix2X& X, const Tria
   return {energy, min_strain};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct BenchOptions {
   int repeats = 3;
-  std::string svg_path;
+  std::string svg_path;  // empty: no drawing
+};
+
+// --repeats N and --svg FILE; false for anything else.
+bool parse_bench_options(int argc, char** argv, BenchOptions& options) {
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--repeats") == 0 && a + 1 < argc) {
-      repeats = std::max(1, std::atoi(argv[++a]));
+      options.repeats = std::max(1, std::atoi(argv[++a]));
     } else if (std::strcmp(argv[a], "--svg") == 0 && a + 1 < argc) {
-      svg_path = argv[++a];
+      options.svg_path = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: remesh_bench [--repeats N] [--svg FILE]\n");
-      return 2;
+      return false;
     }
   }
+  return true;
+}
 
+// The 1 × 1 m sheet on its uniform 1 cm mesh, creased by three Gaussian ridges along v, at rest.
+RemeshInput folded_sheet() {
   RemeshInput in;
   uniform_sheet(1.0, 101, in.material, in.triangles);
   in.positions.resize(in.material.rows(), 3);
@@ -143,77 +148,101 @@ int main(int argc, char** argv) {
     in.positions.row(v) << u, in.material(v, 1), z;
   }
   in.velocities = Matrix3X::Zero(in.material.rows(), 3);
-  RemeshParams params;
-  params.size = {/*c_m=*/5e-4, /*h_min_m=*/0.003, /*h_max_m=*/0.05};
+  return in;
+}
 
+// The adaptive mesh around the middle fold over the old mesh's lines; false if it cannot be
+// written.
+bool write_fold_svg(const std::string& path, const RemeshInput& in, const RemeshOutput& out) {
+  std::ofstream svg(path);
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000\" height=\"667\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg_triangles(svg, in.material, in.triangles,
+                "fill=\"none\" stroke=\"#bbbbbb\" stroke-width=\"3\"");
+  svg_triangles(svg, out.mesh.material, out.mesh.triangles,
+                "fill=\"none\" stroke=\"#1f4e9c\" stroke-width=\"0.8\"");
+  svg << "</svg>\n";
+  return static_cast<bool>(svg);
+}
+
+// The uniform size of the mesher-alone figure: about 10 000 triangles on the 1 m² sheet.
+constexpr double kTenKSize = 0.0225;  // m
+
+// Sections 1 and 2: per repeat, the phase times of the adaptive remesh and the mesher's time
+// at kTenKSize; the triangle counts, and from the first repeat the uniform mesh at h_min and
+// the shape of the kTenKSize mesh.
+struct FoldedSheetFigures {
   std::vector<double> curvature_ms, mesher_ms, transfer_ms, uniform_ms, ten_k_ms, ten_k_cpu_ms;
   std::array<double, 3> ten_k_shape{};
   Eigen::Index adaptive_tris = 0, adaptive_verts = 0, uniform_tris = 0, ten_k_tris = 0;
   double kappa_max = 0.0;
-  const double ten_k_size = 0.0225;  // m: about 10 000 triangles on the 1 m² sheet
-  for (int r = 0; r < repeats; ++r) {
+};
+
+// Runs sections 1 and 2 (and draws the SVG on the first repeat when asked); false if the SVG
+// cannot be written.
+bool measure_folded_sheet(const RemeshInput& in, const RemeshParams& params,
+                          const BenchOptions& options, FoldedSheetFigures& f) {
+  for (int r = 0; r < options.repeats; ++r) {
     const RemeshOutput out = weft::sim::remesh::remesh(in, params);
-    curvature_ms.push_back(1e3 * out.curvature_s);
-    mesher_ms.push_back(1e3 * out.mesher_s);
-    transfer_ms.push_back(1e3 * out.transfer_s);
-    adaptive_tris = out.mesh.triangles.rows();
-    adaptive_verts = out.mesh.material.rows();
-    kappa_max = out.old_curvature.maxCoeff();
-    if (r == 0 && !svg_path.empty()) {
-      std::ofstream svg(svg_path);
-      svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000\" height=\"667\">\n"
-          << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-      svg_triangles(svg, in.material, in.triangles,
-                    "fill=\"none\" stroke=\"#bbbbbb\" stroke-width=\"3\"");
-      svg_triangles(svg, out.mesh.material, out.mesh.triangles,
-                    "fill=\"none\" stroke=\"#1f4e9c\" stroke-width=\"0.8\"");
-      svg << "</svg>\n";
-      if (!svg) {
-        std::fprintf(stderr, "remesh_bench: cannot write %s\n", svg_path.c_str());
-        return 1;
-      }
+    f.curvature_ms.push_back(1e3 * out.curvature_s);
+    f.mesher_ms.push_back(1e3 * out.mesher_s);
+    f.transfer_ms.push_back(1e3 * out.transfer_s);
+    f.adaptive_tris = out.mesh.triangles.rows();
+    f.adaptive_verts = out.mesh.material.rows();
+    f.kappa_max = out.old_curvature.maxCoeff();
+    if (r == 0 && !options.svg_path.empty() && !write_fold_svg(options.svg_path, in, out)) {
+      std::fprintf(stderr, "remesh_bench: cannot write %s\n", options.svg_path.c_str());
+      return false;
     }
 
     weft::base::Stopwatch watch;
     if (r == 0) {  // ~0.5 M triangles, tens of seconds: once
       const MeshResult uniform = mesh_domain(in.material, in.triangles, {},
                                              [&](const Vec2&) { return params.size.h_min_m; });
-      uniform_ms.push_back(watch.milliseconds());
-      uniform_tris = uniform.triangles.rows();
+      f.uniform_ms.push_back(watch.milliseconds());
+      f.uniform_tris = uniform.triangles.rows();
     }
 
     watch.restart();
     const double cpu0 = cpu_ms();
     const MeshResult ten_k =
-        mesh_domain(in.material, in.triangles, {}, [&](const Vec2&) { return ten_k_size; });
-    ten_k_ms.push_back(watch.milliseconds());
-    ten_k_cpu_ms.push_back(cpu_ms() - cpu0);
-    ten_k_tris = ten_k.triangles.rows();
-    if (r == 0) ten_k_shape = edge_ratios(ten_k, ten_k_size);
+        mesh_domain(in.material, in.triangles, {}, [&](const Vec2&) { return kTenKSize; });
+    f.ten_k_ms.push_back(watch.milliseconds());
+    f.ten_k_cpu_ms.push_back(cpu_ms() - cpu0);
+    f.ten_k_tris = ten_k.triangles.rows();
+    if (r == 0) f.ten_k_shape = edge_ratios(ten_k, kTenKSize);
   }
+  return true;
+}
 
+void print_folded_sheet(const RemeshInput& in, const RemeshParams& params,
+                        const FoldedSheetFigures& f, int repeats) {
   std::printf(
       "folded 1 m sheet, 3 folds, max |kappa| estimated %.1f /m; c = %g m, h in [%g, %g] m\n",
-      kappa_max, params.size.c_m, params.size.h_min_m, params.size.h_max_m);
+      f.kappa_max, params.size.c_m, params.size.h_min_m, params.size.h_max_m);
   std::printf("  old uniform mesh (1 cm):        %8ld triangles\n",
               static_cast<long>(in.triangles.rows()));
   std::printf(
       "  adaptive (eq. 29):              %8ld triangles %7ld vertices; curvature %.1f ms, "
       "mesher %.1f ms, transfer %.1f ms\n",
-      static_cast<long>(adaptive_tris), static_cast<long>(adaptive_verts), median(curvature_ms),
-      median(mesher_ms), median(transfer_ms));
+      static_cast<long>(f.adaptive_tris), static_cast<long>(f.adaptive_verts),
+      median(f.curvature_ms), median(f.mesher_ms), median(f.transfer_ms));
   std::printf("  uniform at h_min (%g m):      %8ld triangles; mesher %.1f ms (one run)\n",
-              params.size.h_min_m, static_cast<long>(uniform_tris), median(uniform_ms));
+              params.size.h_min_m, static_cast<long>(f.uniform_tris), median(f.uniform_ms));
   std::printf("  adaptive / uniform at h_min:    %.3f\n",
-              static_cast<double>(adaptive_tris) / static_cast<double>(uniform_tris));
+              static_cast<double>(f.adaptive_tris) / static_cast<double>(f.uniform_tris));
   std::printf(
       "mesher alone, uniform h = %g m:   %8ld triangles in %.1f ms wall, %.1f ms CPU "
       "(medians of %d)\n",
-      ten_k_size, static_cast<long>(ten_k_tris), median(ten_k_ms), median(ten_k_cpu_ms), repeats);
+      kTenKSize, static_cast<long>(f.ten_k_tris), median(f.ten_k_ms), median(f.ten_k_cpu_ms),
+      repeats);
   std::printf("  longest edge / h: max %.3f, median %.2f; mean side / h: median %.2f\n",
-              ten_k_shape[0], ten_k_shape[1], ten_k_shape[2]);
+              f.ten_k_shape[0], f.ten_k_shape[1], f.ten_k_shape[2]);
+}
 
-  // 4. A cloth at rest remeshed: 30 × 30 cm on 1 cm cells, flat and rolled on cylinders.
+// 4. A cloth at rest remeshed: 30 × 30 cm on 1 cm cells, flat and rolled on cylinders, with
+// the folded sheet's size field, by the linear and the quadratic transfer.
+void report_remesh_at_rest(const RemeshParams& params) {
   std::printf("at rest, 30 cm sheet on 1 cm cells, remeshed (c = 0.5 mm, h in [3 mm, 5 cm]):\n");
   for (double R : {0.0, 0.1, 0.05, 0.02}) {
     RemeshInput rest;
@@ -246,7 +275,12 @@ int main(int argc, char** argv) {
           out.velocities.cwiseAbs().maxCoeff());
     }
   }
+}
 
+// 3. The curvature estimate on a 30 × 30 cm sheet rolled on a cylinder of radius 10 cm, at
+// four resolutions: the largest relative error of |κ| inside (three rings from the boundary)
+// and over all vertices.
+void report_cylinder_curvature() {
   std::printf("curvature on a cylinder of R = 0.1 m, max relative error of |kappa|:\n");
   for (Index n : {16, 31, 61, 121}) {
     Matrix2X material;
@@ -268,5 +302,23 @@ int main(int argc, char** argv) {
     std::printf("  h/R = %.3f: interior %.2e, all vertices %.2e\n", 0.3 / (n - 1) / R, interior,
                 all);
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BenchOptions options;
+  if (!parse_bench_options(argc, argv, options)) {
+    std::fprintf(stderr, "usage: remesh_bench [--repeats N] [--svg FILE]\n");
+    return 2;
+  }
+  const RemeshInput in = folded_sheet();
+  RemeshParams params;
+  params.size = {/*c_m=*/5e-4, /*h_min_m=*/0.003, /*h_max_m=*/0.05};
+  FoldedSheetFigures figures;
+  if (!measure_folded_sheet(in, params, options, figures)) return 1;
+  print_folded_sheet(in, params, figures, options.repeats);
+  report_remesh_at_rest(params);
+  report_cylinder_curvature();
   return 0;
 }

@@ -33,6 +33,18 @@ double zone_cell_size(const std::vector<Aabb>& boxes) {
   return mean_m > 0.0 ? 2.0 * mean_m : 1.0;  // as the crossing count (self_intersection.cpp)
 }
 
+// The masses of n vertices for the rigid zone motions: 1 / inv_mass, and a million times the
+// heaviest vertex (at least 1 kg) at the pins (inverse mass 0).
+Eigen::VectorXd impact_zone_masses(const Eigen::VectorXd& inv_mass, std::size_t n) {
+  Eigen::VectorXd mass = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  double heaviest_kg = 0.0;
+  for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
+    if (inv_mass[v] > 0.0) heaviest_kg = std::max(heaviest_kg, 1.0 / inv_mass[v]);
+  for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
+    mass[v] = inv_mass[v] > 0.0 ? 1.0 / inv_mass[v] : 1e6 * std::max(heaviest_kg, 1.0);
+  return mass;
+}
+
 }  // namespace
 
 void apply_rigid_zone_motion(const std::vector<Index>& zone, const Matrix3X& x_start,
@@ -241,6 +253,66 @@ void ImpactZones::collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
   }
 }
 
+std::vector<char> ImpactZones::paths_changed(const Matrix3X& x_start, const Matrix3X& x,
+                                             bool grow) const {
+  const auto n = static_cast<std::size_t>(x.rows());
+  std::vector<char> changed(n, 1);
+  if (grow && m_last_resolved && m_last_start.rows() == x.rows() && m_last_start == x_start)
+    for (std::size_t v = 0; v < n; ++v)
+      changed[v] = x.row(static_cast<Eigen::Index>(v)) != m_last_x.row(static_cast<Eigen::Index>(v));
+  return changed;
+}
+
+std::vector<Index> ImpactZones::merge_zones(const std::vector<std::array<Index, 4>>& hits) {
+  for (const auto& ids : hits)
+    for (int k = 1; k < 4; ++k) unite(ids[0], ids[static_cast<std::size_t>(k)]);
+  // Zones joined by an edge become one, so that every edge between zone vertices moves
+  // rigidly (a projection that holds the zones cannot correct it).
+  std::vector<Index> joined;
+  for (const auto& e : m_edges) {
+    if (m_parent[static_cast<std::size_t>(e[0])] < 0 || m_parent[static_cast<std::size_t>(e[1])] < 0)
+      continue;
+    if (find(e[0]) != find(e[1])) {
+      unite(e[0], e[1]);
+      joined.push_back(e[0]);
+    }
+  }
+  return joined;
+}
+
+std::vector<std::vector<Index>> ImpactZones::touched_zones(
+    const std::vector<std::array<Index, 4>>& hits, const std::vector<Index>& joined) {
+  const std::size_t n = m_parent.size();
+  std::vector<char> touched_root(n, 0);
+  for (const auto& ids : hits) touched_root[static_cast<std::size_t>(find(ids[0]))] = 1;
+  for (const Index v : joined) touched_root[static_cast<std::size_t>(find(v))] = 1;
+  std::vector<std::vector<Index>> zones;
+  std::vector<Index> zone_of_root(n, -1);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (m_parent[v] < 0) continue;
+    const auto root = static_cast<std::size_t>(find(static_cast<Index>(v)));
+    if (!touched_root[root]) continue;
+    if (zone_of_root[root] < 0) {
+      zone_of_root[root] = static_cast<Index>(zones.size());
+      zones.emplace_back();
+    }
+    zones[static_cast<std::size_t>(zone_of_root[root])].push_back(static_cast<Index>(v));
+  }
+  return zones;
+}
+
+void ImpactZones::count_zones(ImpactZoneCounts& counts) {
+  const std::size_t n = m_parent.size();
+  std::vector<char> is_root(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (m_parent[v] < 0) continue;
+    m_zone_vertices.push_back(static_cast<Index>(v));
+    is_root[static_cast<std::size_t>(find(static_cast<Index>(v)))] = 1;
+  }
+  counts.zone_vertices = static_cast<long>(m_zone_vertices.size());
+  counts.zones = static_cast<int>(std::count(is_root.begin(), is_root.end(), 1));
+}
+
 ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::VectorXd& inv_mass,
                                       Matrix3X& x, bool grow) {
   ImpactZoneCounts counts;
@@ -248,19 +320,10 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
   if (!grow || m_parent.size() != n) m_parent.assign(n, -1);
   m_zone_vertices.clear();
   const Matrix3X proposed = x;
-  Eigen::VectorXd mass = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
-  double heaviest_kg = 0.0;
-  for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
-    if (inv_mass[v] > 0.0) heaviest_kg = std::max(heaviest_kg, 1.0 / inv_mass[v]);
-  for (Eigen::Index v = 0; v < inv_mass.size(); ++v)
-    mass[v] = inv_mass[v] > 0.0 ? 1.0 / inv_mass[v] : 1e6 * std::max(heaviest_kg, 1.0);
-
+  const Eigen::VectorXd mass = impact_zone_masses(inv_mass, n);
   // Whose path changed since the last pass; with grow after a call that ended without a
   // collision in this step, since that call's end.
-  std::vector<char> changed(n, 1);
-  if (grow && m_last_resolved && m_last_start.rows() == x.rows() && m_last_start == x_start)
-    for (std::size_t v = 0; v < n; ++v)
-      changed[v] = x.row(static_cast<Eigen::Index>(v)) != m_last_x.row(static_cast<Eigen::Index>(v));
+  std::vector<char> changed = paths_changed(x_start, x, grow);
   std::vector<std::array<Index, 4>> hits;
   // Edges absorb() gave since the last call join their zones first, as hits of a pass 0.
   std::vector<std::array<Index, 4>> absorbed;
@@ -278,35 +341,9 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
       counts.resolved = false;
       break;
     }
-    for (const auto& ids : hits)
-      for (int k = 1; k < 4; ++k) unite(ids[0], ids[static_cast<std::size_t>(k)]);
-    // Zones joined by an edge become one, so that every edge between zone vertices moves
-    // rigidly (a projection that holds the zones cannot correct it).
-    std::vector<Index> joined;
-    for (const auto& e : m_edges) {
-      if (m_parent[static_cast<std::size_t>(e[0])] < 0 || m_parent[static_cast<std::size_t>(e[1])] < 0)
-        continue;
-      if (find(e[0]) != find(e[1])) {
-        unite(e[0], e[1]);
-        joined.push_back(e[0]);
-      }
-    }
+    const std::vector<Index> joined = merge_zones(hits);
     // The zones that gained a pair this pass move anew, rigidly, from the start.
-    std::vector<char> touched_root(n, 0);
-    for (const auto& ids : hits) touched_root[static_cast<std::size_t>(find(ids[0]))] = 1;
-    for (const Index v : joined) touched_root[static_cast<std::size_t>(find(v))] = 1;
-    std::vector<std::vector<Index>> zones;
-    std::vector<Index> zone_of_root(n, -1);
-    for (std::size_t v = 0; v < n; ++v) {
-      if (m_parent[v] < 0) continue;
-      const auto root = static_cast<std::size_t>(find(static_cast<Index>(v)));
-      if (!touched_root[root]) continue;
-      if (zone_of_root[root] < 0) {
-        zone_of_root[root] = static_cast<Index>(zones.size());
-        zones.emplace_back();
-      }
-      zones[static_cast<std::size_t>(zone_of_root[root])].push_back(static_cast<Index>(v));
-    }
+    const std::vector<std::vector<Index>> zones = touched_zones(hits, joined);
     if (counts.passes > 0) std::fill(changed.begin(), changed.end(), 0);
     for (const auto& zone : zones) {
       apply_rigid_zone_motion(zone, x_start, proposed, mass, x);
@@ -320,14 +357,7 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
   m_last_start = x_start;
   m_last_x = x;
   m_last_resolved = counts.resolved;
-  std::vector<char> is_root(n, 0);
-  for (std::size_t v = 0; v < n; ++v) {
-    if (m_parent[v] < 0) continue;
-    m_zone_vertices.push_back(static_cast<Index>(v));
-    is_root[static_cast<std::size_t>(find(static_cast<Index>(v)))] = 1;
-  }
-  counts.zone_vertices = static_cast<long>(m_zone_vertices.size());
-  counts.zones = static_cast<int>(std::count(is_root.begin(), is_root.end(), 1));
+  count_zones(counts);
   return counts;
 }
 

@@ -104,6 +104,18 @@ class ImpactZones {
                        const std::vector<char>& changed, std::vector<std::array<Index, 4>>& hits);
   Index find(Index v);
   void unite(Index a, Index b);
+  // resolve()'s phases. Per vertex of x, whether its path may differ from the last call's
+  // (all do unless grow follows a call that ended without a collision from the same x_start).
+  std::vector<char> paths_changed(const Matrix3X& x_start, const Matrix3X& x, bool grow) const;
+  // Unites the vertices of each hit, then the zones a mesh edge joins; returns one end of each
+  // such edge.
+  std::vector<Index> merge_zones(const std::vector<std::array<Index, 4>>& hits);
+  // The vertices of each zone holding a hit or a joined vertex, ascending, the zones in the
+  // order of their first vertex.
+  std::vector<std::vector<Index>> touched_zones(const std::vector<std::array<Index, 4>>& hits,
+                                                const std::vector<Index>& joined);
+  // Lists the zones' vertices (m_zone_vertices) and counts them and the zones.
+  void count_zones(ImpactZoneCounts& counts);
 
   std::vector<std::array<Index, 3>> m_triangles;
   std::vector<std::array<Index, 2>> m_edges;

@@ -16,71 +16,69 @@ namespace {
 
 Aabb merged(const Aabb& a, const Aabb& b) { return {a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)}; }
 
-}  // namespace
-
-SurfacePatches::SurfacePatches(const ClothMesh& mesh,
-                               const std::vector<std::array<Index, 3>>& triangles,
-                               const std::vector<std::array<Index, 2>>& edges, Index cells_per_side)
-    : m_triangles(triangles) {
-  // What SelfCollision hands in: the mesh's own triangles and unique edges.
-  WEFT_CHECK(cells_per_side >= 1,
-             "surface patches: cells per side " + std::to_string(cells_per_side));
-  // A grid: patches of cells_per_side² cells. A mesh without one: squares of side
-  // cells_per_side mean material edge lengths in material coordinates, each holding the
-  // triangles whose centroids lie in it.
-  std::vector<std::array<Index, 2>> cell_of(triangles.size());
+// Where each triangle falls in a grid of patches: its patch's (column, row), and the grid's size.
+struct PatchCells {
+  std::vector<std::array<Index, 2>> cell_of;  // per triangle
   Index patches_u = 0, patches_v = 0;
-  if (mesh.has_grid()) {
-    WEFT_CHECK(triangles.size() == 2 * mesh.quads.size(),
-               "surface patches: expected the mesh's " + std::to_string(2 * mesh.quads.size()) +
-                   " triangles, got " + std::to_string(triangles.size()));
-    patches_u = (mesh.nu - 2) / cells_per_side + 1;
-    patches_v = (mesh.nv - 2) / cells_per_side + 1;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const auto& quad = mesh.quads[t / 2];
-      WEFT_CHECK(triangles[t][0] == quad[0], "surface patches: triangle " + std::to_string(t) +
-                                                 " is not from grid cell " + std::to_string(t / 2));
-      cell_of[t] = {(quad[0] % mesh.nu) / cells_per_side, (quad[0] / mesh.nu) / cells_per_side};
-    }
-  } else {
-    m_cone_culling = false;
-    const auto uv = [&](Index v) { return mesh.material_coords[static_cast<std::size_t>(v)]; };
-    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    double edge_sum = 0.0;
-    for (const auto& t : triangles)
-      for (int k = 0; k < 3; ++k) {
-        lo = lo.cwiseMin(uv(t[k]));
-        hi = hi.cwiseMax(uv(t[k]));
-        edge_sum += (uv(t[(k + 1) % 3]) - uv(t[k])).norm();
-      }
-    const double side = cells_per_side * edge_sum / std::max(1.0, 3.0 * static_cast<double>(triangles.size()));
-    const auto bucket = [&](double d) { return static_cast<Index>(std::floor(d / side)); };
-    patches_u = bucket(hi.x() - lo.x()) + 1;
-    patches_v = bucket(hi.y() - lo.y()) + 1;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const Vec2 c = (uv(triangles[t][0]) + uv(triangles[t][1]) + uv(triangles[t][2])) / 3.0 - lo;
-      cell_of[t] = {std::min(bucket(c.x()), patches_u - 1), std::min(bucket(c.y()), patches_v - 1)};
-    }
-  }
-  m_patches_u = patches_u;
-  m_patch_of_grid.assign(static_cast<std::size_t>(patches_u * patches_v), -1);
-  std::vector<Index> patch_of_triangle(triangles.size());
+};
+
+// On a grid: patches of cells_per_side² grid cells.
+PatchCells patch_cells_on_grid(const ClothMesh& mesh,
+                               const std::vector<std::array<Index, 3>>& triangles,
+                               Index cells_per_side) {
+  WEFT_CHECK(triangles.size() == 2 * mesh.quads.size(),
+             "surface patches: expected the mesh's " + std::to_string(2 * mesh.quads.size()) +
+                 " triangles, got " + std::to_string(triangles.size()));
+  PatchCells cells;
+  cells.cell_of.resize(triangles.size());
+  cells.patches_u = (mesh.nu - 2) / cells_per_side + 1;
+  cells.patches_v = (mesh.nv - 2) / cells_per_side + 1;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const std::array<Index, 2> grid = cell_of[t];
-    Index& p = m_patch_of_grid[static_cast<std::size_t>(grid[1] * patches_u + grid[0])];
-    if (p < 0) {
-      p = static_cast<Index>(m_patches.size());
-      m_patches.emplace_back();
-      m_patches.back().grid = grid;
-    }
-    m_patches[static_cast<std::size_t>(p)].triangles.push_back(static_cast<Index>(t));
-    patch_of_triangle[t] = p;
+    const auto& quad = mesh.quads[t / 2];
+    WEFT_CHECK(triangles[t][0] == quad[0], "surface patches: triangle " + std::to_string(t) +
+                                               " is not from grid cell " + std::to_string(t / 2));
+    cells.cell_of[t] = {(quad[0] % mesh.nu) / cells_per_side, (quad[0] / mesh.nu) / cells_per_side};
   }
-  // Ownership: the patch of the first triangle with the vertex, resp. the edge.
-  std::vector<bool> vertex_owned(static_cast<std::size_t>(mesh.vertex_count()), false);
+  return cells;
+}
+
+// On a mesh without a grid: squares of side cells_per_side mean material edge lengths in
+// material coordinates, each holding the triangles whose centroids lie in it.
+PatchCells patch_cells_on_material_squares(const ClothMesh& mesh,
+                                           const std::vector<std::array<Index, 3>>& triangles,
+                                           Index cells_per_side) {
+  const auto uv = [&](Index v) { return mesh.material_coords[static_cast<std::size_t>(v)]; };
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  double edge_sum = 0.0;
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      lo = lo.cwiseMin(uv(t[k]));
+      hi = hi.cwiseMax(uv(t[k]));
+      edge_sum += (uv(t[(k + 1) % 3]) - uv(t[k])).norm();
+    }
+  const double side = cells_per_side * edge_sum / std::max(1.0, 3.0 * static_cast<double>(triangles.size()));
+  const auto bucket = [&](double d) { return static_cast<Index>(std::floor(d / side)); };
+  PatchCells cells;
+  cells.cell_of.resize(triangles.size());
+  cells.patches_u = bucket(hi.x() - lo.x()) + 1;
+  cells.patches_v = bucket(hi.y() - lo.y()) + 1;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Vec2 c = (uv(triangles[t][0]) + uv(triangles[t][1]) + uv(triangles[t][2])) / 3.0 - lo;
+    cells.cell_of[t] = {std::min(bucket(c.x()), cells.patches_u - 1),
+                        std::min(bucket(c.y()), cells.patches_v - 1)};
+  }
+  return cells;
+}
+
+// Ownership: each vertex, resp. edge, goes to the patch of the first triangle that has it.
+void assign_patch_ownership(const std::vector<std::array<Index, 3>>& triangles,
+                            const std::vector<std::array<Index, 2>>& edges, Index vertex_count,
+                            const std::vector<Index>& patch_of_triangle,
+                            std::vector<SurfacePatch>& patches) {
+  std::vector<bool> vertex_owned(static_cast<std::size_t>(vertex_count), false);
   std::vector<bool> edge_owned(edges.size(), false);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    SurfacePatch& patch = m_patches[static_cast<std::size_t>(patch_of_triangle[t])];
+    SurfacePatch& patch = patches[static_cast<std::size_t>(patch_of_triangle[t])];
     const auto& tri = triangles[t];
     for (int k = 0; k < 3; ++k) {
       const auto v = static_cast<std::size_t>(tri[k]);
@@ -100,7 +98,12 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
       }
     }
   }
-  for (SurfacePatch& patch : m_patches) {
+}
+
+// Sorts each patch's owned vertices and edges, and lists the vertices of its triangles.
+void sort_patch_vertex_lists(const std::vector<std::array<Index, 3>>& triangles,
+                             std::vector<SurfacePatch>& patches) {
+  for (SurfacePatch& patch : patches) {
     std::sort(patch.owned_vertices.begin(), patch.owned_vertices.end());
     std::sort(patch.owned_edges.begin(), patch.owned_edges.end());
     for (const Index t : patch.triangles) {
@@ -111,20 +114,56 @@ SurfacePatches::SurfacePatches(const ClothMesh& mesh,
     patch.vertices.erase(std::unique(patch.vertices.begin(), patch.vertices.end()),
                          patch.vertices.end());
   }
+}
+
+// The inverse of a triangle's rest edge matrix in a frame of its own plane. A degenerate rest
+// triangle gets a zero inverse: least stretch 0, nothing culled.
+Eigen::Matrix2d rest_edge_frame_inverse(const Matrix3X& rest_positions,
+                                        const std::array<Index, 3>& tri) {
+  const Vec3 e1 = vertex(rest_positions, tri[1]) - vertex(rest_positions, tri[0]);
+  const Vec3 e2 = vertex(rest_positions, tri[2]) - vertex(rest_positions, tri[0]);
+  const Vec3 u = e1.normalized(), v = (e1.cross(e2)).cross(e1).normalized();
+  Eigen::Matrix2d rest;
+  rest << u.dot(e1), u.dot(e2), v.dot(e1), v.dot(e2);
+  return std::abs(rest.determinant()) > 0.0 && rest.allFinite() ? Eigen::Matrix2d(rest.inverse())
+                                                                 : Eigen::Matrix2d::Zero();
+}
+
+}  // namespace
+
+SurfacePatches::SurfacePatches(const ClothMesh& mesh,
+                               const std::vector<std::array<Index, 3>>& triangles,
+                               const std::vector<std::array<Index, 2>>& edges, Index cells_per_side)
+    : m_triangles(triangles) {
+  // What SelfCollision hands in: the mesh's own triangles and unique edges.
+  WEFT_CHECK(cells_per_side >= 1,
+             "surface patches: cells per side " + std::to_string(cells_per_side));
+  // A grid: patches of grid cells. A mesh without one: squares of material coordinates, and
+  // no culling by the normal cones (surface_patches.h).
+  const PatchCells cells = mesh.has_grid()
+                               ? patch_cells_on_grid(mesh, triangles, cells_per_side)
+                               : patch_cells_on_material_squares(mesh, triangles, cells_per_side);
+  m_cone_culling = mesh.has_grid();
+  m_patches_u = cells.patches_u;
+  m_patch_of_grid.assign(static_cast<std::size_t>(cells.patches_u * cells.patches_v), -1);
+  std::vector<Index> patch_of_triangle(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const std::array<Index, 2> grid = cells.cell_of[t];
+    Index& p = m_patch_of_grid[static_cast<std::size_t>(grid[1] * cells.patches_u + grid[0])];
+    if (p < 0) {
+      p = static_cast<Index>(m_patches.size());
+      m_patches.emplace_back();
+      m_patches.back().grid = grid;
+    }
+    m_patches[static_cast<std::size_t>(p)].triangles.push_back(static_cast<Index>(t));
+    patch_of_triangle[t] = p;
+  }
+  assign_patch_ownership(triangles, edges, mesh.vertex_count(), patch_of_triangle, m_patches);
+  sort_patch_vertex_lists(triangles, m_patches);
   m_normals.resize(m_triangles.size());
   m_rest_inverse.resize(m_triangles.size());
-  for (std::size_t t = 0; t < m_triangles.size(); ++t) {
-    const auto& tri = m_triangles[t];
-    const Vec3 e1 = vertex(mesh.rest_positions, tri[1]) - vertex(mesh.rest_positions, tri[0]);
-    const Vec3 e2 = vertex(mesh.rest_positions, tri[2]) - vertex(mesh.rest_positions, tri[0]);
-    const Vec3 u = e1.normalized(), v = (e1.cross(e2)).cross(e1).normalized();
-    Eigen::Matrix2d rest;
-    rest << u.dot(e1), u.dot(e2), v.dot(e1), v.dot(e2);
-    // A degenerate rest triangle gets a zero inverse: least stretch 0, nothing culled.
-    m_rest_inverse[t] = std::abs(rest.determinant()) > 0.0 && rest.allFinite()
-                            ? Eigen::Matrix2d(rest.inverse())
-                            : Eigen::Matrix2d::Zero();
-  }
+  for (std::size_t t = 0; t < m_triangles.size(); ++t)
+    m_rest_inverse[t] = rest_edge_frame_inverse(mesh.rest_positions, m_triangles[t]);
   refit(mesh.rest_positions);
   for (SurfacePatch& patch : m_patches) patch.rest_box = patch.box;
 }

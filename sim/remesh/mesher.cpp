@@ -113,18 +113,9 @@ SizeFunction checked(const SizeFunction& size) {
   };
 }
 
-}  // namespace
-
-MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
-                       const std::vector<Index>& keep, const SizeFunction& size,
-                       const MesherParams& params) {
-  check_mesh(material, triangles, "remesh input");
-  check_params(params);
-  const int old_sign = orientation(material, triangles);
-  const auto boundary = boundary_edges(triangles);
-  const Index old_count = static_cast<Index>(material.rows());
-
-  // The kept vertices in increasing index order: boundary vertices and pins.
+// The old vertices the new mesh keeps, ascending: those of the boundary and the pins.
+std::vector<Index> vertices_to_keep(const std::vector<std::array<Index, 2>>& boundary,
+                                    const std::vector<Index>& keep, Index old_count) {
   std::vector<Index> kept;
   for (const auto& e : boundary) kept.insert(kept.end(), e.begin(), e.end());
   for (Index k : keep) {
@@ -136,9 +127,14 @@ MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
   }
   std::sort(kept.begin(), kept.end());
   kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  return kept;
+}
 
-  Cdt cdt;
-  std::map<Index, Cdt::Vertex_handle> handle;
+// The constrained Delaunay triangulation of the kept vertices with the boundary edges as
+// constraints; handle: each kept vertex's CGAL vertex.
+void triangulate_kept_vertices(const Matrix2X& material, const std::vector<Index>& kept,
+                               const std::vector<std::array<Index, 2>>& boundary, Cdt& cdt,
+                               std::map<Index, Cdt::Vertex_handle>& handle) {
   for (Index k : kept) {
     const Cdt::Vertex_handle vh = cdt.insert(Point(material(k, 0), material(k, 1)));
     if (vh->info().index >= 0)
@@ -153,9 +149,11 @@ MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
     throw std::invalid_argument(
         "remesh input: a boundary edge passes through another kept vertex (the boundary "
         "touches itself)");
+}
 
-  // The domain: faces whose centroid lies in the old mesh. Each face of the constrained
-  // triangulation of the boundary lies wholly inside or wholly outside, so its centroid decides.
+// The domain: faces whose centroid lies in the old mesh. Each face of the constrained
+// triangulation of the boundary lies wholly inside or wholly outside, so its centroid decides.
+void mark_old_mesh_domain(const Matrix2X& material, const Triangles& triangles, Cdt& cdt) {
   const PointLocator old_locator(material, triangles);
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     const Point& a = f->vertex(0)->point();
@@ -164,7 +162,11 @@ MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
     f->set_in_domain(
         old_locator.contains(Vec2((a.x() + b.x() + c.x()) / 3.0, (a.y() + b.y() + c.y()) / 3.0)));
   }
+}
 
+// Delaunay refinement of the domain until every face meets the size field and the smallest
+// angle; throws beyond params.max_vertices.
+void refine_to_size_field(Cdt& cdt, const SizeFunction& size, const MesherParams& params) {
   const SizeFunction checked_size = checked(size);
   const double rad = params.min_angle_deg * 3.14159265358979323846 / 180.0;
   const SizeFieldCriteria criteria(std::sin(rad) * std::sin(rad), &checked_size);
@@ -177,8 +179,12 @@ MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
                                   std::to_string(params.max_vertices) +
                                   " vertices (max_vertices); raise h_min");
   }
+}
 
-  // Output: the kept vertices first in old-index order, then the new ones in CGAL's order.
+// The new mesh: the domain's faces, oriented like the old mesh (old_sign), over the kept
+// vertices first in old-index order, then the new ones in CGAL's order.
+MeshResult mesh_of_domain(const Cdt& cdt, const std::vector<Index>& kept,
+                          const std::map<Index, Cdt::Vertex_handle>& handle, int old_sign) {
   MeshResult result;
   std::map<Cdt::Vertex_handle, Index> new_index;
   std::vector<Cdt::Vertex_handle> order;
@@ -217,6 +223,25 @@ MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
     result.triangles.row(static_cast<Eigen::Index>(t)) << idx[0], idx[1], idx[2];
   }
   return result;
+}
+
+}  // namespace
+
+MeshResult mesh_domain(const Matrix2X& material, const Triangles& triangles,
+                       const std::vector<Index>& keep, const SizeFunction& size,
+                       const MesherParams& params) {
+  check_mesh(material, triangles, "remesh input");
+  check_params(params);
+  const int old_sign = orientation(material, triangles);
+  const auto boundary = boundary_edges(triangles);
+  const std::vector<Index> kept =
+      vertices_to_keep(boundary, keep, static_cast<Index>(material.rows()));
+  Cdt cdt;
+  std::map<Index, Cdt::Vertex_handle> handle;
+  triangulate_kept_vertices(material, kept, boundary, cdt, handle);
+  mark_old_mesh_domain(material, triangles, cdt);
+  refine_to_size_field(cdt, size, params);
+  return mesh_of_domain(cdt, kept, handle, old_sign);
 }
 
 }  // namespace weft::sim::remesh
