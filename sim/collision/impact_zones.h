@@ -40,6 +40,7 @@
 #include <array>
 #include <vector>
 
+#include "sim/collision/spatial_hash.h"
 #include "sim/types.h"
 
 namespace weft::sim {
