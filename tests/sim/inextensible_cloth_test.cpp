@@ -310,9 +310,9 @@ TEST(InextensibleCloth, ReusedFactorizationsMeetTheToleranceWithFewerFactorizati
   EXPECT_LT((x_paper - x_reused).rowwise().norm().maxCoeff(), 5e-3);
 }
 
-// Implicit Euler's conjugate gradients share the matrix–vector product among threads; the
-// result must be the same bits for any number (DESIGN.md, Determinism). 40² vertices: a
-// 4800-row system, large enough to be split.
+// Implicit Euler's conjugate gradients share the matrix–vector product among threads; the result
+// must be the same bits for any number of threads. 40² vertices: a 4800-row system, large enough to
+// be split.
 TEST(InextensibleCloth, SameBitsForOneAndTwoSolverThreads) {
   Hang h;
   h.n = 40;
