@@ -4,7 +4,7 @@
 // threads and the calling one, and returns when all have finished. Tasks are handed out in index
 // order off a shared counter (so uneven tasks balance), and a task's result must depend on its
 // index only: callers keep results per task and merge them in index order, and the output is the
-// same bits for any number of threads (DESIGN.md, Determinism).
+// same bits for any number of threads.
 //
 // The pool is owned by its user (self-collision, the ray tracer), sized by that user's threads
 // setting; there is no global pool. One run() at a time: a run() from inside a task (or from a

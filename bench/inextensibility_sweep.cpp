@@ -1,4 +1,4 @@
-// The speed/accuracy trade of inextensibility, measured (issue 3's benchmark): a 1 m × 1 m
+// The speed/accuracy trade of inextensibility, measured: a 1 m × 1 m
 // wool sheet hanging from two adjacent corners, 48 frames at 24 fps, simulated by
 //   - fast projection (Goldenthal 2007) at tolerances 1e-2, 1e-3, 1e-4,
 //   - pairwise projection (Provot / PBD Gauss–Seidel) with N sweeps per step,
@@ -19,8 +19,8 @@
 // top edge between the pins instead of holding it (sim/constraints/taut_chains.h), to measure
 // what holding it buys; --adaptive: fast projection with the adaptive step
 // (sim/adaptive_step.h) aiming its prediction's strain at STRAIN, its steps at most --max-step
-// (default 1/24 s; --step is then unused). After the rows, the
-// targets of issue 18 for fast projection at tol 1e-2, with the growth exponent.
+// (default 1/24 s; --step is then unused). After the rows, the speed
+// targets for fast projection at tol 1e-2, with the growth exponent.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -157,7 +157,7 @@ std::vector<int> parse_list(const char* text) {
   return out;
 }
 
-// Issue 18's targets for fast projection at tol 1e-2 (max strain ≤ 1 %, every step converged),
+// The speed targets for fast projection at tol 1e-2 (max strain ≤ 1 %, every step converged),
 // wall time per frame, and the growth exponent of the time with the vertex count between the
 // smallest and the largest size run.
 void print_targets(const std::vector<std::pair<int, Row>>& rows) {

@@ -1,4 +1,4 @@
-// Issue 7's renderer benchmark on the 64² sphere drape (a 30 cm sheet over a Ø10 cm sphere, as
+// The renderers' benchmark on the 64² sphere drape (a 30 cm sheet over a Ø10 cm sphere, as
 // assets/scenes/sphere_drape_30.json, its drape built analytically: wrapped over the top of the
 // sphere, hanging in eight folds below it) seen by that scene's camera:
 // - the ray tracer at 640×480 with 1, 16 and 64 samples per pixel: seconds per frame and
@@ -10,7 +10,7 @@
 // Mrays per CPU second (process CPU time, all threads) is the per-core rate even when other
 // work shares the cores; Mrays/s/core divides the wall-clock rate by the thread count.
 //
-// - with --only denoise, the ray tracer's denoiser (issue 20 item 9): SSIM against a 1024-spp
+// - with --only denoise, the ray tracer's denoiser: SSIM against a 1024-spp
 //   reference and time of 4, 16 and 64 spp with and without it (denoise_sweep).
 //
 // Run: build/bench/raytrace_bench [--repeats 3] [--threads N] [--only raster|denoise] [--size WxH]
@@ -91,11 +91,11 @@ double seconds(F&& f) {
   return watch.seconds();
 }
 
-// --only denoise: issue 20 item 9's table. The sphere drape at --size (default 400x300) with the
-// default ray tracer settings (soft shadows, one AO ray per sample) at 1024 samples per pixel,
-// plain, is the reference; each row is one render against it: samples, denoiser, SSIM and PSNR
-// against the reference (weft diff's measures, render/image_diff.h), seconds (median of
-// --repeats).
+// --only denoise: the denoiser's table (docs/benchmarks.md). The sphere drape at --size (default
+// 400x300) with the default ray tracer settings (soft shadows, one AO ray per sample) at 1024
+// samples per pixel, plain, is the reference; each row is one render against it: samples, denoiser,
+// SSIM and PSNR against the reference (weft diff's measures, render/image_diff.h), seconds (median
+// of --repeats).
 void denoise_sweep(const RenderMesh& cloth, const std::vector<RenderObject>& sphere, int width,
                    int height, int threads, int repeats) {
   RayTracer tracer;

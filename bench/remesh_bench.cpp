@@ -1,4 +1,4 @@
-// Issue 21 item 2's figures: what adaptive remeshing buys on a folded sheet, and what CGAL's
+// What adaptive remeshing buys on a folded sheet, and what CGAL's
 // Delaunay refinement costs.
 //
 // 1. A 1 × 1 m sheet on a uniform 1 cm mesh (20 000 triangles), creased by three parallel

@@ -1,4 +1,4 @@
-// Issue 5's self-collision benchmark: a 64² cloth (1 m, Kang & Yu wool, symplectic Euler)
+// The self-collision benchmark: a 64² cloth (1 m, Kang & Yu wool, symplectic Euler)
 // dropped from 20 cm onto a Ø50 cm sphere resting on the ground, with and without
 // self-collision. Runs are interleaved (off, on, off, on, …) so that a busy machine slows both
 // alike. The table gives the medians over repeats of the wall time and of the process's CPU
@@ -10,7 +10,8 @@
 // ratios of the medians.
 //
 // --inextensible: the same drop with fast projection (tol 1e-3) after implicit Euler solved by
-// conjugate gradients to 1e-3 (h = 1/120 s), the inextensible model of issue 18's table.
+// conjugate gradients to 1e-3 (h = 1/120 s), the inextensible model bench/inextensibility_sweep
+// times.
 //
 // Run: build/bench/self_collision_bench [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0]
 //                                       [--inextensible]

@@ -1,6 +1,6 @@
 #pragma once
 // The camera shared by the renderers: a pinhole look-at camera (eye, target, up, vertical field
-// of view), or a calibrated pinhole in OpenCV's convention (issue 17 item 1; docs/photos.md,
+// of view), or a calibrated pinhole in OpenCV's convention (docs/photos.md,
 // "Calibrated cameras"):
 //
 // - camera frame: x right, y down, z forward (into the scene), metres;

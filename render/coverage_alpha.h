@@ -1,5 +1,5 @@
 #pragma once
-// Antialiased alpha for RGBA frames (`--background transparent`, issue 20 item 8): how much of
+// Antialiased alpha for RGBA frames (`--background transparent`): how much of
 // each pixel the surfaces cover, and the frame's edge colours freed of the background they were
 // blended with, so that the frame composited over any background has soft edges without a
 // fringe of the old background colour.

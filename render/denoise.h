@@ -1,5 +1,5 @@
 #pragma once
-// The ray tracer's denoiser (issue 20 item 9): an edge-aware à-trous wavelet filter (Dammertz
+// The ray tracer's denoiser: an edge-aware à-trous wavelet filter (Dammertz
 // et al. 2010, "Edge-Avoiding À-Trous Wavelet Transform for fast Global Illumination
 // Filtering") guided by each pixel's first-hit normal, albedo and depth, its colour edges
 // stopped by the pixel's own estimated noise (the luminance weight of Schied et al. 2017,

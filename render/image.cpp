@@ -1,6 +1,6 @@
 // Image storage and PNG input/output. PNGs are read by stb and written by libpng, whose zlib
 // deflate makes the default scene's frames 36 % smaller than stb's own encoder did, with the
-// same pixels (issue 20 item 12; docs/benchmarks.md). stb's implementation is compiled into Debian's
+// same pixels (docs/benchmarks.md). stb's implementation is compiled into Debian's
 // libstb (linked through PkgConfig::STB); only its declarations are included here, so no
 // STB_*_IMPLEMENTATION is defined anywhere in weft.
 

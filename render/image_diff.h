@@ -1,5 +1,5 @@
 #pragma once
-// Image comparison (issue 8 item 1): per-channel mean, RMS and largest absolute difference,
+// Image comparison (weft diff): per-channel mean, RMS and largest absolute difference,
 // PSNR, SSIM and the fraction of pixels that differ by more than a threshold, and a heatmap of
 // where they differ. Pixel values are in 0…255 throughout.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The wireframe overlay (ClothSurface::wireframe, issue 21 item 3): the simulation mesh's lines
+// The wireframe overlay (ClothSurface::wireframe): the simulation mesh's lines
 // drawn over a finished frame, the same for both renderers. The Renderer interface
 // (render/renderer.h) calls it on the cloth as drawn (after prepare_cloth_mesh: subdivision
 // and the thickness shell carry RenderMesh::edges onto the surface they build).

@@ -1,4 +1,4 @@
-// Box-filter downscaling of a photo for tests/data and gallery/ (issue 17): crops the image to
+// Box-filter downscaling of a photo for tests/data and gallery/: crops the image to
 // a multiple of the factor (dropping the last columns and rows) and averages each factor ×
 // factor block, so pixel (c, r) of the result covers pixels factor·c … factor·c + factor − 1
 // of the original and a scale of s mm/px becomes factor·s. Reads PNG/JPG, writes PNG (stb).

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The adaptive-against-uniform table of docs/remeshing.md (issue 21 item 3) on the disc drape:
+"""The adaptive-against-uniform table of docs/remeshing.md on the disc drape:
 runs assets/scenes/disc_drape_50_remeshed.json (adaptive) and disc_drape_50_uniform.json on
 uniform meshes of the 50 cm square (assets/meshes/drape_square_50.py CELLS), one run at a time,
 and prints a Markdown table: vertices at the end, CPU time (user + system of the run), the drape

@@ -1,5 +1,5 @@
 #pragma once
-// Adaptive remeshing of a simulated cloth (issue 21 item 2, docs/remeshing.md): the bridge
+// Adaptive remeshing of a simulated cloth (docs/remeshing.md): the bridge
 // between a ClothMesh with its state and the array-based remeshing step of sim/remesh/remesh.h.
 // The new mesh covers the same material domain, graded by the curvature of the current
 // positions; its boundary vertices and the kept vertices (pins) are the old ones, at the same

@@ -1,5 +1,5 @@
 #pragma once
-// Relaxing a remeshed cloth's new vertices (issue 21, docs/remeshing.md "Relaxing the new
+// Relaxing a remeshed cloth's new vertices (docs/remeshing.md "Relaxing the new
 // vertices"). A remesh keeps its old boundary vertices and pins and interpolates every other
 // vertex from the old mesh; where the cloth folds more sharply than the old mesh resolved, no
 // interpolation knows where the surface is, so the new vertices come out strained against the

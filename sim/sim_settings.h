@@ -1,7 +1,7 @@
 #pragma once
 // What a Simulator is asked to simulate besides the cloth itself: the model and integrator,
 // gravity and damping, the time step, constraints, obstacles, self-collision and air. The app
-// fills it from the scene file (app/scene_reader.cpp); the Simulator turns it into a System, a
+// fills it from the scene file (app/scene/scene.cpp); the Simulator turns it into a System, a
 // TimeIntegrator and the contacts-and-constraints phase.
 
 #include <optional>

@@ -1,8 +1,8 @@
 #pragma once
 // What every `weft` subcommand shares: its registration — each *_command.cpp adds its own
-// subcommand and options to the CLI11 app and returns a Command; app/cli/main.cpp only lists them
-// and dispatches — and the exit codes. The options that change a scene are in
-// app/cli/options.h.
+// subcommand and options to the CLI11 app and returns a Command; app/cli/commands.cpp lists them
+// and app/cli/main.cpp dispatches — and the exit codes (app/io/exit_code.h). The options that
+// change a scene are in app/cli/options.h.
 
 #include <functional>
 #include <string>
@@ -32,8 +32,8 @@ struct Command {
 // parse_error_code, or exit_bad_input), another failure as exit_failure.
 int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv);
 
-// Every command of `weft`, registered on `app` in the order `weft --help` lists them (app/cli/main.cpp;
-// tests/app/command_options_test.cpp walks their options).
+// Every command of `weft`, registered on `app` in the order `weft --help` lists them
+// (app/cli/main.cpp; tests/app/hostile_input_cli_test.cpp walks their numeric options).
 std::vector<Command> register_commands(CLI::App& app, const std::string& command_line);
 
 // Bounds a numeric option: each value must be a finite number in `range`, else a command-line

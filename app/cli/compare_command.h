@@ -1,5 +1,5 @@
 #pragma once
-// `weft compare PHOTO RENDER` (issue 8 item 3): segments the cloth in a photo and a render (or
+// `weft compare PHOTO RENDER`: segments the cloth in a photo and a render (or
 // takes mask images), aligns the render onto the photo, prints silhouette IoU, the Chamfer
 // distance between the outlines, fold-line agreement and SSIM inside the overlap
 // (render/photo_compare/), and writes DIR/overlay.png, DIR/folds.png, DIR/render_aligned.png,

@@ -1,7 +1,7 @@
 #pragma once
 // `weft fit FIT.json`: estimate the material parameters a fit file names so that the settled
-// simulation matches its target — measured numbers, a point cloud or a photo (issue 17 item 4;
-// app/fit/fit_spec.h for the file, docs/photos.md "Fitting a material: weft fit").
+// simulation matches its target — measured numbers, a point cloud or a photo
+// (app/fit/fit_spec.h for the file, docs/photos.md "Fitting a material: weft fit").
 
 #include <filesystem>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// `weft stability`: the stability map of the integrators (issue 4, item 6). Sweeps the time
+// `weft stability`: the stability map of the integrators. Sweeps the time
 // step h × a stiffness scale s (every rigidity of the wool × s) on the standard cloth of
 // analysis/stability.h (1 m square, n × n vertices, two corners pinned, no gravity), runs each
 // integrator from a small seeded perturbation of rest, and writes

@@ -1,7 +1,7 @@
 #pragma once
 // `weft turntable SCENE|MESH`: the camera orbits the final drape of a scene (or a mesh file) and
 // writes turntable_0001.png, ..., contact_sheet.png and, with ffmpeg, turntable.mp4 and
-// turntable.gif (issue 7 item 4; camera path in orbit_camera.h).
+// turntable.gif (camera path in app/run/orbit_camera.h).
 
 #include <filesystem>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// Slurm jobs (issue 22 item 3): bash scripts for `sbatch`. A job array's task i runs one weft
+// Slurm jobs: bash scripts for `sbatch`. A job array's task i runs one weft
 // command line of a list — the array index picks it — so that the tasks are independent and
 // each can be resubmitted alone (`sbatch --array=I SCRIPT`); a single job (a sweep's or
 // gallery's collect job) runs one command line, submitted to start after the array

@@ -1,6 +1,6 @@
 #pragma once
 // The 3D Chamfer distance between two point sets (a settled cloth's vertices and a depth
-// camera's point cloud, issue 17): the mean distance from each point of one set to the nearest
+// camera's point cloud, for weft fit): the mean distance from each point of one set to the nearest
 // point of the other, in both directions, and their mean. Brute force, O(#a · #b): meant for
 // clouds of thousands of points against a cloth of about a thousand vertices.
 

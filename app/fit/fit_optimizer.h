@@ -1,5 +1,5 @@
 #pragma once
-// The optimisation of `weft fit` (issue 17 item 4): NLopt's derivative-free BOBYQA (Powell
+// The optimisation of `weft fit`: NLopt's derivative-free BOBYQA (Powell
 // 2009) or Nelder–Mead on log10 of the parameters, within their bounds, each evaluation a
 // settle to rest (fit_problem.h); then the objective profile along each parameter around the
 // optimum and the sensitivity band it gives.

@@ -1,5 +1,5 @@
 #pragma once
-// One evaluation of `weft fit` (issue 17 item 4): the scene with the parameters' values patched
+// One evaluation of `weft fit`: the scene with the parameters' values patched
 // in, settled to rest by dynamic relaxation, and its distance to the target (fit_spec.h). Also
 // the pictures of a photo target: the cloth's silhouette through the scene's camera and the
 // fitted render.

@@ -1,5 +1,5 @@
 #pragma once
-// What `weft fit` writes into its output folder (issue 17 item 4; docs/photos.md):
+// What `weft fit` writes into its output folder (docs/photos.md):
 //   fit.csv            one row per evaluation: phase, parameter values, objective, measures,
 //                      settle iterations and residual, seconds
 //   fit_result.json    the fitted values with their sensitivity bands, the objective and measures

@@ -1,5 +1,5 @@
 #pragma once
-// The fit-spec file of `weft fit` (issue 17 item 4; docs/photos.md, "Fitting a material"): the
+// The fit-spec file of `weft fit` (docs/photos.md, "Fitting a material"): the
 // scene to fit, the material parameters to estimate, the target and how to settle, optimise
 // and profile. Strict like a scene file: every key read through app/scene/json_reader.h, an unknown
 // key or a bad value is a InputError naming the file and key path.

@@ -1,5 +1,5 @@
 #pragma once
-// Drape from a top-view photo (issue 17 item 5): `weft measure --photo` reads a photo or a
+// Drape from a top-view photo: `weft measure --photo` reads a photo or a
 // silhouette of a Cusick drape seen from above and measures its drape coefficient and folds with
 // the same code that measures a simulated drape (analysis/measure/drape_measure.h's
 // measure_shadow): the silhouette's pixels become the shadow's cells, one ruler for both.

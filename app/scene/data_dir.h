@@ -1,5 +1,5 @@
 #pragma once
-// Where weft's own assets are (issue 20 item 11): the folder holding scenes/ and meshes/ (a
+// Where weft's own assets are: the folder holding scenes/ and meshes/ (a
 // scene's mesh obstacle "../meshes/…" is relative to its scene file), so that `weft gallery`
 // and `weft run NAME` work from any folder, for the binary in the build tree and for an
 // installed one (`cmake --install`, which copies assets/scenes and assets/meshes to

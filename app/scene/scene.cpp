@@ -22,7 +22,8 @@
 #include "app/scene/units.h"
 #include "base/constants.h"
 
-// Defined in the .cpp that app/embed_default_scene.cmake generates from assets/scenes/default.json.
+// Defined in the .cpp that app/scene/embed_default_scene.cmake generates from
+// assets/scenes/default.json.
 const char* weft_default_scene_json();
 
 namespace weft::app {

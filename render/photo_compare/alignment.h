@@ -1,5 +1,5 @@
 #pragma once
-// Aligning a render to a photo (issue 8 item 3): a similarity transform from render pixels to
+// Aligning a render to a photo: a similarity transform from render pixels to
 // photo pixels, estimated from the two silhouettes or given, and the resampling of the render
 // (and its mask) onto the photo's pixel grid through it.
 //

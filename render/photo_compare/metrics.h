@@ -1,5 +1,5 @@
 #pragma once
-// How well an aligned render matches a photo (issue 8 item 3). All on the photo's pixel grid,
+// How well an aligned render matches a photo. All on the photo's pixel grid,
 // after the render and its silhouette were resampled onto it (alignment.h).
 //
 // - Silhouette IoU: |P ∩ R| / |P ∪ R| of the two masks.

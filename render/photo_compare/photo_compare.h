@@ -1,5 +1,5 @@
 #pragma once
-// Comparing a render with a photo of real cloth (issue 8 item 3): the two silhouettes
+// Comparing a render with a photo of real cloth (weft compare): the two silhouettes
 // (silhouette.h), the alignment of the render onto the photo (alignment.h), and the metrics
 // (metrics.h), plus the pictures `weft compare` writes: the outlines over the photo and the
 // ridge/valley maps.

@@ -1,5 +1,5 @@
 #pragma once
-// The cloth's silhouette in a photo or a render (issue 8 item 3): a binary mask, found by
+// The cloth's silhouette in a photo or a render: a binary mask, found by
 // segmenting the cloth from the background, or read from a mask image that overrides it.
 //
 // Segmentation (segment_cloth):

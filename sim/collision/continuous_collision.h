@@ -1,5 +1,5 @@
 #pragma once
-// Continuous collision detection (issue 23): whether two mesh features moving linearly over a
+// Continuous collision detection: whether two mesh features moving linearly over a
 // step, from their start to their end positions, touch on the way — a vertex through a
 // triangle, or an edge through an edge. The failsafe of self-collision (impact_zones.h) asks
 // this of every nearby pair of the step's motion.

@@ -1,5 +1,5 @@
 #pragma once
-// The failsafe of self-collision (issue 23): rigid impact zones (Provot 1997; Bridson et al.
+// The failsafe of self-collision: rigid impact zones (Provot 1997; Bridson et al.
 // 2002, "Robust treatment of collisions, contact and friction for cloth animation", §7.4),
 // which leave no crossing that the step's start did not have, whatever the step's motion.
 //
@@ -33,8 +33,8 @@
 // is rebuilt from the current step when it fails, with a spatial hash (spatial_hash.h). So the
 // pairs tested, and the results, are those of a search from scratch at every pass; the list
 // only saves time: the passes and the projections with the zones held within a step (the
-// reach covers their corrections), and steps whose motion stays within the reach (issue 23:
-// the search from scratch took ~35 ms per pass at 64²). Single-threaded, fixed order: the
+// reach covers their corrections), and steps whose motion stays within the reach (the search
+// from scratch took ~35 ms per pass at 64²). Single-threaded, fixed order: the
 // same bits every time.
 
 #include <array>

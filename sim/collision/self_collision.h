@@ -1,5 +1,5 @@
 #pragma once
-// Self-collision response (issue 5 item 3): keeps the cloth from passing through itself by
+// Self-collision response: keeps the cloth from passing through itself by
 // pushing apart, position-based, every pair of mesh features closer than a contact distance:
 //
 //  - vertex–triangle: a vertex within `thickness_m` of a triangle it is not a corner of;
@@ -66,10 +66,10 @@ struct SelfCollisionSettings {
   // contact, 0..4. 1 (seed 003's neighbours) leaves a flat sheet without candidates but lets
   // a fold sharper than about one edge pass through itself; 0 excludes only pairs about as
   // close as the contact distance (sharing a vertex), which holds sharp folds for a larger
-  // candidate list (issue 23: the 64² mass-spring sphere drape ends 48 frames with 0
+  // candidate list (the 64² mass-spring sphere drape ends 48 frames with 0
   // crossings instead of 4–20; bench/self_collision_bench's drop costs 1.6× as much CPU).
   double neighbourhood_edges = 1.0;
-  // The failsafe after a step's corrections (impact_zones.h, issue 23): continuous collision
+  // The failsafe after a step's corrections (impact_zones.h): continuous collision
   // detection over the step's motion and rigid impact zones, so no crossing is left. Run by
   // the step's contacts and constraints (contacts_and_constraints.h), not by SelfCollision.
   bool impact_zones = true;

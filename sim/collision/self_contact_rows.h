@@ -1,5 +1,5 @@
 #pragma once
-// Self-contacts as linear inequality constraints for a step (issue 23): the rows that the
+// Self-contacts as linear inequality constraints for a step: the rows that the
 // projection with contacts (sim/constraints/contact_projection.h) solves together with the
 // inextensibility constraints, so that no projection can push one layer of cloth through
 // another.

@@ -1,5 +1,5 @@
 #pragma once
-// Intersection check for self-collision (issue 5 item 3): counts the mesh edges that pass
+// Intersection check for self-collision: counts the mesh edges that pass
 // through a triangle of the same mesh in one configuration. A cloth that does not pass through
 // itself has none; a fold pushed through the sheet has several per crossing line. Reported per
 // frame in stats.csv (self_intersections) and used by tests. Detection only, no response.

@@ -1,5 +1,5 @@
 #pragma once
-// Broad phase for self-collision (issue 5 item 3): a uniform grid of cubic cells, hashed by
+// Broad phase for self-collision: a uniform grid of cubic cells, hashed by
 // integer cell coordinates, over axis-aligned boxes. Deterministic: a query returns the ids of
 // every box that overlaps the query box, sorted ascending and each once; the set does not depend
 // on the boxes' order. No global state; one hash per set of boxes.

@@ -1,5 +1,5 @@
 #pragma once
-// Self-collision broad phase on patches of the cloth (issue 5 item 3). The triangles are
+// Self-collision broad phase on patches of the cloth. The triangles are
 // grouped into square patches of the warp/weft grid (cells_per_side² cells each); every
 // vertex and every edge is owned by exactly one patch (the patch of the first triangle that
 // has it). Each rebuild gives a patch its bounding box and its normal cone — the axis of its

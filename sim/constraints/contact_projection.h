@@ -1,5 +1,5 @@
 #pragma once
-// Fast projection with self-contacts (issue 23): the inextensibility constraints of fast
+// Fast projection with self-contacts: the inextensibility constraints of fast
 // projection (fast_projection.h) and the step's self-contact rows (sim/collision/
 // self_contact_rows.h) projected together, so that the projection — which runs last in a step —
 // cannot push one layer of cloth through another.

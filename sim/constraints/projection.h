@@ -89,7 +89,7 @@ class ConstraintProjector {
   // held, and a constraint between two held vertices is left out. The vertices held when the
   // projector was made must stay held (std::invalid_argument otherwise): their constraints,
   // and fast projection's sparsity pattern and its analysis, are kept, so that holding other
-  // vertices costs no new analysis (issue 23: the impact zones' projections). fresh: forget
+  // vertices costs no new analysis (the impact zones' projections). fresh: forget
   // what earlier projections carry over (fast projection: the factorization it reuses), so
   // that the next result depends on this projector's input alone.
   virtual void set_inverse_masses(const Eigen::VectorXd& inv_mass, bool fresh) = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// Plain arrays of the remeshing module (issue 21 item 2): a triangle mesh of the cloth's
+// Plain arrays of the remeshing module: a triangle mesh of the cloth's
 // material domain and per-vertex quantities on it. The module knows nothing of ClothMesh or the
 // simulator; the caller copies its arrays in and out.
 

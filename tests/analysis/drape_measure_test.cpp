@@ -1,4 +1,4 @@
-// Drape measurements (sim/measure): the shadow area of analytic shapes within the stated raster
+// Drape measurements (analysis/measure): the shadow area of analytic shapes within the stated raster
 // bound (also at ×1e-3 and ×1e3), a fold counted once, the fold count of star outlines
 // r(θ) = R(1 + a cos kθ) for k = 6..12, DC = 0 for an overhang hanging straight down and 1 for
 // a flat sheet, the support rule, and the settle time of damped motions.

@@ -1,4 +1,4 @@
-// Issue 19 item 5 for every command, through the real `weft`: turntable, measure, sweep, gallery
+// Atomic outputs for every command, through the real `weft`: turntable, measure, sweep, gallery
 // and run --export-meshes touch their output folder only when their first output is ready (a
 // command that fails before leaves an earlier run's files byte for byte), write each file whole
 // (NAME.partial, then renamed: none is left), and a run killed midway leaves only whole files.

@@ -1,4 +1,4 @@
-// `--background transparent|R,G,B` on weft run and weft turntable (issue 20 item 8): RGBA
+// `--background transparent|R,G,B` on weft run and weft turntable: RGBA
 // frames whose alpha is the surfaces' coverage of each pixel, a background colour, and a clear
 // error.
 
@@ -45,10 +45,10 @@ Rgba read_rgba(const std::string& png_path) {
 }
 
 // Without a ground the opaque pixels are the cloth's. Alpha is the share of the pixel the cloth
-// covers (16 samples; item 8's antialiased alpha): 255 inside the cloth's mask (--mask, pixel
-// centres), 0 well outside it, in between along the silhouette, and the covered area is the
-// mask's. The edge colours are freed of the background: composited over the background colour
-// again they give the RGB frame that the same run writes without --background transparent.
+// covers (16 samples; the antialiased alpha of render/coverage_alpha.h): 255 inside the cloth's
+// mask (--mask, pixel centres), 0 well outside it, in between along the silhouette, and the covered
+// area is the mask's. The edge colours are freed of the background: composited over the background
+// colour again they give the RGB frame that the same run writes without --background transparent.
 TEST_F(BackgroundCli, TransparentRunHasAntialiasedCoverageAlpha) {
   const auto scene = write_scene("tiny.json", test::tiny_scene());
   const std::string common = " --frames 2 --mask --set render.ground=false --out ";

@@ -1,6 +1,6 @@
-// render.camera as a calibrated pinhole (issue 17 item 1) and output.mask / output.alpha
-// (item 2): the three ways to give the pose describe one camera, and each mistake gets a
-// message naming the key path and what was expected.
+// render.camera as a calibrated pinhole and output.mask / output.alpha: the three ways to give the
+// pose describe one camera, and each mistake gets a message naming the key path and what was
+// expected.
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Issue 22 item 1 through the real `weft run`: a run with --checkpoint-every that is killed
+// Checkpoints through the real `weft run`: a run with --checkpoint-every that is killed
 // (SIGKILL) after frame 30 and resumed with --resume from its checkpoint of frame 24 writes the
 // same frames (PNG bytes) and stats.csv rows (minus the wall-time columns) as a run that never
 // stopped and never wrote a checkpoint; checkpoints of another scene or build, or damaged

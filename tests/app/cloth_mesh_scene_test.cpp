@@ -1,4 +1,4 @@
-// Cloth from a mesh file (issue 21 item 1): a rectangle written as an OBJ quad grid gives the
+// Cloth from a mesh file: a rectangle written as an OBJ quad grid gives the
 // built-in grid's simulation to the bit, per model; a triangle mesh runs every model (a cloth
 // at its flat rest falls as a rigid body: no internal force at rest); bad meshes are errors
 // naming the file and the problem; pins by index, region, box and vertex colour.

@@ -90,7 +90,7 @@ TEST(ClothSurfaceScene, BadValuesNameTheirKey) {
                   "render.texture.colour");
 }
 
-// render.wireframe (issue 21 item 3): off by default, true for the defaults, an object for
+// render.wireframe: off by default, true for the defaults, an object for
 // width and colour; bad values name the key.
 TEST(ClothSurfaceScene, ReadsTheWireframe) {
   const render::Wireframe defaults;

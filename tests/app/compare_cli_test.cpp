@@ -104,7 +104,7 @@ TEST_F(CompareCli, BadInputNamesTheFile) {
   EXPECT_NE(bad.output.find("--transform"), std::string::npos) << bad.output;
 }
 
-// Issue 17 item 2: the corner hang drawn by both renderers. The ray tracer's ground (ambient
+// The corner hang drawn by both renderers. The ray tracer's ground (ambient
 // occlusion and soft shadow make it differ from the border median) is segmented as cloth, so
 // segmentation compares the raster cloth with the ray-traced cloth plus ground (frame 3; in
 // frames 1 and 2 both renders' ground is taken, a high IoU of two wrong silhouettes, warned

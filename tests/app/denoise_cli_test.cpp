@@ -1,5 +1,5 @@
-// `weft run --renderer raytrace` denoises by default and `--denoise off` does not (issue 20
-// item 9); the denoised frame is the same bytes for 1 and 2 threads.
+// `weft run --renderer raytrace` denoises by default and `--denoise off` does not; the
+// denoised frame is the same bytes for 1 and 2 threads.
 
 #include <gtest/gtest.h>
 

@@ -82,7 +82,7 @@ TEST_F(DiffCli, BadInputHasItsOwnExitCode) {
 
 }  // namespace
 
-// Issue 20 item 1: without thresholds diff fails as the regression suite does (PSNR < 50 dB or
+// Without thresholds diff fails as the regression suite does (PSNR < 50 dB or
 // more than 0.05 % of pixels over 16), and passes what that suite passes.
 TEST_F(DiffCli, DefaultThresholdsAreTheRegressionSuites) {
   const auto real = run_weft("diff " + path("a.png") + " " + path("b.png"));

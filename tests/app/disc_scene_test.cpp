@@ -102,7 +102,7 @@ TEST(DiscScene, TheRectangleIsDrawnWhole) {
       EXPECT_EQ(static_cast<sim::Index>(drawn.triangles[t][c]), triangles[t][c]);
 }
 
-// The wireframe's lines of a trimmed grid (issue 21 item 3): exactly the sides of the kept
+// The wireframe's lines of a trimmed grid: exactly the sides of the kept
 // cells, each once, in the drawn mesh's numbering; no cell diagonal among them.
 TEST(DiscScene, WireframeEdgesAreTheKeptCellsWarpAndWeftSides) {
   const Scene scene = test::parse_json_scene(disc_scene());

@@ -1,4 +1,4 @@
-// Contact invariants on every drape scene of assets/scenes (issue 5's tests): with
+// Contact invariants on every drape scene of assets/scenes: with
 // self-collision on, after every step no free vertex is closer to any obstacle than the
 // collision thickness (so none is inside one), and the final frame has no edge–triangle
 // crossing. To keep the set within seconds each scene runs coarse (17 × 17 vertices) for its

@@ -1,4 +1,4 @@
-// Drape from a top-view photo (issue 17 item 5, app/run/drape_photo.h): silhouettes drawn from a
+// Drape from a top-view photo (app/run/drape_photo.h): silhouettes drawn from a
 // known polar outline r(θ) = R + a cos(nθ + φ) (+ other terms), whose area ½∫r²dθ and hence DC
 // are exact and whose node count is n, measured through the same ruler as a simulation. With
 // ragged edges, speckle, a shifted disc, uneven nodes, and a noisy grey "photo" segmented by

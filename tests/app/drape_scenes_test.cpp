@@ -1,4 +1,4 @@
-// The classic drape scenes of assets/scenes (issue 5; seed 002, Zhou & Sze, sections 4.4, 4.6
+// The classic drape scenes of assets/scenes (seed 002, Zhou & Sze, sections 4.4, 4.6
 // and 6.2), simulated and measured as `weft measure` does (app/run/measure.h), against the
 // paper's numbers:
 // - 50 × 50 cm on a Ø20 cm disc: 8–12 folds (12 by static equilibrium, Fig. 10; 8 by dynamic

@@ -1,4 +1,4 @@
-// Issue 19 item 4: the edges users reach, one row each through the real `weft run` — stiffness
+// The edges users reach, one row each through the real `weft run` — stiffness
 // and density from 1e-3× to 1e3× of wool, cloth from 1 mm to 100 m, 2×2 to 256² grids, g from 0
 // to 100 g, every integrator and model, a fast obstacle. Each row either finishes with physical
 // output (every frame stepped, finite numbers, the cloth moving under gravity) or stops with the

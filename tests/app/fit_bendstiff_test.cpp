@@ -1,4 +1,4 @@
-// The bendstiff evidence (issue 17): the cantilevered strip of Broberg et al.'s photo
+// The bendstiff evidence: the cantilevered strip of Broberg et al.'s photo
 // (tests/data/photos/bendstiff/, 4× downscaled: 548 × 323 px, 0.4404 mm/px), its bending
 // rigidity fitted by weft fit from the photo alone, against the authors' own table of midline,
 // curvature and moment (simulator_results.csv, converted from their xlsx by

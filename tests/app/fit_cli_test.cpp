@@ -82,7 +82,7 @@ TEST_F(FitCli, BadFitFilesNameTheFileAndKey) {
                "nowhere.json: cannot read scene file");
 }
 
-// Issue 20 item 6: --threads on weft fit reaches every evaluation's scene (here self-collision's
+// --threads on weft fit reaches every evaluation's scene (here self-collision's
 // candidate search, which runs on the threads) and changes no bit of the fit: the log (but for
 // its wall-clock seconds) and the fitted scene are the same for 1 and 3 threads. A bad count is
 // refused naming the option, with nothing written.

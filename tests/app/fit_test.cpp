@@ -1,4 +1,4 @@
-// weft fit (issue 17 item 4): on targets made by weft itself with known parameters — measured
+// weft fit: on targets made by weft itself with known parameters — measured
 // cantilever numbers, a point cloud, a photo — the fit recovers the parameters (2 %, 5 %); and
 // on the bendstiff photo it finds a bending rigidity that beats the authors' table's extremes.
 #include <gtest/gtest.h>

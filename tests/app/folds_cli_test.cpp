@@ -92,7 +92,7 @@ TEST(FoldsCli, BadInputNamesTheFlag) {
   EXPECT_FALSE(fs::exists(dir / "out"));  // nothing written
 }
 
-// Issue 20 item 13: the inputs take unit strings like a scene file's values (--t "0.25 mm",
+// The inputs take unit strings like a scene file's values (--t "0.25 mm",
 // any length or stress unit); the result is the paper-unit flags' to the last digit. Both forms
 // of one input, a missing input, a missing unit and a unit of the wrong kind are errors naming
 // the flag.

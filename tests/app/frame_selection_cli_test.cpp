@@ -1,4 +1,4 @@
-// Issue 20 item 6 through the real `weft run`: --start, --end, --every and --last choose the
+// Frame selection through the real `weft run`: --start, --end, --every and --last choose the
 // frames rendered and written; every frame is still simulated and has its stats.csv row.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Issue 16 part 2 end to end through the real `weft` command: the command-line overrides are
-// scene patches (--set on run, the copied scene.json holds them, a bad one is the scene
-// reader's error naming the key), --threads is checked on every command that has it, sweep
+// The frame stream and scene patches end to end through the real `weft` command: the command-line
+// overrides are scene patches (--set on run, the copied scene.json holds them, a bad one is the
+// scene reader's error naming the key), --threads is checked on every command that has it, sweep
 // honours simulation.dynamics: false, and the frames weft run writes are the golden tests'.
 #include <gtest/gtest.h>
 

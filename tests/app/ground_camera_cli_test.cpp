@@ -1,6 +1,6 @@
-// Issue 20 item 3 through the real `weft run`: the drawn ground stops the cloth unless the scene
-// says render.ground.collider: false, and a scene without a camera is framed so that the cloth
-// stays in view over the whole run.
+// The ground and the camera through the real `weft run`: the drawn ground stops the cloth unless
+// the scene says render.ground.collider: false, and a scene without a camera is framed so that the
+// cloth stays in view over the whole run.
 #include <gtest/gtest.h>
 
 #include <algorithm>

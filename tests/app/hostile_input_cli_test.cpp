@@ -1,4 +1,4 @@
-// Issue 19, through the real `weft` command: hostile input and extreme values get a clear error
+// Through the real `weft` command: hostile input and extreme values get a clear error
 // (or a warning) naming the file, key or option — never a crash, a hang, or exit 0 with a wrong
 // result — and a run that stops before its first frame leaves an earlier run's files as they were.
 #include <gtest/gtest.h>

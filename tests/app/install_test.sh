@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 20 item 11 through the real commands: `cmake --install BUILD --prefix P` puts weft in
+# Installing, through the real commands: `cmake --install BUILD --prefix P` puts weft in
 # P/bin and its scenes and meshes in P/share/weft; the installed weft, run from a folder that is
 # neither the source nor the build tree, after the whole prefix was moved elsewhere, finds its
 # own scenes by name (`weft run NAME`, a scene with a mesh obstacle at ../meshes/…) and renders

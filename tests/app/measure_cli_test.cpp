@@ -170,7 +170,7 @@ TEST_F(MeasureCli, TopViewPhotoErrors) {
   EXPECT_CONTAINS(r.output, "--center-px: expected X,Y");
 }
 
-// Issue 20 item 4: --until-settled simulates past output.frames until the max speed has stayed
+// --until-settled simulates past output.frames until the max speed has stayed
 // below 1 cm/s for 1 s, and stops there; a limit too short says "not settled".
 TEST_F(MeasureCli, UntilSettledStopsOnceSettled) {
   const fs::path scene = write_scene(small_scene(true));  // damped hang, output.frames 12

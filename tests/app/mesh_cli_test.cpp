@@ -1,6 +1,6 @@
-// A cloth mesh file through the real `weft run` (issue 21 item 1): a triangle mesh with two
+// A cloth mesh file through the real `weft run`: a triangle mesh with two
 // corners painted red and pinned by colour writes its frames and stats.csv; remeshed as it runs
-// (simulation.remesh, item 2), each frame's vertex count is in stats.csv, a checkpoint holds
+// (simulation.remesh), each frame's vertex count is in stats.csv, a checkpoint holds
 // the remeshed mesh (a resumed run gives the same bits), saved states come with their meshes
 // (weft render draws them), and a point cache, which keeps one mesh for the whole run, is an
 // error.

@@ -1,4 +1,4 @@
-// Issue 20 item 2 through the real `weft run --export-meshes`: OBJ and PLY are y-up by default
+// Mesh export through the real `weft run --export-meshes`: OBJ and PLY are y-up by default
 // (Blender's OBJ import shows a hanging cloth hanging), `--up z` keeps weft's frame, and the
 // files carry the cloth's colour — a glTF also its texture, written beside it.
 #include <gtest/gtest.h>

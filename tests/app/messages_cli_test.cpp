@@ -1,4 +1,4 @@
-// Issue 20 item 13 through the real `weft`: a mistyped command is named with a suggestion,
+// Messages of the real `weft`: a mistyped command is named with a suggestion,
 // errors point at the command's own --help, `weft` alone prints usage with the program name,
 // the run summary goes to stderr with "frame" in the singular for one, and a time step above the
 // explicit integrator's critical step is warned of up front, and so is a ray-tracer option given

@@ -1,4 +1,4 @@
-// `weft run --export-cache pc2,mdd,gltf` (issue 20 item 7): the files read back — the point
+// `weft run --export-cache pc2,mdd,gltf`: the files read back — the point
 // caches byte by byte against their formats (app/io/point_cache.h), the animated glTF through
 // assimp's importer — and checked against the simulation: the pinned corners stay where the
 // scene pins them in every frame, a free corner falls, and every format holds the same frames.

@@ -1,4 +1,4 @@
-// simulation.remesh in a scene file (issue 21 item 2, docs/remeshing.md): a triangle-mesh cloth
+// simulation.remesh in a scene file (docs/remeshing.md): a triangle-mesh cloth
 // hung from its top edge is remeshed as it runs (its vertex count changes, its pins stay put);
 // keys out of range and the combinations that cannot be remeshed are errors naming the key.
 

@@ -1,4 +1,4 @@
-// Issue 22 item 2 through the real commands: `weft render` draws frames from the states
+// Render-only runs through the real commands: `weft render` draws frames from the states
 // `weft run --save-states` wrote with the same bytes as the frames weft run writes — a chosen
 // range and step, the automatic camera (framed from the states), a moving obstacle, masks, the
 // ray tracer — and a 12-frame ray-traced sequence drawn as 4 frame ranges (array tasks) equals

@@ -1,4 +1,4 @@
-// End to end through the real `weft run --report` and `weft gallery` (issue 8 item 4): the
+// End to end through the real `weft run --report` and `weft gallery`: the
 // report's images and links exist beside it and its plots carry one point per row of stats.csv,
 // peaking where stats.csv peaks; the gallery renders each scene of a folder, its final frame is
 // the frame `weft run` writes, and a bad scene is listed as failed while the others render.

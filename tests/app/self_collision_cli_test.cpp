@@ -1,4 +1,4 @@
-// Issue 23: a frame in which a self-colliding cloth still passes through itself is reported by
+// A frame in which a self-colliding cloth still passes through itself is reported by
 // `weft run` — a warning naming the frames, or, with simulation.self_collision.crossings set to
 // "error", the run stops after writing that frame with the divergence exit code.
 
@@ -45,7 +45,7 @@ int frames_in(const std::filesystem::path& dir) {
   return n;
 }
 
-// The crossings come from the push-outs alone: the impact zones (on by default, issue 23) leave
+// The crossings come from the push-outs alone: the impact zones (on by default) leave
 // none, so they are turned off to make some.
 TEST_F(SelfCollisionCli, CrossingFramesAreWarnedOfByDefault) {
   const auto scene = write_scene("drape.json", dropped_drape(R"({"impact_zones": false})"));

@@ -1,4 +1,4 @@
-// Issue 22 items 3 and 4 on a real Slurm: scripts/slurm-local starts a one-node cluster (munge,
+// Slurm jobs on a real Slurm: scripts/slurm-local starts a one-node cluster (munge,
 // slurmctld, slurmd) and `weft render --slurm` submits a ray-traced 12-frame sequence as 4
 // array tasks; the frames equal those weft run wrote, byte for byte. `weft sweep --slurm` (6
 // points) and `weft gallery --slurm` (2 scenes) give the local sweep's and gallery's bytes

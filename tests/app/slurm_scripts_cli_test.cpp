@@ -1,4 +1,4 @@
-// Issue 22 item 3 without a cluster: `weft sweep --slurm --dry-run` and `weft gallery --slurm
+// Slurm scripts without a cluster: `weft sweep --slurm --dry-run` and `weft gallery --slurm
 // --dry-run` print the job array and collect scripts (with resources), and since an sbatch script
 // is a bash script, running each task by hand (SLURM_ARRAY_TASK_ID=K bash SCRIPT) and then the
 // collect script gives the local run's bytes; a task that fails is listed with the command that

@@ -1,4 +1,4 @@
-// `weft run --shading strain` (issue 20 item 10): the per-vertex strain weft draws
+// `weft run --shading strain`: the per-vertex strain weft draws
 // (app/run/frame_mesh.h vertex_strains) on known deformations, and the frames the real command
 // writes: the cloth in the map's colours (render/strain_colour.h) and the legend in the corner.
 

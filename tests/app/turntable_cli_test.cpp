@@ -88,7 +88,7 @@ TEST_F(TurntableCli, SceneGivesFourFramesFromFourSidesAndAContactSheet) {
     EXPECT_EQ(frames.back().height(), 48);
   }
   EXPECT_FALSE(fs::exists(out / "turntable_0005.png"));
-  // Image k at azimuth 360 (k − 1) / N, as --help says (issue 20 item 13).
+  // Image k at azimuth 360 (k − 1) / N, as --help says.
   EXPECT_CONTAINS(r.output, "frame 1/4  azimuth 0 deg");
   EXPECT_CONTAINS(r.output, "frame 4/4  azimuth 270 deg");
   EXPECT_CONTAINS(run_weft("turntable --help").output,
@@ -151,7 +151,7 @@ TEST_F(TurntableCli, FfmpegMakesTheMp4AndGifAndItsFailureIsReported) {
   EXPECT_CONTAINS(text, "paletteuse");
   EXPECT_CONTAINS(text, "-framerate 12 ");  // the default video rate
   EXPECT_CONTAINS(ok.output, "in all, simulation included)");
-  // --video-fps sets it (issue 20 item 13); a rate outside (0, 240] is refused, naming it.
+  // --video-fps sets it; a rate outside (0, 240] is refused, naming it.
   const CommandResult fast = run_weft(args + " --video-fps 30", path_env(0));
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
   std::ifstream calls2(m_dir / "ffmpeg_calls.txt");
@@ -221,7 +221,7 @@ TEST_F(TurntableCli, RunExportsOneMeshPerFrame) {
   EXPECT_FALSE(fs::exists(m_dir / "bad"));
 }
 
-// Issue 20 item 5: a later run clears every file of the earlier run's meshes, the OBJs'
+// A later run clears every file of the earlier run's meshes, the OBJs'
 // mesh_NNNN.mtl included.
 TEST_F(TurntableCli, ARerunLeavesNoStaleMaterialFiles) {
   const fs::path scene = write_file("tiny.json", turntable_scene);

@@ -1,4 +1,4 @@
-// Issue 20 item 13, "the back of the cloth is lit": both renderers shade the cloth two-sided —
+// "The back of the cloth is lit": both renderers shade the cloth two-sided —
 // the side seen takes its own colour and the normal turned towards it, so the key light
 // lights the back when it shines on the back — through the real `weft run`. A flat sheet seen
 // from above (its front) and from below (its back), the light above or below: the side the

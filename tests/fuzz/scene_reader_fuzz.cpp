@@ -1,4 +1,4 @@
-// libFuzzer target (issue 19 item 2): any bytes as a scene file's text. The scene reader must
+// libFuzzer target: any bytes as a scene file's text. The scene reader must
 // return a Scene or throw InputError; any other exception, a crash, a hang or a sanitizer report
 // is a finding. Built with -DWEFT_FUZZ=ON (docs/reliability.md).
 #include <cstddef>

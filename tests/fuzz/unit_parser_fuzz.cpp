@@ -1,4 +1,4 @@
-// libFuzzer target (issue 19 item 2): any bytes as a quantity with units ("0.019 gf/cm^2"),
+// libFuzzer target: any bytes as a quantity with units ("0.019 gf/cm^2"),
 // read as each kind of quantity. parse_quantity must return a finite value of that kind or
 // throw UnitError; anything else is a finding. Built with -DWEFT_FUZZ=ON (docs/reliability.md).
 #include <cmath>

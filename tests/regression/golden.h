@@ -1,5 +1,5 @@
 #pragma once
-// Golden-image regression tests (issue 8 item 2): key scenes rendered small by both renderers
+// Golden-image regression tests: key scenes rendered small by both renderers
 // and compared with the PNGs in tests/data/golden through render/image_diff.h, with explicit
 // thresholds per case. A failure writes the evidence — actual.png, expected.png, diff.png and
 // index.html (side by side; click an image to swap actual and expected) — under

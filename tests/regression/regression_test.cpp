@@ -26,7 +26,7 @@ const std::vector<GoldenCase>& cases() {
       {"sphere_drape_raytrace", "sphere_drape_30.json", 17, 12, "raytrace"},
       // The tension-field curtain (no dynamics): the fold generator's shape.
       {"curtain_tension_field_raster", "curtain_tension_field.json", 31, 0, "raster"},
-      // Adaptive remeshing (issue 21): the remeshed sphere drape after 1/3 s, drawn with its
+      // Adaptive remeshing: the remeshed sphere drape after 1/3 s, drawn with its
       // mesh lines, h_min 1.2 cm (8 mm in the scene) to keep it to seconds: remeshed in frames
       // 4 and 7 (441 → 1227 → 1997 vertices; TheRemeshedDrapeDependsOnItsRemeshes).
       {"sphere_drape_remeshed_raster", "sphere_drape_20_remeshed.json", 0, 8, "raster", 256, 192,

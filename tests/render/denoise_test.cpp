@@ -1,4 +1,4 @@
-// The ray tracer's denoiser (render/denoise.h, issue 20 item 9) on synthetic images with known
+// The ray tracer's denoiser (render/denoise.h) on synthetic images with known
 // noise: it reduces the noise variance several-fold, keeps albedo/normal edges and shadow edges
 // where they are (no bleeding across them), leaves noise-free pixels as they are, and gives
 // the same bits for any number of threads.

@@ -89,7 +89,7 @@ Image frame_like(int width, int height) {
   return image;
 }
 
-// Issue 20 item 12: frames are written with a real deflate (libpng, zlib), the same pixels in
+// Frames are written with a real deflate (libpng, zlib), the same pixels in
 // fewer bytes than stb's own encoder gives.
 TEST(Image, WrittenPngsAreSmallerThanStbsForTheSamePixels) {
   const fs::path path = scratch_dir() / "frame.png";

@@ -209,7 +209,7 @@ TEST(LoopSubdivision, BoundaryStaysOnARectanglesSidesCornersFixed) {
   }
 }
 
-// The wireframe's lines (RenderMesh::edges, issue 21 item 3) follow the surface: a grid's warp
+// The wireframe's lines (RenderMesh::edges) follow the surface: a grid's warp
 // and weft lines become chains of 2^level sides of subdivided triangles, running from the same
 // grid vertex to the same grid vertex through the edge points; a line that is no triangle's
 // side is an error.

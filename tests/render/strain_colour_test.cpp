@@ -1,4 +1,4 @@
-// Shading::strain (issue 20 item 10): the false-colour map, its legend, and a flat cloth whose
+// Shading::strain: the false-colour map, its legend, and a flat cloth whose
 // left half is compressed and right half stretched, drawn by both renderers through the
 // Renderer interface: each half takes its end of the map (blue, red), a strain-free strip the
 // middle grey, and the legend sits in the top-right corner. The rasterizer's half is skipped,

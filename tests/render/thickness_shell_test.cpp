@@ -115,7 +115,7 @@ TEST(ThicknessShell, AppliedAfterSubdivisionByPrepareClothMesh) {
   EXPECT_THROW(make_thickness_shell(sheet, 0.0), std::invalid_argument);
 }
 
-// The wireframe's lines (issue 21 item 3) are drawn on both sheets: the upper sheet keeps the
+// The wireframe's lines are drawn on both sheets: the upper sheet keeps the
 // indices, the lower one has them offset by V.
 TEST(ThicknessShell, WireframeEdgesOnBothSheets) {
   RenderMesh sheet =

@@ -1,4 +1,4 @@
-// The wireframe overlay (render/wireframe_overlay.h, issue 21 item 3) through both renderers:
+// The wireframe overlay (render/wireframe_overlay.h) through both renderers:
 // - pixels on a projected mesh line take the line's colour, and pixels away from every line
 //   (cell centres, which lie on the cells' undrawn diagonals) keep the bytes of the frame
 //   drawn without the overlay;

@@ -163,7 +163,7 @@ TEST(ClothModel, BuildsOnlyTheTermsTheMaterialNeeds) {
   const ClothMesh mesh = small_sheet();
   Material m = test_material();
   EXPECT_EQ(make_force_terms(mesh, m, ClothModel::baraff_witkin, true).size(), 2u);
-  // The mass-spring model is force terms too (issue 16): springs, then angular bending.
+  // The mass-spring model is force terms too: springs, then angular bending.
   EXPECT_EQ(make_force_terms(mesh, m, ClothModel::mass_spring, true).size(), 2u);
   m.bend_warp_Nm = m.bend_weft_Nm = 0.0;
   EXPECT_EQ(make_force_terms(mesh, m, ClothModel::mass_spring, true).size(), 1u);

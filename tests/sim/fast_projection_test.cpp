@@ -128,7 +128,7 @@ TEST(FastProjection, PinnedVerticesNeverMove) {
   for (Index v : pinned) EXPECT_EQ(Vec3(x.row(v)), Vec3(x0.row(v)));
 }
 
-// Holding more vertices by set_inverse_masses (issue 23's impact zones) projects as a projector
+// Holding more vertices by set_inverse_masses (as the impact zones do) projects as a projector
 // made with those masses: held vertices never move, the others meet the tolerance (edges
 // between two held vertices, rigid together here, are left out), and a vertex held at
 // construction cannot be freed.

@@ -1,4 +1,4 @@
-// Continuous collision detection and rigid impact zones (issue 23): the kernels against cases
+// Continuous collision detection and rigid impact zones: the kernels against cases
 // with a known time of impact, and the zones' invariants.
 #include <gtest/gtest.h>
 

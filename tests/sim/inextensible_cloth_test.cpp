@@ -1,4 +1,4 @@
-// Inextensible cloth in the simulator (issue 3): fast projection after implicit Euler on the
+// Inextensible cloth in the simulator: fast projection after implicit Euler on the
 // Kang & Yu wool, checked against exact statements about inextensible sheets.
 #include <gtest/gtest.h>
 
@@ -80,7 +80,7 @@ double worst_projected_strain(Simulator& sim, double seconds, double from_s, lon
 
 class TwoCornerHang : public testing::TestWithParam<Index> {};
 
-// Issue 3: max strain ≤ tolerance after every step of a 2 s two-corner hang. The sheet starts
+// Max strain ≤ tolerance after every step of a 2 s two-corner hang. The sheet starts
 // flat and horizontal — the hardest start, a singular root of the constraints — and swings
 // down under gravity.
 TEST_P(TwoCornerHang, EveryStepEndsWithinTheTolerance) {
@@ -119,7 +119,7 @@ TEST(InextensibleCloth, SheetPinnedAtItsRestWidthHangsFlatAndVertical) {
   EXPECT_LT(sim.diagnostics().kinetic_energy_J, 1e-6);
 }
 
-// Issue 3's flat-release extreme: a perfectly flat sheet released horizontally (constraint
+// The flat-release extreme: a perfectly flat sheet released horizontally (constraint
 // gradients orthogonal to the motion). 2 s with no NaN or explosion, and within tolerance after
 // the first 0.5 s (the tolerance is allowed to be missed only while the sheet is nearly flat,
 // and then the step says so).
@@ -221,11 +221,11 @@ TEST(InextensibleCloth, OnlyFastProjectionCarriesTension) {
 // freedom (≈ 3n constraints on 3n coordinates), so the sheet cannot bend without stretching and
 // drapes like a plate; the quad mesh's warp/weft edges (≈ 2n constraints) leave one free
 // direction per vertex. The same 1 m sheet dropped centred on a 25 cm sphere, with friction:
-// the quad mesh drapes — its free corners fall below the sphere's centre while every step meets
-// the tolerance — and the triangle mesh's projection cannot converge (no isometric bend of it
-// exists): most of its steps miss, and what it keeps are best iterates stretched far beyond any
-// tolerance (140 % before issue 18's solver changes, 200 % after). Where those iterates leave
-// its corners depends on how each failed step ends, so only the failure is asserted.
+// the quad mesh drapes — its free corners fall below the sphere's centre while every step meets the
+// tolerance — and the triangle mesh's projection cannot converge (no isometric bend of it exists):
+// most of its steps miss, and what it keeps are best iterates stretched far beyond any tolerance
+// (140 % with the projection's earlier solver, 200 % with today's). Where those iterates leave its
+// corners depends on how each failed step ends, so only the failure is asserted.
 TEST(InextensibleCloth, TriangleEdgeConstraintsLockTheDrape) {
   const auto corner_height = [](ConstrainedEdges edges, long* unconverged, double* strain,
                                 double* depth) {
@@ -276,7 +276,7 @@ TEST(InextensibleCloth, TriangleEdgeConstraintsLockTheDrape) {
 }
 
 
-// Issue 18: the projection solves its Newton systems by conjugate gradients on an earlier
+// The projection solves its Newton systems by conjugate gradients on an earlier
 // factorization (ProjectionSettings::reuse_iterations) — an inexact Newton method. On the 32²
 // hang it must still meet the tolerance after every step, with fewer factorizations than
 // iterations, and end where the paper's iteration (a factorization per iteration) ends, within
@@ -310,9 +310,9 @@ TEST(InextensibleCloth, ReusedFactorizationsMeetTheToleranceWithFewerFactorizati
   EXPECT_LT((x_paper - x_reused).rowwise().norm().maxCoeff(), 5e-3);
 }
 
-// Implicit Euler's conjugate gradients share the matrix–vector product among threads; the
-// result must be the same bits for any number (DESIGN.md, Determinism). 40² vertices: a
-// 4800-row system, large enough to be split.
+// Implicit Euler's conjugate gradients share the matrix–vector product among threads; the result
+// must be the same bits for any number of threads. 40² vertices: a 4800-row system, large enough to
+// be split.
 TEST(InextensibleCloth, SameBitsForOneAndTwoSolverThreads) {
   Hang h;
   h.n = 40;

@@ -1,4 +1,4 @@
-// Resting contact (issue 5): a cloth lying on the ground must come to rest and stay there —
+// Resting contact: a cloth lying on the ground must come to rest and stay there —
 // no jitter from the push-out — under every physical-time integrator, with and without
 // friction, and with pinned vertices touching the plane (folded on itself with self-collision:
 // self_collision_test.cpp).
@@ -85,8 +85,8 @@ TEST(RestingContact, PinnedEdgeOnThePlaneStaysAtRest) {
   EXPECT_LT(max_speed_after_settling(sim, 0.5, 0.5), kNoJitter_m_s);
 }
 
-// Regression (issue 21 item 3, "Baraff–Witkin on the coarse triangle mesh diverges on the
-// pedestal's sharp rim"): disc_drape_50.json's wool square on 21 × 21 vertices (2.5 cm cells)
+// Regression ("Baraff–Witkin on the coarse triangle mesh diverges on the pedestal's sharp
+// rim"): disc_drape_50.json's wool square on 21 × 21 vertices (2.5 cm cells)
 // with Baraff–Witkin under implicit Euler at 1/120 s. With the push-out after the solve as the
 // obstacle's only response, each step's solve moved the vertices on the pedestal's top down with
 // the skirt hanging from them and the push-out put them back up, against the pull of the edges

@@ -404,12 +404,12 @@ TEST(SelfCollision, DrapedClothDoesNotPassThroughItself) {
   EXPECT_EQ(with, 0);
 }
 
-// Issue 23: seed 002's sphere drape dropped from 30 cm above the sphere (the issue's scene at
-// 32²), 1 s at 24 frames per second. With the default neighbourhood (pairs within one rest edge
-// plus the contact distance never touch) its corner folds, sharper than an edge, pass through
-// themselves from about frame 15; with neighbourhood 0 no frame has a crossing. Both with the
-// push-outs alone (impact_zones off): the impact zones, which hold either, have their own tests
-// (impact_zones_test.cpp, self_collision_drape_test.cpp).
+// Seed 002's sphere drape dropped from 30 cm above the sphere (at 32²), 1 s at 24 frames per
+// second. With the default neighbourhood (pairs within one rest edge plus the contact distance
+// never touch) its corner folds, sharper than an edge, pass through themselves from about frame 15;
+// with neighbourhood 0 no frame has a crossing. Both with the push-outs alone (impact_zones off):
+// the impact zones, which hold either, have their own tests (impact_zones_test.cpp,
+// self_collision_drape_test.cpp).
 std::vector<Index> crossings_per_frame_of_a_dropped_drape(double neighbourhood_edges) {
   SimSettings settings = sphere_drape_settings(0.6, 0.5, true, 2e-3);
   settings.air_damping_1_s = 2.0;

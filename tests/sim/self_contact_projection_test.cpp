@@ -1,4 +1,4 @@
-// Self-contacts inside fast projection (issue 23; sim/collision/self_contact_rows.h,
+// Self-contacts inside fast projection (sim/collision/self_contact_rows.h,
 // sim/constraints/contact_projection.h): a layer pushed through another within a step comes
 // back with every edge at its length, and rows that hold change nothing. Not yet used by the
 // simulator: docs/collisions.md says what wiring it into a step measured.

@@ -1,4 +1,4 @@
-// Self-intersection check (issue 5 item 3): the segment–triangle kernel on hand-made cases, zero
+// Self-intersection check: the segment–triangle kernel on hand-made cases, zero
 // crossings on flat and smooth sheets, the exact count for two strips that pass through each
 // other, hashed = brute force on random crumpled sheets, invariance under scale (×1e-3, ×1e3)
 // and translation, and the spatial hash returning exactly the overlapping boxes in any box order.

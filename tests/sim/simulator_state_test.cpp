@@ -1,4 +1,4 @@
-// Simulator::save_state / restore_state (issue 22 item 1): a simulator restored from the state
+// Simulator::save_state / restore_state: a simulator restored from the state
 // of another one after some steps goes on with the same bits — for the integrators, projections
 // and contact settings that weft run's checkpoint tests (tests/app/checkpoint_cli_test.cpp)
 // do not reach through a scene: dynamic relaxation, RK4, velocity Verlet, implicit Euler by a

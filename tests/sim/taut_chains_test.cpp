@@ -140,7 +140,7 @@ TEST(TautChains, TheSimulatorHoldsThemOnlyWhileTheyAreTaut) {
   EXPECT_LT(closer.state().x(mesh.index(3, 5), 2), 1.6) << "the slack top edge sags";
 }
 
-// Issue 18: the 128² two-corner hang, whose top edge is pulled straight between the pins at its
+// The 128² two-corner hang, whose top edge is pulled straight between the pins at its
 // rest width. Projected, that edge is a singular root: 36 of the first 60 steps hit the cap of
 // 100 iterations (70.8 per step) when this test was written. Held, every step meets the
 // tolerance — asserted after every step, with the diagnostic's own strain at every frame.
