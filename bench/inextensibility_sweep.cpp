@@ -84,7 +84,7 @@ Row run(Index n, const Method& method, const Options& options) {
   wool.stretch_weft_N_m *= method.stretch_scale;
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
-  s.time_step_s = options.step_s;
+  s.time_step = fixed_time_step(options.step_s);
   s.air_damping_1_s = 1.0;
   s.sparse_backend = options.backend;
   // CG for the soft system under a projection; stiff springs make CG crawl (it reached 13 %
@@ -100,9 +100,9 @@ Row run(Index n, const Method& method, const Options& options) {
   s.projection.hold_taut_chains = options.hold_taut_chains;
   s.solver_threads = options.threads;
   if (options.adaptive_strain > 0.0 && method.projection == ProjectionMethod::fast_projection) {
-    s.adaptive_step.enabled = true;
-    s.adaptive_step.max_prediction_strain = options.adaptive_strain;
-    s.adaptive_step.max_step_s = options.max_step_s;
+    s.time_step = adaptive_time_step();
+    s.time_step.adaptive.max_prediction_strain = options.adaptive_strain;
+    s.time_step.adaptive.max_step_s = options.max_step_s;
   }
   Simulator sim(mesh, wool, resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), s);
 

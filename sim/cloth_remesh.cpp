@@ -39,7 +39,7 @@ void check_remesh_settings(const ClothMesh& mesh, const SimSettings& settings) {
     throw std::invalid_argument(
         key + "not with simulation.constraints: fast projection needs warp/weft edges, which a "
               "remeshed cloth has none of, and triangle-edge constraints lock");
-  if (settings.adaptive_step.enabled)
+  if (settings.time_step.is_adaptive())
     throw std::invalid_argument(key + "not with time_step \"adaptive\" (it follows fast "
                                       "projection, which a remeshed cloth cannot use)");
 }

@@ -24,11 +24,25 @@ namespace weft::sim {
 // only; the step follows the projection's iterations, and a step whose unconstrained
 // prediction strains an edge beyond max_prediction_strain is redone shorter.
 struct AdaptiveStepSettings {
-  bool enabled = false;
   double min_step_s = 1.0 / 960.0;
   double max_step_s = 1.0 / 24.0;       // also the first step's length
   double max_prediction_strain = 0.25;  // ε_max
 };
+
+// simulation.time_step, one setting with its kind: automatic (empty in the scene, or "auto"),
+// a fixed step, or adaptive with its bounds. The scene reader checks it against the integrator,
+// the constraints and the frame (app/scene/scene.cpp).
+struct TimeStep {
+  enum class Kind { automatic, fixed, adaptive };
+  Kind kind = Kind::automatic;
+  double fixed_s = 0.0;           // Kind::fixed: the step, s
+  AdaptiveStepSettings adaptive;  // Kind::adaptive: its bounds and strain target
+  bool is_adaptive() const { return kind == Kind::adaptive; }
+};
+inline TimeStep fixed_time_step(double step_s) { return {TimeStep::Kind::fixed, step_s, {}}; }
+inline TimeStep adaptive_time_step(const AdaptiveStepSettings& settings = {}) {
+  return {TimeStep::Kind::adaptive, 0.0, settings};
+}
 
 // simulation.remesh (docs/remeshing.md): the cloth is meshed anew in material space, graded by
 // its curvature (seed 002 eq. 29: h = clamp(√(c/|κ|), h_min, h_max)), positions and velocities
@@ -67,17 +81,15 @@ struct SimSettings {
   Integrator integrator = Integrator::symplectic_euler;
   Vec3 gravity_m_s2{0.0, 0.0, -9.81};
   double air_damping_1_s = 0.5;        // mass-proportional damping α: f = −α m v (seed 002 eq. 27)
-  // The scene's simulation.time_step (app/scene/scene.cpp; "auto" leaves it empty). Empty:
-  // automatic. Every explicit integrator: time_step_safety × the critical step 2/ω_max,
+  // The scene's simulation.time_step (app/scene/scene.cpp). Automatic: every explicit integrator: time_step_safety × the critical step 2/ω_max,
   // with ω_max² estimated from a Gershgorin bound on the largest eigenvalue of M⁻¹K (an upper
   // bound, so 1.0 is still stable at rest; measured: the default scene with symplectic Euler is
   // stable up to 1.2 and explodes at 1.5). 2/ω is the limit of symplectic Euler, velocity Verlet
   // and central difference; RK4's is 2√2/ω (not used: the same step keeps a margin); explicit
   // Euler has none on an undamped oscillator. Implicit Euler, unconditionally stable:
   // implicit_default_step_s.
-  std::optional<double> time_step_s;
+  TimeStep time_step;
   double time_step_safety = 0.8;
-  AdaptiveStepSettings adaptive_step;  // when enabled, time_step_s is unused
   double implicit_default_step_s = 1.0 / 120.0;
   // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
   // explosion, not physics: free fall reaches 100 m/s only after 10 s).

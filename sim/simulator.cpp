@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/check.h"
 #include "sim/cloth_remesh.h"
 #include "sim/constraints/inextensibility.h"
 #include "sim/remesh_relaxation.h"
@@ -82,15 +83,15 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   const double automatic = settings.integrator == Integrator::implicit_euler
                                ? settings.implicit_default_step_s
                                : settings.time_step_safety * m_critical_step_s;
-  m_time_step_s = settings.time_step_s.value_or(automatic);
-  if (settings.adaptive_step.enabled) {
-    if (settings.integrator != Integrator::implicit_euler ||
-        settings.projection.method != ProjectionMethod::fast_projection)
-      throw std::invalid_argument(
-          "simulation.time_step: \"adaptive\" follows fast projection's iterations: it "
-          "needs integrator implicit_euler and constraints.method fast_projection");
-    m_adaptive = std::make_unique<AdaptiveStep>(settings.adaptive_step);
-    m_time_step_s = settings.adaptive_step.max_step_s;
+  m_time_step_s = settings.time_step.kind == TimeStep::Kind::fixed ? settings.time_step.fixed_s
+                                                                   : automatic;
+  if (settings.time_step.is_adaptive()) {
+    WEFT_CHECK(settings.integrator == Integrator::implicit_euler &&
+                   settings.projection.method == ProjectionMethod::fast_projection,
+               "the adaptive step follows fast projection's iterations: it needs implicit Euler "
+               "and fast projection (the scene reader checks simulation.time_step)");
+    m_adaptive = std::make_unique<AdaptiveStep>(settings.time_step.adaptive);
+    m_time_step_s = settings.time_step.adaptive.max_step_s;
   }
   m_integrator_settings.implicit_solve.method = settings.implicit_solve;
   m_integrator_settings.implicit_solve.backend = settings.sparse_backend;
@@ -139,14 +140,19 @@ void Simulator::hold_taut_chains() {
   build_solvers();
 }
 
+std::string too_many_steps(double dt_s, double step_s) {
+  const double ratio = dt_s / step_s;
+  if (ratio <= max_substeps) return {};  // NaN is too many
+  std::ostringstream what;
+  what << "a time of " << dt_s << " s needs " << ratio << " steps of " << step_s
+       << " s, more than the limit of " << max_substeps;
+  return what.str();
+}
+
 long Simulator::substeps(double dt_s) const {
+  if (const std::string why = too_many_steps(dt_s, m_time_step_s); !why.empty())
+    throw std::invalid_argument(why);
   const double ratio = dt_s / m_time_step_s;
-  if (!(ratio <= max_substeps)) {  // NaN included
-    std::ostringstream what;
-    what << "a time of " << dt_s << " s needs " << ratio << " steps of " << m_time_step_s
-         << " s, more than the limit of " << max_substeps;
-    throw std::invalid_argument(what.str());
-  }
   return std::max(1L, static_cast<long>(std::ceil(ratio / (1.0 + substep_slack))));
 }
 

@@ -41,6 +41,9 @@ class DivergenceError : public std::runtime_error {
 inline constexpr double max_substeps = 1e6;
 // The relative excess over time_step() that Simulator::substeps() allows a step (10 µs in 1 s).
 inline constexpr double substep_slack = 1e-5;
+// Why a time of dt_s cannot be taken in steps of step_s ("a time of … needs … steps of … s,
+// more than the limit of 1e+06"), or empty when it can.
+std::string too_many_steps(double dt_s, double step_s);
 
 // A cloth simulation: the System (masses, gravity, damping, force terms, pins) of a mesh and
 // material, the TimeIntegrator the settings name, and the contacts-and-constraints phase.

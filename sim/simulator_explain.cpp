@@ -43,8 +43,8 @@ std::string Simulator::explain_integrate() const {
   std::ostringstream line;
   line << "integrate: " << integrator_name(m_settings.integrator);
   if (m_adaptive)
-    line << ", adaptive h from " << 1e3 * m_settings.adaptive_step.min_step_s << " to "
-         << 1e3 * m_settings.adaptive_step.max_step_s
+    line << ", adaptive h from " << 1e3 * m_settings.time_step.adaptive.min_step_s << " to "
+         << 1e3 * m_settings.time_step.adaptive.max_step_s
          << " ms (following the projection's iterations)";
   else
     line << ", h = " << 1e3 * m_time_step_s << " ms";

@@ -302,7 +302,7 @@ int report_divergence(const FrameDivergence& d, const fs::path& dir, const Scene
 // in 11 of 240 steps; the adaptive step chose about 1/276 s there and missed none, at 0.28 of
 // the CPU time: docs/benchmarks.md, "Issue 18: 256² converged"). Empty when that is not the case.
 std::string shorter_step_advice(const Scene& scene) {
-  if (scene.sim.integrator != sim::Integrator::implicit_euler || scene.sim.adaptive_step.enabled ||
+  if (scene.sim.integrator != sim::Integrator::implicit_euler || scene.sim.time_step.is_adaptive() ||
       scene.sim.projection.method != sim::ProjectionMethod::fast_projection)
     return {};
   return "; \"time_step\": \"adaptive\" shortens the steps where the projection needs it";

@@ -291,6 +291,37 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
   return m;
 }
 
+// A frame must take at most sim::max_substeps steps: of a fixed step, or of an adaptive step's
+// max_step, its first and longest. (The automatic step comes from the material: make_simulator
+// checks it.)
+void check_steps_per_frame(const Scene& scene) {
+  const sim::TimeStep& t = scene.sim.time_step;
+  if (t.kind == sim::TimeStep::Kind::automatic) return;
+  const bool fixed = t.kind == sim::TimeStep::Kind::fixed;
+  const std::string why =
+      sim::too_many_steps(1.0 / scene.fps, fixed ? t.fixed_s : t.adaptive.max_step_s);
+  if (!why.empty())
+    throw InputError(scene.source + ": " +
+                     (fixed ? "simulation.time_step: " : "simulation.adaptive_step.max_step: ") +
+                     why);
+}
+
+
+// "simulation.time_step": "auto" (the default), "adaptive" (with "simulation.adaptive_step")
+// or a time.
+sim::TimeStep read_time_step(ObjectReader& r) {
+  sim::TimeStep t;
+  const std::optional<double> fixed_s =
+      r.quantity_or_keyword("time_step", Quantity::time, {"auto", "adaptive"}, Range::gt(0.0));
+  if (fixed_s) t = sim::fixed_time_step(*fixed_s);
+  else if (r.holds_keyword("time_step", "adaptive")) t = sim::adaptive_time_step();
+  if (r.has("adaptive_step")) {
+    if (!t.is_adaptive()) r.fail("adaptive_step", "applies only with time_step \"adaptive\"");
+    read_adaptive_step(r.object("adaptive_step"), t.adaptive);
+  }
+  return t;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
                      Scene::CrossingPolicy& crossings) {
@@ -308,14 +339,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));
-  s.time_step_s =
-      r.quantity_or_keyword("time_step", Quantity::time, {"auto", "adaptive"}, Range::gt(0.0));
-  s.adaptive_step.enabled = r.holds_keyword("time_step", "adaptive");
-  if (r.has("adaptive_step")) {
-    if (!s.adaptive_step.enabled)
-      r.fail("adaptive_step", "applies only with time_step \"adaptive\"");
-    read_adaptive_step(r.object("adaptive_step"), s.adaptive_step);
-  }
+  s.time_step = read_time_step(r);
   s.time_step_safety = r.number("time_step_safety", s.time_step_safety, Range::gt(0.0).le(1.0));
   s.max_speed_m_s = r.quantity("max_speed", Quantity::speed, s.max_speed_m_s, Range::gt(0.0));
   s.max_strain = r.number("max_strain", s.max_strain, Range::gt(0.0));
@@ -331,6 +355,10 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   if (r.has("self_collision"))
     s.self_collision = read_self_collision(r.object("self_collision"), crossings);
   if (r.has("remesh")) s.remesh = read_remesh(r.object("remesh"));
+  if (s.time_step.is_adaptive() && (s.integrator != sim::Integrator::implicit_euler ||
+                                    s.projection.method != sim::ProjectionMethod::fast_projection))
+    r.fail("time_step", "\"adaptive\" follows fast projection's iterations: it needs integrator "
+                        "implicit_euler and constraints.method fast_projection");
   r.finish();
 }
 
@@ -529,6 +557,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   read_output(top.object("output"), scene);
   read_render(top.object("render"), scene);
   top.finish();
+  check_steps_per_frame(scene);
   return scene;
 }
 
@@ -618,14 +647,11 @@ std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
   } catch (const std::invalid_argument& e) {  // other settings the simulator cannot take
     throw InputError(scene.source + ": " + e.what());
   }
-  try {
-    (void)simulator->substeps(1.0 / scene.fps);  // the time step against the frame's duration
-  } catch (const std::invalid_argument& e) {
-    throw InputError(scene.source + ": " +
-                     (scene.sim.time_step_s ? "simulation.time_step: "
-                                            : "cloth.material: the automatic time step (from "
-                                              "the density and stiffness) ") +
-                     e.what());
+  if (scene.sim.time_step.kind == sim::TimeStep::Kind::automatic) {
+    const std::string why = sim::too_many_steps(1.0 / scene.fps, simulator->time_step());
+    if (!why.empty())
+      throw InputError(scene.source + ": cloth.material: the automatic time step (from the "
+                                      "density and stiffness) " + why);
   }
   if (scene.tension_field)
     simulator->set_initial_positions(folded_start(*scene.tension_field, scene.grid, scene.material,

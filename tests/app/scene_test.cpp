@@ -103,8 +103,8 @@ TEST(Scene, CompleteSceneLandsInSIUnits) {
   EXPECT_EQ(s.sim.gravity_m_s2.x(), 0.0);
   expect_close(s.sim.gravity_m_s2.y(), -9.81);
   expect_close(s.sim.air_damping_1_s, 2.0);
-  ASSERT_TRUE(s.sim.time_step_s.has_value());
-  expect_close(*s.sim.time_step_s, 2e-4);
+  ASSERT_EQ(s.sim.time_step.kind, sim::TimeStep::Kind::fixed);
+  expect_close(s.sim.time_step.fixed_s, 2e-4);
   EXPECT_EQ(s.sim.time_step_safety, 0.25);
   expect_close(s.sim.max_speed_m_s, 100.0);
 
@@ -158,7 +158,7 @@ TEST(Scene, OmittedBlocksAndKeysTakeTheStructDefaults) {
   EXPECT_TRUE(s.pins.empty());  // no pins: free fall
   EXPECT_EQ(s.sim.gravity_m_s2, settings.gravity_m_s2);
   EXPECT_EQ(s.sim.air_damping_1_s, settings.air_damping_1_s);
-  EXPECT_FALSE(s.sim.time_step_s.has_value());
+  EXPECT_EQ(s.sim.time_step.kind, sim::TimeStep::Kind::automatic);
   EXPECT_EQ(s.sim.time_step_safety, settings.time_step_safety);
   EXPECT_EQ(s.fps, 24.0);
   EXPECT_EQ(s.frames, 72);
@@ -178,7 +178,7 @@ TEST(Scene, AlternativeForms) {
     "render": {"ground": false, "camera": {"fov": 55}}
   })",
                               "alt.json");
-  EXPECT_FALSE(s.sim.time_step_s.has_value());
+  EXPECT_EQ(s.sim.time_step.kind, sim::TimeStep::Kind::automatic);
   EXPECT_EQ(s.sim.gravity_m_s2, Eigen::Vector3d(0, 0, -9.81));
   EXPECT_FALSE(s.render.ground);
   EXPECT_EQ(s.render.camera.fov_y_deg, 55.0);  // a bare number is in degrees
@@ -187,7 +187,8 @@ TEST(Scene, AlternativeForms) {
           "simulation": {"time_step": 0.001}, "render": {"ground": true}})",
       "alt2.json");
   EXPECT_EQ(t.grid.nu, 3);
-  EXPECT_EQ(t.sim.time_step_s, 0.001);
+  EXPECT_EQ(t.sim.time_step.kind, sim::TimeStep::Kind::fixed);
+  EXPECT_EQ(t.sim.time_step.fixed_s, 0.001);
   EXPECT_TRUE(t.render.ground);
 }
 

@@ -207,8 +207,8 @@ TEST(ScenePatch, PatchedSceneTakesTheValuesAndLeavesTheBase) {
                                              {"simulation.integrator", "rk4"}});
   EXPECT_EQ(patched.grid.nu, 8);
   EXPECT_EQ(patched.grid.nv, 12);
-  ASSERT_TRUE(patched.sim.time_step_s.has_value());
-  EXPECT_DOUBLE_EQ(*patched.sim.time_step_s, 5e-4);
+  ASSERT_EQ(patched.sim.time_step.kind, sim::TimeStep::Kind::fixed);
+  EXPECT_DOUBLE_EQ(patched.sim.time_step.fixed_s, 5e-4);
   EXPECT_EQ(patched.sim.integrator, sim::Integrator::rk4);
   EXPECT_EQ(patched.name, "default");
   EXPECT_EQ(patched.source, base.source);

@@ -128,7 +128,7 @@ inline Bent hang_strip(const Material& material, StripAlong along, double overha
                 std::max(material.bend_warp_Nm / std::pow(strip.cell_u_m, 4),
                          material.bend_weft_Nm / std::pow(strip.cell_v_m, 4)) /
                 material.density_kg_m2);
-  settings.time_step_s = 1.6 / omega_bend;
+  settings.time_step = fixed_time_step(1.6 / omega_bend);
   // About critical damping of the first cantilever mode.
   const double omega1 = first_mode_rad_s(material, along, overhang_m);
   settings.air_damping_1_s = 2.0 * omega1;

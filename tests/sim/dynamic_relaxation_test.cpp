@@ -138,7 +138,7 @@ TEST(DynamicRelaxation, FictitiousMassesAreStableWherePhysicalMassesDivergeAndPi
   settings.integrator = Integrator::central_difference;
   settings.air_damping_1_s = 0.0;
   const double critical = Simulator(mesh, material, pins, settings).critical_time_step();
-  settings.time_step_s = 20.0 * critical;
+  settings.time_step = fixed_time_step(20.0 * critical);
 
   Simulator physical(mesh, material, pins, settings);
   EXPECT_THROW(

@@ -35,7 +35,7 @@ ClothMesh hang_mesh(const Hang& h) {
 SimSettings hang_settings(const Hang& h) {
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
-  s.time_step_s = h.step_s;
+  s.time_step = fixed_time_step(h.step_s);
   s.air_damping_1_s = 1.0;
   s.projection.method = ProjectionMethod::fast_projection;
   s.projection.tolerance = h.tolerance;

@@ -111,7 +111,7 @@ TEST(ExplicitIntegrators, EveryIntegratorFallsFreelyInTheSimulatorAndKeepsItsPin
     SimSettings settings;
     settings.integrator = method;
     settings.air_damping_1_s = 0.0;
-    settings.time_step_s = h;
+    settings.time_step = fixed_time_step(h);
     Simulator sim(square(5), fabric(300.0), {}, settings);
     sim.advance(t);
     const Vec3 g = settings.gravity_m_s2;
@@ -128,7 +128,7 @@ TEST(ExplicitIntegrators, EveryIntegratorFallsFreelyInTheSimulatorAndKeepsItsPin
     const ClothMesh mesh = square(7, 0.3);
     const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
     settings.air_damping_1_s = 0.5;
-    settings.time_step_s.reset();  // automatic
+    settings.time_step = {};  // automatic
     Simulator hanging(mesh, fabric(300.0), pins, settings);
     hanging.advance(0.02);  // explicit Euler diverges soon after (its energy grows at any h)
     for (Index p : pins) {
@@ -362,7 +362,7 @@ TEST(ExplicitIntegrators, ClothBlowsUpJustAboveTheStepOfItsLargestEigenvalue) {
 
   const auto survives = [&](double factor) {
     SimSettings s = settings;
-    s.time_step_s = factor * exact_step;
+    s.time_step = fixed_time_step(factor * exact_step);
     Simulator sim(mesh, wool, pins, s);
     try {
       sim.advance(1.0);

@@ -99,7 +99,7 @@ TEST(RestingContact, CoarseBaraffWitkinSheetOnAPedestalRimGainsNoEnergy) {
   SimSettings settings;
   settings.model = ClothModel::baraff_witkin;
   settings.integrator = Integrator::implicit_euler;
-  settings.time_step_s = 1.0 / 120.0;
+  settings.time_step = fixed_time_step(1.0 / 120.0);
   settings.air_damping_1_s = 2.0;
   settings.collision_friction = 0.5;
   settings.resting_contacts = true;

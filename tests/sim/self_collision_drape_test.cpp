@@ -30,7 +30,7 @@ ZoneDrapeRun drop_drape_with_zones(Index n, int frames, int threads, bool impact
                                    double neighbourhood_edges = 0.0) {
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
-  s.time_step_s = 1.0 / 120.0;
+  s.time_step = fixed_time_step(1.0 / 120.0);
   s.air_damping_1_s = 2.0;
   s.projection.method = ProjectionMethod::fast_projection;
   s.projection.tolerance = 1e-3;

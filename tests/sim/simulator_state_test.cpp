@@ -39,7 +39,7 @@ std::vector<Case> cases() {
   add("velocity_verlet", [](SimSettings& s) { s.integrator = Integrator::velocity_verlet; });
   add("implicit_direct_fast_projection_reuse", [](SimSettings& s) {
     s.integrator = Integrator::implicit_euler;
-    s.time_step_s = 1.0 / 240.0;
+    s.time_step = fixed_time_step(1.0 / 240.0);
     s.projection.method = ProjectionMethod::fast_projection;
     s.projection.reuse_iterations = 8;
   });
@@ -50,7 +50,7 @@ std::vector<Case> cases() {
   add("self_collision", [](SimSettings& s) {
     s.integrator = Integrator::implicit_euler;
     s.implicit_solve = ImplicitSolve::conjugate_gradient;
-    s.time_step_s = 1.0 / 240.0;
+    s.time_step = fixed_time_step(1.0 / 240.0);
     s.self_collision.enabled = true;
     s.self_collision.thickness_m = 0.02;
   });

@@ -31,7 +31,7 @@ TEST(Simulator, FreeFallMatchesTheIntegratorsClosedFormAndConvergesAtFirstOrder)
   for (double h : {4e-3, 2e-3, 1e-3}) {
     SimSettings settings;
     settings.air_damping_1_s = 0.0;
-    settings.time_step_s = h;
+    settings.time_step = fixed_time_step(h);
     Simulator sim(square(9), fabric(500.0), {}, settings);
     sim.advance(t_end);
     const Vec3 g = settings.gravity_m_s2;
@@ -58,7 +58,7 @@ TEST(Simulator, FreeFallMatchesTheIntegratorsClosedFormAndConvergesAtFirstOrder)
 TEST(Simulator, AFrameSplitsIntoTheFewestStepsNoLongerThanTheStepTyped) {
   const auto substeps_of = [](double step_s) {
     SimSettings settings;
-    settings.time_step_s = step_s;
+    settings.time_step = fixed_time_step(step_s);
     return Simulator(square(5), fabric(500.0), {}, settings).substeps(1.0 / 24.0);
   };
   EXPECT_EQ(substeps_of(1.0 / 48.0), 2);
@@ -179,7 +179,7 @@ TEST(Simulator, AnExplodingRunStopsWithStepTimeAndQuantity) {
   const ClothMesh mesh = square(21);
   SimSettings settings;
   Simulator probe(mesh, fabric(1000.0), {}, settings);
-  settings.time_step_s = 3.0 * probe.critical_time_step();
+  settings.time_step = fixed_time_step(3.0 * probe.critical_time_step());
   Simulator sim(mesh, fabric(1000.0), resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh), settings);
   try {
     sim.advance(1.0);

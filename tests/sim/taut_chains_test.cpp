@@ -97,7 +97,7 @@ TEST(TautChains, NoChainThroughAnUnusedVertex) {
 SimSettings inextensible(double tolerance) {
   SimSettings s;
   s.integrator = Integrator::implicit_euler;
-  s.time_step_s = 1.0 / 120.0;
+  s.time_step = fixed_time_step(1.0 / 120.0);
   s.air_damping_1_s = 1.0;
   s.projection.method = ProjectionMethod::fast_projection;
   s.projection.tolerance = tolerance;
