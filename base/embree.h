@@ -1,6 +1,6 @@
 #pragma once
-// RAII owners of Embree 3's device and scene (STYLE.md rule 13), for sim's mesh obstacles and
-// render's ray tracer alike.
+// RAII owners of Embree 3's device and scene, for sim's mesh obstacles and render's ray tracer
+// alike.
 
 #include <embree3/rtcore.h>
 
