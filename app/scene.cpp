@@ -273,9 +273,10 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
                         "the mesh may grow before it is coarsened), got " +
                             std::to_string(m.coarsen));
   }
-  m.transfer = r.enumeration<sim::RemeshTransfer>(
+  m.transfer = r.enumeration<sim::remesh::PositionTransfer>(
       "transfer",
-      {{"quadratic", sim::RemeshTransfer::quadratic}, {"linear", sim::RemeshTransfer::linear}},
+      {{"quadratic", sim::remesh::PositionTransfer::quadratic},
+       {"linear", sim::remesh::PositionTransfer::linear}},
       m.transfer);
   m.relax_steps = r.integer("relax", m.relax_steps, Range::closed(0, 1000));
   if (m.h_max_m < m.h_min_m)
