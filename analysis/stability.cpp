@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "base/check.h"
 #include "sim/pins.h"
 
 namespace weft::sim {
@@ -159,13 +160,14 @@ CriticalStep predicted_critical_step(Integrator method, double omega_rad_s, doub
           "predicted_critical_step: dynamic_relaxation iterates in pseudo-time, not a "
           "physical-time integrator");
   }
-  throw std::logic_error("predicted_critical_step: unknown integrator");
+  WEFT_CHECK(false, "predicted_critical_step: unknown integrator");
+  return {};
 }
 
 StepperFactory stepper_factory(Integrator method, System system) {
-  if (!integrates_physical_time(method))
-    throw std::logic_error(std::string("stepper_factory: ") + integrator_name(method) +
-                           " does not integrate physical time");
+  WEFT_CHECK(integrates_physical_time(method), std::string("stepper_factory: ") +
+                                                   integrator_name(method) +
+                                                   " does not integrate physical time");
   (void)make_time_integrator(method, system);  // throws now on misuse, not in the first run
   auto shared = std::make_shared<const System>(std::move(system));
   return [method, shared]() -> StepFunction {

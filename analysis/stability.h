@@ -108,7 +108,7 @@ using StepFunction = std::function<bool(Matrix3X& x, Matrix3X& v, double h_s)>;
 using StepperFactory = std::function<StepFunction()>;
 
 // The integrator `method` on `system` (make_time_integrator; implicit Euler by a direct solve).
-// Throws std::logic_error for dynamic_relaxation, which does not integrate physical time.
+// dynamic_relaxation, which does not integrate physical time, is a bug (base::InternalError).
 StepperFactory stepper_factory(Integrator method, System system);
 
 struct BlowUpSettings {

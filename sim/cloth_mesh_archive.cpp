@@ -2,8 +2,9 @@
 
 #include "sim/cloth_mesh_archive.h"
 
-#include <stdexcept>
 #include <string>
+
+#include "base/check.h"
 
 namespace weft::sim {
 namespace {
@@ -14,9 +15,8 @@ using MaterialRows = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
 }  // namespace
 
 void save_cloth_mesh(StateWriter& out, const ClothMesh& mesh) {
-  if (mesh.has_grid())
-    throw std::logic_error("save_cloth_mesh: " + mesh.name() +
-                           " is a warp/weft grid, made anew from the scene");
+  WEFT_CHECK(!mesh.has_grid(),
+             "save_cloth_mesh: " + mesh.name() + " is a warp/weft grid, made anew from the scene");
   out.section("cloth mesh");
   MaterialRows material(static_cast<Eigen::Index>(mesh.material_coords.size()), 2);
   for (std::size_t k = 0; k < mesh.material_coords.size(); ++k)

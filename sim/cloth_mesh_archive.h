@@ -12,7 +12,7 @@
 
 namespace weft::sim {
 
-// Throws std::logic_error for a grid cloth (a grid is remade from the scene, never saved).
+// Saving a grid cloth is a bug (base::InternalError): a grid is remade from the scene, never saved.
 void save_cloth_mesh(StateWriter& out, const ClothMesh& mesh);
 // Reads what save_cloth_mesh wrote into `mesh` (its source is kept). Throws StateArchiveError
 // naming the section when the bytes are not a mesh: sizes that disagree, a triangle corner out

@@ -101,9 +101,7 @@ RemeshedCloth remesh_cloth(const ClothMesh& mesh, const Matrix3X& x, const Matri
   in.pins = keep;
   remesh::RemeshParams params;
   params.size = remesh_size_params(settings);
-  params.positions = settings.transfer == RemeshTransfer::quadratic
-                         ? remesh::PositionTransfer::quadratic
-                         : remesh::PositionTransfer::linear;
+  params.positions = settings.transfer;
   params.mesher.max_vertices = static_cast<Index>(settings.max_vertices);
   const remesh::RemeshOutput out = remesh::remesh(in, params);
 

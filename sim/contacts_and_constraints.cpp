@@ -4,24 +4,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/enum_names.h"
 #include "sim/constraints/inextensibility.h"
 
 namespace weft::sim {
-namespace {
-
-const char* projection_name(ProjectionMethod method) {
-  switch (method) {
-    case ProjectionMethod::none:
-      return "none";
-    case ProjectionMethod::fast_projection:
-      return "fast_projection";
-    case ProjectionMethod::pairwise:
-      return "pairwise";
-  }
-  return "?";
-}
-
-}  // namespace
 
 ContactsAndConstraints::ContactsAndConstraints(const ClothMesh& mesh,
                                                const Eigen::VectorXd& inv_mass,
@@ -194,7 +180,8 @@ std::string ContactsAndConstraints::explain_project() const {
   std::ostringstream line;
   if (!m_projector) return "project: off (no constraints)";
   const ProjectionSettings& p = m_settings.projection;
-  line << "project: " << projection_name(p.method) << " on " << m_projector->constraints().size()
+  line << "project: " << base::enum_name(projection_method_names, p.method) << " on "
+       << m_projector->constraints().size()
        << (p.edges == ConstrainedEdges::warp_weft ? " warp/weft" : " triangle") << " edges, ";
   if (p.method == ProjectionMethod::fast_projection)
     line << "tolerance " << p.tolerance << ", at most " << p.max_iterations << " iterations";

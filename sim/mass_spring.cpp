@@ -3,10 +3,10 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "base/check.h"
 #include "sim/collision/self_intersection.h"  // unique_edges
 #include "sim/continuum/hinge_bending.h"
 #include "sim/energies/bend_angle.h"
@@ -220,7 +220,7 @@ void AngularBendingTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
 
 void AngularBendingTerm::element_stiffness(const Matrix3X&, std::size_t, ElementMatrix&,
                                            bool) const {
-  throw std::logic_error("AngularBendingTerm: no stiffness (has_stiffness() is false)");
+  WEFT_CHECK(false, "AngularBendingTerm: no stiffness (has_stiffness() is false)");
 }
 
 void AngularBendingTerm::add_stiffness_row_bound(Eigen::VectorXd& bound) const {

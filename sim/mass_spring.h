@@ -70,7 +70,7 @@ class AngularBendingTerm final : public ForceTerm {
   double energy(const Matrix3X& x) const override;
   void add_forces(const Matrix3X& x, Matrix3X& f) const override;
   bool has_stiffness() const override { return false; }
-  // Throws std::logic_error: the term has no stiffness.
+  // A call is a bug (base::InternalError): the term has no stiffness.
   void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
                          bool project_psd) const override;
   // Near flat, θ ≈ (δ0 − 2δ1 + δ2)/l across the line: Hessian (k/l²)·[1 −2 1]ᵀ[1 −2 1], whose

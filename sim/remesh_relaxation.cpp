@@ -1,7 +1,8 @@
 #include "sim/remesh_relaxation.h"
 
-#include <stdexcept>
+#include <string>
 
+#include "base/check.h"
 #include "sim/integrators/implicit_euler.h"
 #include "sim/state.h"
 
@@ -29,10 +30,10 @@ RelaxationReport relax_vertices(const System& system, const std::vector<char>& f
                                 Matrix3X& x, int iterations, double h_s,
                                 const ImplicitSolveSettings& solve,
                                 const std::function<void(Matrix3X&)>& constrain) {
-  if (static_cast<Index>(free.size()) != system.vertex_count() || x.rows() != system.vertex_count())
-    throw std::logic_error("relax_vertices: " + std::to_string(free.size()) + " flags and " +
-                           std::to_string(x.rows()) + " positions for " +
-                           std::to_string(system.vertex_count()) + " vertices");
+  WEFT_CHECK(
+      static_cast<Index>(free.size()) == system.vertex_count() && x.rows() == system.vertex_count(),
+      "relax_vertices: " + std::to_string(free.size()) + " flags and " + std::to_string(x.rows()) +
+          " positions for " + std::to_string(system.vertex_count()) + " vertices");
   RelaxationReport report;
   report.energy_before_J = report.energy_after_J = system.energy(x);
   if (iterations <= 0) return report;

@@ -16,6 +16,7 @@
 #include "sim/integrators/integrator.h"
 #include "sim/integrators/time_integrator.h"
 #include "sim/linear/sparse_spd_solver.h"
+#include "sim/remesh/transfer.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -50,11 +51,6 @@ inline TimeStep adaptive_time_step(const AdaptiveStepSettings& settings = {}) {
 // after every every_steps-th step, or, with an indicator threshold, only at those checks where
 // seed 002's criterion max |κ| h² (eq. 28, §5.2 d) exceeds indicator × c. Off unless enabled;
 // a triangle-mesh cloth only (Simulator checks).
-enum class RemeshTransfer {
-  linear,     // barycentric interpolation: new vertices on the old mesh's flat facets
-  quadratic,  // plus the fitted curvature patches' second-order term: on the curved surface
-};
-
 struct RemeshSettings {
   bool enabled = false;
   long every_steps = 100;  // steps between two remeshes, or between two indicator checks
@@ -68,7 +64,8 @@ struct RemeshSettings {
   // curvature asks for, relative to just after the last remesh (the cloth flattened under a
   // fine mesh; remesh::refinement_excess); 0: the indicator only refines.
   double coarsen = 0.0;
-  RemeshTransfer transfer = RemeshTransfer::quadratic;  // of positions; velocities are linear
+  // Of positions (sim/remesh/transfer.h); velocities are linear.
+  remesh::PositionTransfer transfer = remesh::PositionTransfer::quadratic;
   // Steps relaxing the new vertices after the transfer (the cloth model's elastic energy alone;
   // the kept vertices and those resting on an obstacle held, after the obstacles' push-out:
   // sim/remesh_relaxation.h, Simulator::relax_new_vertices); 0: none (the transfer as it is).

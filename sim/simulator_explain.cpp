@@ -31,7 +31,7 @@ std::vector<std::string> Simulator::explain() const {
     remesh << ", h = clamp(sqrt(c / |curvature|), " << 1e3 * r.h_min_m << " mm, "
            << 1e3 * r.h_max_m << " mm), c = " << 1e3 * r.c_m
            << " mm (CGAL Delaunay refinement, boundary and pins kept; positions transferred "
-           << (r.transfer == RemeshTransfer::quadratic ? "quadratically" : "linearly")
+           << (r.transfer == remesh::PositionTransfer::quadratic ? "quadratically" : "linearly")
            << "); now "
            << m_mesh.vertex_count() << " vertices, " << m_mesh.faces.size() << " triangles";
     lines.push_back(remesh.str());

@@ -1,7 +1,8 @@
 #include "sim/system.h"
 
-#include <stdexcept>
 #include <string>
+
+#include "base/check.h"
 
 namespace weft::sim {
 
@@ -41,13 +42,12 @@ Eigen::VectorXd System::stiffness_row_bound() const {
 }
 
 void System::check() const {
-  // Misuse is a programming bug (STYLE 8): std::logic_error, in release too.
-  if (mass_kg.size() != inv_mass.size()) {
-    throw std::logic_error("System: " + std::to_string(mass_kg.size()) + " masses but " +
-                           std::to_string(inv_mass.size()) + " inverse masses");
-  }
-  if (!(damping_1_s >= 0.0))
-    throw std::logic_error("System: negative damping " + std::to_string(damping_1_s) + " 1/s");
+  // Misuse is a bug in the caller, checked in release builds too.
+  WEFT_CHECK(mass_kg.size() == inv_mass.size(),
+             "System: " + std::to_string(mass_kg.size()) + " masses but " +
+                 std::to_string(inv_mass.size()) + " inverse masses");
+  WEFT_CHECK(damping_1_s >= 0.0,
+             "System: negative damping " + std::to_string(damping_1_s) + " 1/s");
 }
 
 }  // namespace weft::sim

@@ -49,7 +49,7 @@ struct System {
   // #V upper bounds on the block rows of the rest stiffness at the terms' current state, N/m
   // (ForceTerm::add_stiffness_row_bound): ω_max² ≤ max_i bound_i / m_i (Gershgorin).
   Eigen::VectorXd stiffness_row_bound() const;
-  // Throws std::logic_error for mismatched sizes or a negative damping (programming bugs).
+  // Mismatched sizes or a negative damping are bugs: WEFT_CHECK (base::InternalError).
   void check() const;
 };
 

@@ -142,12 +142,8 @@ sim::Obstacle read_obstacle(ObjectReader r, sim::ObstacleMotion& motion,
 // (sim::ProjectionSettings). A key the chosen method does not use is an error, not ignored.
 sim::ProjectionSettings read_constraints(ObjectReader r) {
   using sim::ProjectionMethod;
-  const std::vector<std::pair<std::string, ProjectionMethod>> methods{
-      {"none", ProjectionMethod::none},
-      {"fast_projection", ProjectionMethod::fast_projection},
-      {"pairwise", ProjectionMethod::pairwise}};
   sim::ProjectionSettings p;
-  p.method = r.enumeration<ProjectionMethod>("method", methods, p.method);
+  p.method = r.enumeration("method", sim::projection_method_names, {p.method});
   p.edges = r.enumeration<sim::ConstrainedEdges>(
       "edges",
       {{"warp_weft", sim::ConstrainedEdges::warp_weft},
@@ -161,9 +157,7 @@ sim::ProjectionSettings read_constraints(ObjectReader r) {
       r.integer("reuse_iterations", p.reuse_iterations, Range::closed(0, 1000)));
   r.finish();  // unknown keys first: a misspelt "method" gets its "did you mean"
 
-  std::string method_name;
-  for (const auto& m : methods)
-    if (m.second == p.method) method_name = m.first;
+  const std::string method_name = base::enum_name(sim::projection_method_names, p.method);
   const auto used_only_by = [&](const std::string& key, const std::string& users) {
     if (r.has(key)) {
       r.fail(key, "expected only with method " + users +
@@ -279,9 +273,10 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
                         "the mesh may grow before it is coarsened), got " +
                             std::to_string(m.coarsen));
   }
-  m.transfer = r.enumeration<sim::RemeshTransfer>(
+  m.transfer = r.enumeration<sim::remesh::PositionTransfer>(
       "transfer",
-      {{"quadratic", sim::RemeshTransfer::quadratic}, {"linear", sim::RemeshTransfer::linear}},
+      {{"quadratic", sim::remesh::PositionTransfer::quadratic},
+       {"linear", sim::remesh::PositionTransfer::linear}},
       m.transfer);
   m.relax_steps = r.integer("relax", m.relax_steps, Range::closed(0, 1000));
   if (m.h_max_m < m.h_min_m)

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "sim/grid.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/state_archive.h"
@@ -40,6 +41,12 @@ void require_held_kept(const Eigen::VectorXd& made, const Eigen::VectorXd& now);
 double mean_edge_strain(const std::vector<EdgeConstraint>& constraints, const Matrix3X& x);
 
 enum class ProjectionMethod { none, fast_projection, pairwise };
+
+// The scene-file names (simulation.constraints.method), also used by the step explanations.
+inline constexpr base::EnumNames<ProjectionMethod, 3> projection_method_names{
+    {{ProjectionMethod::none, "none"},
+     {ProjectionMethod::fast_projection, "fast_projection"},
+     {ProjectionMethod::pairwise, "pairwise"}}};
 
 struct ProjectionSettings {
   ProjectionMethod method = ProjectionMethod::none;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "base/check.h"
 #include "base/constants.h"
 
 namespace weft::sim {
@@ -165,7 +166,7 @@ TensionFieldResult solve_tension_field(const TensionFieldInputs& in) {
     ++r.evaluations;
     const std::optional<Trial> t = trial(in, a0, r.ratio, n);
     // n ≤ n_max always has a solution; a failure here is a bug, not bad input.
-    if (!t) throw std::logic_error("solve_tension_field: eq. (9) unsolvable for n <= n_max");
+    WEFT_CHECK(t.has_value(), "solve_tension_field: eq. (9) unsolvable for n <= n_max");
     return *t;
   };
   int lo = 1, hi = n_max;  // invariant: L′(n) > L for n < lo; L′(hi) ≤ L, or hi = n_max

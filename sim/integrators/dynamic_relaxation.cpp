@@ -1,31 +1,30 @@
 #include "sim/integrators/dynamic_relaxation.h"
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "base/check.h"
 
 namespace weft::sim {
 
 Eigen::VectorXd fictitious_masses_kg(const Eigen::VectorXd& row_bound_N_m,
                                      const Eigen::VectorXd& mass_kg, double h_s,
                                      double mass_safety) {
-  // Misuse is a programming bug (STYLE 8): std::logic_error, in release too.
-  if (row_bound_N_m.size() != mass_kg.size()) {
-    throw std::logic_error("fictitious_masses_kg: " + std::to_string(row_bound_N_m.size()) +
-                           " row bounds but " + std::to_string(mass_kg.size()) + " masses");
-  }
-  if (!(h_s > 0.0) || !std::isfinite(h_s))
-    throw std::logic_error("fictitious_masses_kg: step " + std::to_string(h_s) + " s");
-  if (!(mass_safety >= 1.0))
-    throw std::logic_error("fictitious_masses_kg: mass safety " + std::to_string(mass_safety) +
-                           ", expected >= 1");
+  // Misuse is a bug in the caller, checked in release builds too.
+  WEFT_CHECK(row_bound_N_m.size() == mass_kg.size(),
+             "fictitious_masses_kg: " + std::to_string(row_bound_N_m.size()) + " row bounds but " +
+                 std::to_string(mass_kg.size()) + " masses");
+  WEFT_CHECK(h_s > 0.0 && std::isfinite(h_s),
+             "fictitious_masses_kg: step " + std::to_string(h_s) + " s");
+  WEFT_CHECK(mass_safety >= 1.0, "fictitious_masses_kg: mass safety " +
+                                     std::to_string(mass_safety) + ", expected >= 1");
   Eigen::VectorXd m(mass_kg.size());
   const double scale = mass_safety * 0.25 * h_s * h_s;  // s h²/4, s²
   for (Eigen::Index i = 0; i < m.size(); ++i) {
-    if (!(row_bound_N_m[i] >= 0.0))
-      throw std::logic_error("fictitious_masses_kg: row bound " + std::to_string(row_bound_N_m[i]) +
-                             " N/m at vertex " + std::to_string(i));
+    WEFT_CHECK(row_bound_N_m[i] >= 0.0, "fictitious_masses_kg: row bound " +
+                                            std::to_string(row_bound_N_m[i]) + " N/m at vertex " +
+                                            std::to_string(i));
     m[i] = row_bound_N_m[i] > 0.0 ? scale * row_bound_N_m[i] : mass_kg[i];
   }
   return m;
@@ -63,15 +62,12 @@ StepReport DynamicRelaxation::step(const System& system, State& state, double h_
   Matrix3X& x = state.x;
   Matrix3X& v = state.v;
   const Index n = system.vertex_count();
-  if (x.rows() != n || v.rows() != n || m_fictitious_mass_kg.size() != n) {
-    throw std::logic_error("DynamicRelaxation::step: " + std::to_string(x.rows()) +
-                           " positions and " + std::to_string(v.rows()) + " velocities for " +
-                           std::to_string(n) + " vertices");
-  }
-  if (!(h_s > 0.0) || h_s > m_h_max_s * (1.0 + 1e-12)) {
-    throw std::logic_error("DynamicRelaxation::step: step " + std::to_string(h_s) +
-                           " s, expected in (0, " + std::to_string(m_h_max_s) + "]");
-  }
+  WEFT_CHECK(x.rows() == n && v.rows() == n && m_fictitious_mass_kg.size() == n,
+             "DynamicRelaxation::step: " + std::to_string(x.rows()) + " positions and " +
+                 std::to_string(v.rows()) + " velocities for " + std::to_string(n) + " vertices");
+  WEFT_CHECK(h_s > 0.0 && !(h_s > m_h_max_s * (1.0 + 1e-12)),
+             "DynamicRelaxation::step: step " + std::to_string(h_s) + " s, expected in (0, " +
+                 std::to_string(m_h_max_s) + "]");
   const Eigen::VectorXd& m = m_fictitious_mass_kg;
   const Eigen::VectorXd& inv_mass = system.inv_mass;
 

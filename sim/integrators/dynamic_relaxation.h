@@ -50,8 +50,8 @@
 namespace weft::sim {
 
 // m̃_i = mass_safety · (h_s² / 4) · row_bound_i, kg, for #V row bounds (N/m). A vertex with a
-// zero bound (no stiffness: nothing limits its step) keeps its physical mass. Throws
-// std::logic_error on mismatched sizes, h_s ≤ 0, mass_safety < 1 or a negative bound.
+// zero bound (no stiffness: nothing limits its step) keeps its physical mass. Mismatched sizes,
+// h_s ≤ 0, mass_safety < 1 or a negative bound are bugs (base::InternalError).
 Eigen::VectorXd fictitious_masses_kg(const Eigen::VectorXd& row_bound_N_m,
                                      const Eigen::VectorXd& mass_kg, double h_s,
                                      double mass_safety);
@@ -82,8 +82,8 @@ class DynamicRelaxation final : public TimeIntegrator {
  public:
   // `system` gives the forces, the physical masses (the load M g), the pins (inv_mass 0),
   // gravity and the stiffness row bounds (System::stiffness_row_bound at construction); the
-  // fictitious masses are made stable for every step up to h_max_s. Throws std::logic_error on
-  // misuse.
+  // fictitious masses are made stable for every step up to h_max_s. Misuse is a bug
+  // (base::InternalError).
   DynamicRelaxation(const System& system, double h_max_s, RelaxationSettings settings = {});
 
   // One iteration on positions state.x (m) and half-step velocities state.v (m per

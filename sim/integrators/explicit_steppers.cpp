@@ -1,16 +1,17 @@
 #include "sim/integrators/explicit_steppers.h"
 
-#include <stdexcept>
 #include <string>
+
+#include "base/check.h"
 
 namespace weft::sim {
 
 ExplicitStepper::ExplicitStepper(Integrator method, const System& system) : m_method(method) {
-  // Misuse is a programming bug (STYLE 8): std::logic_error, in release too.
-  if (method == Integrator::implicit_euler)
-    throw std::logic_error("ExplicitStepper: implicit_euler is not explicit (ImplicitEuler)");
-  if (method == Integrator::dynamic_relaxation)
-    throw std::logic_error("ExplicitStepper: dynamic_relaxation has its own stepper");
+  // Misuse is a bug in the caller, checked in release builds too.
+  WEFT_CHECK(method != Integrator::implicit_euler,
+             "ExplicitStepper: implicit_euler is not explicit (ImplicitEuler)");
+  WEFT_CHECK(method != Integrator::dynamic_relaxation,
+             "ExplicitStepper: dynamic_relaxation has its own stepper");
   system.check();
 }
 
@@ -44,13 +45,10 @@ StepReport ExplicitStepper::step(const System& system, State& state, double h_s)
   Matrix3X& x = state.x;
   Matrix3X& v = state.v;
   const Index n = system.vertex_count();
-  if (x.rows() != n || v.rows() != n || system.inv_mass.size() != n) {
-    throw std::logic_error("ExplicitStepper::step: " + std::to_string(x.rows()) +
-                           " positions and " + std::to_string(v.rows()) + " velocities for " +
-                           std::to_string(n) + " vertices");
-  }
-  if (!(h_s > 0.0))
-    throw std::logic_error("ExplicitStepper::step: time step " + std::to_string(h_s) + " s");
+  WEFT_CHECK(x.rows() == n && v.rows() == n && system.inv_mass.size() == n,
+             "ExplicitStepper::step: " + std::to_string(x.rows()) + " positions and " +
+                 std::to_string(v.rows()) + " velocities for " + std::to_string(n) + " vertices");
+  WEFT_CHECK(h_s > 0.0, "ExplicitStepper::step: time step " + std::to_string(h_s) + " s");
   const double alpha = system.damping_1_s;
   const double t = state.time_s;
   switch (m_method) {
@@ -79,7 +77,8 @@ StepReport ExplicitStepper::step(const System& system, State& state, double h_s)
       break;
     case Integrator::implicit_euler:
     case Integrator::dynamic_relaxation:
-      throw std::logic_error(std::string("ExplicitStepper: ") + integrator_name(m_method));
+      WEFT_CHECK(false, std::string("ExplicitStepper: ") + integrator_name(m_method));
+      break;
   }
   return {};
 }

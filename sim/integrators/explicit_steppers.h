@@ -39,7 +39,7 @@ namespace weft::sim {
 
 class ExplicitStepper final : public TimeIntegrator {
  public:
-  // Throws std::logic_error for implicit_euler or dynamic_relaxation, or an inconsistent system.
+  // implicit_euler, dynamic_relaxation or an inconsistent system is a bug (base::InternalError).
   ExplicitStepper(Integrator method, const System& system);
 
   // Central difference: state.v is the half-step velocity (see above).

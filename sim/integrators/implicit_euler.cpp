@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "base/check.h"
 #include "base/timer.h"
 #include "sim/linear/block_conjugate_gradient.h"
 
@@ -39,7 +39,7 @@ struct ImplicitEuler::Impl {
   Impl(const System& system, const ImplicitSolveSettings& solve);
   // The terms of `system` into pair_terms and element_terms, checking their vertices.
   void sort_terms(const System& system);
-  // Throws std::logic_error unless `system` has the structure this was built for.
+  // WEFT_CHECKs that `system` has the structure this was built for.
   void check_structure(const System& system, const Matrix3X& x, const Matrix3X& v) const;
   // Δv = A⁻¹ rhs into dv; false when the solve failed.
   bool solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv, StepReport& result);
@@ -114,7 +114,7 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
   }
 }
 
-// Size and index mismatches are programming bugs (STYLE 8): std::logic_error, in release too.
+// Size and index mismatches are bugs in the caller, checked in release builds too.
 void ImplicitEuler::Impl::sort_terms(const System& system) {
   const Index n = system.vertex_count();
   Index stencil[kMaxStencil];
@@ -124,14 +124,12 @@ void ImplicitEuler::Impl::sort_terms(const System& system) {
       term->stencil(e, stencil);
       const int size = term->stencil_size(e);
       for (int k = 0; k < size; ++k)
-        if (stencil[k] < 0 || stencil[k] >= n)
-          throw std::logic_error("ImplicitEuler: " + term->describe() + ": element " +
-                                 std::to_string(e) + " names vertex " + std::to_string(stencil[k]) +
-                                 " of " + std::to_string(n));
-      if (size == 2 && stencil[0] == stencil[1])
-        throw std::logic_error("ImplicitEuler: " + term->describe() + ": element " +
-                               std::to_string(e) + " joins vertex " + std::to_string(stencil[0]) +
-                               " to itself");
+        WEFT_CHECK(stencil[k] >= 0 && stencil[k] < n,
+                   "ImplicitEuler: " + term->describe() + ": element " + std::to_string(e) +
+                       " names vertex " + std::to_string(stencil[k]) + " of " + std::to_string(n));
+      WEFT_CHECK(!(size == 2 && stencil[0] == stencil[1]),
+                 "ImplicitEuler: " + term->describe() + ": element " + std::to_string(e) +
+                     " joins vertex " + std::to_string(stencil[0]) + " to itself");
     }
     if (const auto* pairs = dynamic_cast<const PairForceTerm*>(term.get())) {
       pair_terms.push_back(pairs);
@@ -144,15 +142,14 @@ void ImplicitEuler::Impl::sort_terms(const System& system) {
 void ImplicitEuler::Impl::check_structure(const System& system, const Matrix3X& x,
                                           const Matrix3X& v) const {
   const Index n = static_cast<Index>(pinned.size());
-  if (x.rows() != n || v.rows() != n || system.vertex_count() != n)
-    throw std::logic_error("ImplicitEuler::step: positions or velocities have " +
-                           std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
-                           std::to_string(n));
+  WEFT_CHECK(x.rows() == n && v.rows() == n && system.vertex_count() == n,
+             "ImplicitEuler::step: positions or velocities have " +
+                 std::to_string(std::min(x.rows(), v.rows())) + " rows, expected " +
+                 std::to_string(n));
   bool same = system.terms.size() == element_counts.size();
   for (std::size_t t = 0; same && t < element_counts.size(); ++t)
     same = system.terms[t]->element_count() == element_counts[t];
-  if (!same)
-    throw std::logic_error("ImplicitEuler::step: the system's terms are not those it was made for");
+  WEFT_CHECK(same, "ImplicitEuler::step: the system's terms are not those it was made for");
 }
 
 bool ImplicitEuler::Impl::solve_system(const Eigen::VectorXd& rhs, Eigen::VectorXd& dv,
@@ -279,9 +276,8 @@ double& ImplicitEuler::Impl::lower_entry(int row, int col) {
   const int* begin = inner + A.outerIndexPtr()[col];
   const int* end = inner + A.outerIndexPtr()[col + 1];
   const int* it = std::lower_bound(begin, end, row);
-  if (it == end || *it != row)
-    throw std::logic_error("ImplicitEuler: entry (" + std::to_string(row) + ", " +
-                           std::to_string(col) + ") is not in the pattern");
+  WEFT_CHECK(it != end && *it == row, "ImplicitEuler: entry (" + std::to_string(row) + ", " +
+                                          std::to_string(col) + ") is not in the pattern");
   return A.valuePtr()[it - inner];
 }
 
@@ -297,9 +293,9 @@ int ImplicitEuler::Impl::hold_contacts(const System& system, const Matrix3X& v, 
   int held = 0;
   for (const ObstacleContact& c : system.contacts) {
     const Index i = c.vertex;
-    if (i < 0 || i >= static_cast<Index>(pinned.size()))
-      throw std::logic_error("ImplicitEuler: contact vertex " + std::to_string(i) + " of " +
-                             std::to_string(pinned.size()));
+    WEFT_CHECK(i >= 0 && i < static_cast<Index>(pinned.size()), "ImplicitEuler: contact vertex " +
+                                                                    std::to_string(i) + " of " +
+                                                                    std::to_string(pinned.size()));
     if (pinned[static_cast<std::size_t>(i)]) continue;
     const Vec3& n = c.normal;
     // Free flight over the step: v + h (f/m + g − α v), along n.

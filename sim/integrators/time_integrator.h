@@ -30,8 +30,8 @@ class TimeIntegrator {
   virtual Integrator method() const = 0;
   // Advances state.x (m) and state.v (m/s), #V×3, by h_s > 0 seconds; state.time_s is the
   // step's start time (velocity-dependent forces are taken there) and is left to the caller.
-  // Pinned vertices (inv_mass 0) keep their velocity and move by h v. Throws std::logic_error
-  // on mismatched sizes.
+  // Pinned vertices (inv_mass 0) keep their velocity and move by h v. Mismatched sizes are a
+  // bug (base::InternalError).
   virtual StepReport step(const System& system, State& state, double h_s) = 0;
   // The same on positions and velocities held apart, at time time_s.
   StepReport step(const System& system, Matrix3X& x, Matrix3X& v, double h_s,
@@ -66,7 +66,7 @@ struct IntegratorSettings {
 };
 
 // The integrator `method` for `system` (whose masses, pins and terms fix its structure: step
-// it with that system). Throws std::logic_error on misuse.
+// it with that system). Misuse is a bug (base::InternalError).
 std::unique_ptr<TimeIntegrator> make_time_integrator(Integrator method, const System& system,
                                                      const IntegratorSettings& settings = {});
 

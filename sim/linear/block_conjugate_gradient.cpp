@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
+
+#include "base/check.h"
 
 namespace weft::sim {
 namespace {
@@ -19,10 +20,10 @@ BlockConjugateGradient::BlockConjugateGradient(int threads)
 BlockConjugateGradient::~BlockConjugateGradient() = default;
 
 void BlockConjugateGradient::analyze(const SparseMatrix& lower) {
-  if (lower.rows() != lower.cols() || lower.rows() % 3 != 0 || !lower.isCompressed())
-    throw std::logic_error("BlockConjugateGradient::analyze: expected a compressed square matrix "
-                           "of 3k rows, got " + std::to_string(lower.rows()) + "x" +
-                           std::to_string(lower.cols()));
+  WEFT_CHECK(
+      lower.rows() == lower.cols() && lower.rows() % 3 == 0 && lower.isCompressed(),
+      "BlockConjugateGradient::analyze: expected a compressed square matrix of 3k rows, got " +
+          std::to_string(lower.rows()) + "x" + std::to_string(lower.cols()));
   const int blocks = static_cast<int>(lower.rows() / 3);
   // The 3×3 blocks with an entry, in either triangle, and every diagonal block.
   std::vector<std::vector<int>> columns(static_cast<std::size_t>(blocks));
@@ -64,9 +65,9 @@ void BlockConjugateGradient::analyze(const SparseMatrix& lower) {
 }
 
 void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
-  if (lower.nonZeros() != static_cast<Eigen::Index>(m_to_block.size()) ||
-      lower.rows() != 3 * static_cast<Eigen::Index>(m_diagonal_block.size()))
-    throw std::logic_error("BlockConjugateGradient::set_matrix: not the analysed pattern");
+  WEFT_CHECK(lower.nonZeros() == static_cast<Eigen::Index>(m_to_block.size()) &&
+                 lower.rows() == 3 * static_cast<Eigen::Index>(m_diagonal_block.size()),
+             "BlockConjugateGradient::set_matrix: not the analysed pattern");
   std::fill(m_blocks.begin(), m_blocks.end(), 0.0);
   const double* values = lower.valuePtr();
   for (std::size_t k = 0; k < m_to_block.size(); ++k) {
@@ -109,10 +110,9 @@ void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::Vecto
 BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::VectorXd& b,
                                                              Eigen::VectorXd& x, double tolerance,
                                                              int max_iterations) const {
-  if (b.size() != 3 * static_cast<Eigen::Index>(m_diagonal_block.size()))
-    throw std::logic_error("BlockConjugateGradient::solve: right-hand side has " +
-                           std::to_string(b.size()) + " rows, expected " +
-                           std::to_string(3 * m_diagonal_block.size()));
+  WEFT_CHECK(b.size() == 3 * static_cast<Eigen::Index>(m_diagonal_block.size()),
+             "BlockConjugateGradient::solve: right-hand side has " + std::to_string(b.size()) +
+                 " rows, expected " + std::to_string(3 * m_diagonal_block.size()));
   Result result;
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
   const double b_norm2 = b.squaredNorm();

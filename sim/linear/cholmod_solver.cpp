@@ -1,6 +1,6 @@
 // The cholmod back-end of SparseSpdSolver: SuiteSparse CHOLMOD through its C API (int indices,
 // real double), with cholmod_common wrapped in an RAII owner whose error hook records CHOLMOD's
-// messages instead of printing them (STYLE 13). Compiled only when weft is built with CHOLMOD;
+// messages instead of printing them. Compiled only when weft is built with CHOLMOD;
 // cholmod_unavailable.cpp stands in otherwise.
 
 #include "sim/linear/cholmod_solver.h"
@@ -13,13 +13,12 @@
 #include <string>
 #include <utility>
 
+#include "base/check.h"
 #include "sim/linear/sparsity_pattern.h"
 
 namespace weft::sim {
 
 namespace {
-
-using linear_detail::require;
 
 constexpr const char* k_name = "cholmod";
 
@@ -148,7 +147,8 @@ int cholmod_ordering_code(CholmodOrdering ordering) {
     case CholmodOrdering::automatic:
       break;
   }
-  throw std::logic_error("cholmod_ordering_code: no single code for this CholmodOrdering");
+  WEFT_CHECK(false, "cholmod_ordering_code: no single code for this CholmodOrdering");
+  return CHOLMOD_AMD;  // not reached
 }
 
 class CholmodSolver final : public SparseSpdSolver {

@@ -7,14 +7,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/check.h"
 #include "sim/linear/cholmod_solver.h"
 #include "sim/linear/sparsity_pattern.h"
 
 namespace weft::sim {
 
 namespace {
-
-using linear_detail::require;
 
 // L D Lᵀ of P A Pᵀ with P from AMD, column by column; only A's lower triangle is read.
 class EigenLdltSolver final : public SparseSpdSolver {
@@ -142,7 +141,8 @@ const char* cholmod_ordering_name(CholmodOrdering ordering) {
     case CholmodOrdering::automatic:
       return "automatic";
   }
-  throw std::logic_error("cholmod_ordering_name: invalid CholmodOrdering value");
+  WEFT_CHECK(false, "cholmod_ordering_name: invalid CholmodOrdering value");
+  return "";
 }
 
 const char* cholmod_factorization_name(CholmodFactorization factorization) {
@@ -152,7 +152,8 @@ const char* cholmod_factorization_name(CholmodFactorization factorization) {
     case CholmodFactorization::simplicial:
       return "simplicial";
   }
-  throw std::logic_error("cholmod_factorization_name: invalid CholmodFactorization value");
+  WEFT_CHECK(false, "cholmod_factorization_name: invalid CholmodFactorization value");
+  return "";
 }
 
 std::vector<CholmodSettings> all_cholmod_settings() {

@@ -1,6 +1,6 @@
 #pragma once
 // Sparse symmetric positive (semi-)definite solves with the sparsity pattern analysed once and
-// only the numeric factorization repeated (STYLE 6). Back-ends chosen by name.
+// only the numeric factorization repeated. Back-ends chosen by name.
 
 #include <Eigen/SparseCore>
 #include <memory>
@@ -30,8 +30,8 @@ std::vector<SparseBackend> available_sparse_backends();
 SparseBackend default_sparse_backend();
 
 // Misuse — factorize() before analyze(), a pattern other than the analysed one, solve() without
-// a successful factorize(), a right-hand side of the wrong size — throws std::logic_error. One
-// object must not be used from two threads at once (solve() reuses workspace).
+// a successful factorize(), a right-hand side of the wrong size — is a bug (base::InternalError).
+// One object must not be used from two threads at once (solve() reuses workspace).
 class SparseSpdSolver {
  public:
   virtual ~SparseSpdSolver() = default;

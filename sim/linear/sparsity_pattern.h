@@ -1,22 +1,23 @@
 #pragma once
 // Internal to sim/linear: the bookkeeping every SparseSpdSolver back-end shares — the analysed
 // sparsity pattern (so that factorizing a different pattern is caught as the programming bug it
-// is, instead of reading past the symbolic factor) and the input checks.
+// is, instead of reading past the symbolic factor) and the input checks (WEFT_CHECK: misuse is a
+// bug, base::InternalError, checked in release builds too).
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "base/check.h"
 #include "sim/linear/sparse_spd_solver.h"
 
 namespace weft::sim::linear_detail {
 
-// Programming-bug check kept in release builds (STYLE 8): throws std::logic_error.
-inline void require(bool condition, const char* backend, const std::string& what) {
-  if (!condition) throw std::logic_error(std::string("SparseSpdSolver (") + backend + "): " + what);
+// "SparseSpdSolver (cholmod): what": the message of a failed check.
+inline std::string misuse_message(const char* backend, const std::string& what) {
+  return std::string("SparseSpdSolver (") + backend + "): " + what;
 }
 
 // A copy of a compressed matrix's structure: n, column starts and row indices.
@@ -46,19 +47,23 @@ class SparsityPattern {
 
 // The checks analyze() makes: square and compressed.
 inline void require_analyzable(const SparseMatrix& A, const char* backend) {
-  require(A.rows() == A.cols(), backend,
-          "analyze: the matrix must be square, got " + std::to_string(A.rows()) + "x" +
-              std::to_string(A.cols()));
-  require(A.isCompressed(), backend, "analyze: the matrix must be compressed (makeCompressed())");
+  WEFT_CHECK(
+      A.rows() == A.cols(),
+      misuse_message(backend, "analyze: the matrix must be square, got " +
+                                  std::to_string(A.rows()) + "x" + std::to_string(A.cols())));
+  WEFT_CHECK(A.isCompressed(),
+             misuse_message(backend, "analyze: the matrix must be compressed (makeCompressed())"));
 }
 
 // The checks factorize() makes: analysed, and the same pattern.
 inline void require_analysed_pattern(const SparsityPattern& pattern, const SparseMatrix& A,
                                      const char* backend) {
-  require(!pattern.empty(), backend, "factorize called before analyze");
-  require(pattern.matches(A), backend,
-          "factorize: the matrix's sparsity pattern differs from the analysed one (call analyze "
-          "again when the pattern changes)");
+  WEFT_CHECK(!pattern.empty(), misuse_message(backend, "factorize called before analyze"));
+  WEFT_CHECK(
+      pattern.matches(A),
+      misuse_message(backend,
+                     "factorize: the matrix's sparsity pattern differs from the analysed one "
+                     "(call analyze again when the pattern changes)"));
 }
 
 // Index of the first stored entry that is NaN or ±inf, or −1.
@@ -87,13 +92,13 @@ inline std::string pivot_message(Eigen::Index pivot, Eigen::Index n, double valu
 }
 
 // The preconditions of solve(): a successful factorization, and a right-hand side of the
-// analysed size. Throws std::logic_error (a programming error) otherwise.
+// analysed size. Otherwise a bug (base::InternalError).
 inline void require_solvable(bool factorized, const SparsityPattern& pattern,
                              const Eigen::VectorXd& b, const char* backend) {
-  require(factorized, backend, "solve called without a successful factorize");
-  require(b.size() == pattern.size(), backend,
-          "solve: the right-hand side has " + std::to_string(b.size()) + " rows, the matrix " +
-              std::to_string(pattern.size()));
+  WEFT_CHECK(factorized, misuse_message(backend, "solve called without a successful factorize"));
+  WEFT_CHECK(b.size() == pattern.size(),
+             misuse_message(backend, "solve: the right-hand side has " + std::to_string(b.size()) +
+                                         " rows, the matrix " + std::to_string(pattern.size())));
 }
 
 }  // namespace weft::sim::linear_detail

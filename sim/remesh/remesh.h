@@ -15,11 +15,6 @@
 
 namespace weft::sim::remesh {
 
-// How positions reach the new vertices (transfer.h): barycentric interpolation on the old
-// facets, or that with the quadratic correction from the fitted curvature patches, which puts
-// new vertices on the curved surface rather than on its chords. Velocities are always linear.
-enum class PositionTransfer { linear, quadratic };
-
 struct RemeshParams {
   SizeFieldParams size;
   MesherParams mesher;

@@ -25,6 +25,14 @@
 
 namespace weft::sim::remesh {
 
+// How positions reach the new vertices (scene key simulation.remesh.transfer). Velocities are
+// always linear.
+enum class PositionTransfer {
+  linear,     // barycentric interpolation (transfer): new vertices on the old mesh's flat facets
+  quadratic,  // plus the fitted curvature patches' correction (transfer_quadratic): on the
+              // curved surface rather than on its chords
+};
+
 // Where each new vertex lies in the old mesh: the old triangle and weights, or, for a kept old
 // vertex (new_to_old[i] ≥ 0), that vertex alone (triangle −1, weights unused).
 struct TransferMap {

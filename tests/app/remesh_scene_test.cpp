@@ -102,12 +102,12 @@ TEST(RemeshScene, TheIndicatorAndTheTransferAreRead) {
   Json json = remeshed_hang(dir);
   EXPECT_EQ(parse_scene(json.dump(), (dir / "scene.json").string()).sim.remesh.indicator, 0.0);
   EXPECT_EQ(parse_scene(json.dump(), (dir / "scene.json").string()).sim.remesh.transfer,
-            sim::RemeshTransfer::quadratic);
+            sim::remesh::PositionTransfer::quadratic);
   json["simulation"]["remesh"]["indicator"] = 2.5;
   json["simulation"]["remesh"]["transfer"] = "linear";
   const Scene scene = parse_scene(json.dump(), (dir / "scene.json").string());
   EXPECT_EQ(scene.sim.remesh.indicator, 2.5);
-  EXPECT_EQ(scene.sim.remesh.transfer, sim::RemeshTransfer::linear);
+  EXPECT_EQ(scene.sim.remesh.transfer, sim::remesh::PositionTransfer::linear);
   // Remeshed only when max |κ|h² passes 2.5 c: the square swings down and curves.
   const auto simulator = make_simulator(scene);
   simulator->advance(4.0 / 24.0);

@@ -1,7 +1,7 @@
 #pragma once
-// Finite-difference checks for any ForceTerm: its forces against central
-// differences of its energy, and an element's stiffness against central differences of its
-// forces. Failures print both sides.
+// Finite-difference checks for any ForceTerm: its forces against central differences of its
+// energy, and an element's stiffness against central differences of its forces. Failures print
+// both sides.
 
 #include <gtest/gtest.h>
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "base/check.h"
 #include "sim/linear/cholmod_solver.h"
 #include "sim/linear/sparsity_pattern.h"
 #include "tests/support/test_matrices.h"
@@ -198,7 +199,7 @@ TEST_P(SparseSpdBackend, SaysNoToMatricesThatAreNotPositiveDefinite) {
       solver->analyze(bad.matrix);
       EXPECT_FALSE(solver->factorize(bad.matrix));
       EXPECT_FALSE(solver->last_failure().empty());
-      EXPECT_THROW(solver->solve(test_rhs(bad.matrix.rows())), std::logic_error);
+      EXPECT_THROW(solver->solve(test_rhs(bad.matrix.rows())), base::InternalError);
     }
     // The same pattern with good values factorizes again after a failure.
     solver->analyze(A);
@@ -213,13 +214,13 @@ TEST_P(SparseSpdBackend, MisuseIsAProgrammingError) {
   const SparseMatrix A = test_matrices::projection_matrix(make_cloth_sample(8, 1));
   const SparseMatrix other = test_matrices::projection_matrix(make_cloth_sample(9, 1));
   const auto solver = make_sparse_spd_solver(GetParam());
-  EXPECT_THROW((void)solver->factorize(A), std::logic_error);  // before analyze
+  EXPECT_THROW((void)solver->factorize(A), base::InternalError);  // before analyze
   solver->analyze(A);
-  EXPECT_THROW(solver->solve(test_rhs(A.rows())), std::logic_error);  // before factorize
-  EXPECT_THROW((void)solver->factorize(other), std::logic_error);     // another pattern
+  EXPECT_THROW(solver->solve(test_rhs(A.rows())), base::InternalError);  // before factorize
+  EXPECT_THROW((void)solver->factorize(other), base::InternalError);     // another pattern
   ASSERT_TRUE(solver->factorize(A));
-  EXPECT_THROW(solver->solve(test_rhs(A.rows() + 1)), std::logic_error);
-  EXPECT_THROW(solver->analyze(SparseMatrix(3, 4)), std::logic_error);
+  EXPECT_THROW(solver->solve(test_rhs(A.rows() + 1)), base::InternalError);
+  EXPECT_THROW(solver->analyze(SparseMatrix(3, 4)), base::InternalError);
 }
 
 INSTANTIATE_TEST_SUITE_P(, SparseSpdBackend,
