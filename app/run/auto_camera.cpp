@@ -34,8 +34,10 @@ Eigen::AlignedBox3d cloth_bounds_over_run(const Scene& scene) {
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   Eigen::AlignedBox3d box;
   extend_box(box, simulator->state().x);
-  (void)stream_frames(scene, *simulator,
-                      [&](const Frame& frame) { extend_box(box, frame.simulator.state().x); });
+  (void)stream_frames(scene, *simulator, [&](const Frame& frame) {
+    extend_box(box, frame.simulator.state().x);
+    return StreamControl::go_on;
+  });
   return box;
 }
 

@@ -144,8 +144,8 @@ void print_phase_shares(const sim::PhaseTimers& timers) {
   std::printf("weft: time per phase: %s\n", text.c_str());
 }
 
-// Thrown by FrameWriter after writing a frame in which a self-colliding cloth passes through
-// itself, when the scene makes that an error (simulation.self_collision.crossings).
+// The frame in which a self-colliding cloth passed through itself, when the scene makes that an
+// error (simulation.self_collision.crossings): the run ends after writing it.
 struct CrossingStop {
   int frame;
   int crossings;
@@ -166,7 +166,8 @@ std::string frame_ranges(const std::vector<int>& frames) {
 }
 
 // Renders, writes and records each frame of the stream: frame_NNNN.png, the exported mesh,
-// its row of stats.csv, and the progress line.
+// its row of stats.csv, and the progress line. Says to stop the stream after a frame in which
+// the cloth passes through itself where the scene makes that an error (crossing_stop()).
 class FrameWriter {
  public:
   FrameWriter(const Scene& scene, const RunOptions& options, const fs::path& dir,
@@ -178,7 +179,7 @@ class FrameWriter {
       m_initial_mesh = std::make_unique<sim::ClothMesh>(simulator.mesh());
   }
 
-  void write(const Frame& frame) {
+  StreamControl write(const Frame& frame) {
     const bool remeshed_states = m_initial_mesh != nullptr;  // --save-states of a remeshed run
     if (m_rows.empty()) {
       prepare_output(m_dir, m_scene, m_options);
@@ -223,9 +224,12 @@ class FrameWriter {
     m_progress.update(frame.index, detail);
     if (m_scene.sim.self_collision.enabled && row.self_intersections > 0) {
       m_crossing_frames.push_back(frame.index);
-      if (m_scene.crossings == Scene::CrossingPolicy::error)
-        throw CrossingStop{frame.index, row.self_intersections};
+      if (m_scene.crossings == Scene::CrossingPolicy::error) {
+        m_crossing_stop = CrossingStop{frame.index, row.self_intersections};
+        return StreamControl::stop;
+      }
     }
+    return StreamControl::go_on;
   }
   void finish() {
     m_progress.finish();
@@ -250,6 +254,8 @@ class FrameWriter {
   }
   // The frames in which a self-colliding cloth passes through itself, in order.
   const std::vector<int>& crossing_frames() const { return m_crossing_frames; }
+  // The frame that ended the run by passing through itself, if one did.
+  const std::optional<CrossingStop>& crossing_stop() const { return m_crossing_stop; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
@@ -277,6 +283,7 @@ class FrameWriter {
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
   std::vector<int> m_crossing_frames;
+  std::optional<CrossingStop> m_crossing_stop;
   sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
   std::unique_ptr<sim::ClothMesh> m_initial_mesh;  // and its mesh, with simulation.remesh
   bool m_resumed_mesh_unsaved = false;  // resumed: the mesh goes with the first frame's state
@@ -415,26 +422,24 @@ int run_scene(const RunOptions& options) {
     std::fprintf(stderr, "weft: resuming from the checkpoint of frame %d in %s\n", resumed->frame,
                  dir.c_str());
   }
-  FrameStreamEnd end;
-  try {
-    end = stream_frames(
-        scene, *simulator,
-        [&](const Frame& frame) {
-          writer.write(frame);
-          if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
-            write_checkpoint(dir, writer.checkpoint(every));
-        },
-        {}, resumed ? resumed->frame + 1 : 1);
-  } catch (const CrossingStop& stop) {
-    writer.finish();
+  const FrameStreamEnd end = stream_frames(
+      scene, *simulator,
+      [&](const Frame& frame) {
+        if (writer.write(frame) == StreamControl::stop) return StreamControl::stop;
+        if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
+          write_checkpoint(dir, writer.checkpoint(every));
+        return StreamControl::go_on;
+      },
+      resumed ? resumed->frame + 1 : 1);
+  writer.finish();
+  if (const std::optional<CrossingStop>& stop = writer.crossing_stop()) {
     std::fprintf(stderr,
                  "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
                  "crossings; simulation.self_collision.crossings is \"error\")\n"
                  "weft: kept what frames 1..%d wrote and stats.csv in %s\n",
-                 stop.frame, stop.crossings, stop.frame, dir.c_str());
+                 stop->frame, stop->crossings, stop->frame, dir.c_str());
     return exit_diverged;
   }
-  writer.finish();
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
   print_summary(scene, options, dir, *simulator, writer);
   return exit_ok;
