@@ -9,10 +9,9 @@
 #include "app/io/cloth_mesh_states.h"
 #include "app/run/frame_painter.h"
 #include "app/scene/json_reader.h"
-#include "app/run/frame_stream.h"
-#include "app/io/npy_file.h"
 #include "app/io/progress.h"
 #include "app/run/renderer_choice.h"
+#include "app/run/saved_states.h"
 #include "app/scene/scene.h"
 #include "app/cluster/slurm_job.h"
 #include "app/cluster/slurm_resources.h"
@@ -33,19 +32,6 @@ std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
 }
 
 namespace {
-
-// The positions of state_NNNN.npy, checked against the cloth's vertex count.
-sim::Matrix3X read_state(const fs::path& dir, int frame, Eigen::Index vertices) {
-  const fs::path path = dir / numbered_file_name("state", frame, "npy");
-  if (!fs::exists(path))
-    throw InputError(path.string() + ": no such state (weft run --save-states writes one per "
-                                     "simulated frame)");
-  sim::Matrix3X x = read_npy_points(path);
-  if (x.rows() != vertices)
-    throw InputError(path.string() + ": " + std::to_string(x.rows()) + " vertices, the frame's "
-                     "cloth mesh has " + std::to_string(vertices) + " (another scene's states?)");
-  return x;
-}
 
 // The frames in `tasks` contiguous parts, as weft render command lines of their own.
 int submit_render(const RenderOptions& options, const Scene& scene, Eigen::Index vertices,
@@ -131,11 +117,8 @@ int run_render(const RenderOptions& options) {
   FramePainter painter(scene, *renderer, frame_mesh);
   Progress progress(stderr, static_cast<int>(selected.size()), "frame");
   for (std::size_t i = 0; i < selected.size(); ++i) {
-    // weft run draws a frame at the simulator's time, which advance() leaves at exactly k / fps
-    // (Simulator::advance: t + (k/fps − t) with t = (k−1)/fps is exact), or 0 without dynamics.
-    const double time_s = scene.dynamics ? frame_time_s(scene, selected[i]) : 0.0;
     if (remeshed) frame_mesh = meshes.at(selected[i]);
-    painter.paint(selected[i], states[i], time_s, out);
+    painter.paint(selected[i], states[i], state_time_s(scene, selected[i]), out);
     progress.update(static_cast<int>(i + 1));
   }
   progress.finish();

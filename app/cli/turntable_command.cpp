@@ -110,6 +110,7 @@ Subject scene_subject(const TurntableOptions& o) {
     char detail[64];
     std::snprintf(detail, sizeof detail, "t = %.2f s", frame.time_s);
     progress.update(frame.index, detail);
+    return StreamControl::go_on;
   });
   progress.finish();
   if (end.divergence) throw end.divergence->error;

@@ -6,15 +6,15 @@
 
 namespace weft::app {
 
-StatsCsv::StatsCsv(const std::filesystem::path& path)
-    : m_path(path),
-      m_text("frame,time_s,sim_ms,render_ms,steps,max_strain,mean_strain,kinetic_energy_J,"
-           "elastic_energy_J,gravity_energy_J,max_speed_m_s,projection_iterations,"
-           "max_step_iterations,unconverged_steps,solve_ms,failed_implicit_solves,cg_iterations,"
-           "min_step_ms,max_step_ms,rejected_steps,vertices,remeshes,remesh_energy_J,"
-           "remesh_indicator_m,remesh_excess,coarsenings,self_intersections,max_self_contacts\n") {}
-
 namespace {
+
+// The header line.
+constexpr const char* header =
+    "frame,time_s,sim_ms,render_ms,steps,max_strain,mean_strain,kinetic_energy_J,"
+    "elastic_energy_J,gravity_energy_J,max_speed_m_s,projection_iterations,"
+    "max_step_iterations,unconverged_steps,solve_ms,failed_implicit_solves,cg_iterations,"
+    "min_step_ms,max_step_ms,rejected_steps,vertices,remeshes,remesh_energy_J,"
+    "remesh_indicator_m,remesh_excess,coarsenings,self_intersections,max_self_contacts\n";
 
 std::string row_text(const FrameStats& r) {
   const auto& d = r.diagnostics;
@@ -35,6 +35,8 @@ std::string row_text(const FrameStats& r) {
 
 }  // namespace
 
+StatsCsv::StatsCsv(const std::filesystem::path& path) : m_path(path), m_text(header) {}
+
 void StatsCsv::write(const FrameStats& r) {
   m_text += row_text(r);
   write_text(m_path, m_text);
@@ -42,6 +44,12 @@ void StatsCsv::write(const FrameStats& r) {
 
 void StatsCsv::restore(const std::vector<FrameStats>& rows) {
   for (const FrameStats& r : rows) m_text += row_text(r);
+}
+
+void StatsCsv::rewrite(const std::vector<FrameStats>& rows) {
+  m_text = header;
+  restore(rows);
+  write_text(m_path, m_text);
 }
 
 }  // namespace weft::app

@@ -30,6 +30,9 @@ class StatsCsv {
   // Starts from the rows of a run resumed from a checkpoint (app/io/run_checkpoint.h); writes
   // them with the next row.
   void restore(const std::vector<FrameStats>& rows);
+  // Writes the file anew with these rows: weft run without a camera fills in the render times
+  // when it draws its frames, after the simulation.
+  void rewrite(const std::vector<FrameStats>& rows);
 
  private:
   std::filesystem::path m_path;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "app/run/frame_stream.h"
@@ -30,19 +31,21 @@ void extend_box(Eigen::AlignedBox3d& box, const sim::Matrix3X& x) {
   for (Eigen::Index v = 0; v < x.rows(); ++v) box.extend(x.row(v).transpose().eval());
 }
 
-Eigen::AlignedBox3d cloth_bounds_over_run(const Scene& scene) {
+Eigen::AlignedBox3d cloth_bounds_over_frames(const Scene& scene, int last_frame) {
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   Eigen::AlignedBox3d box;
   extend_box(box, simulator->state().x);
-  (void)stream_frames(scene, *simulator,
-                      [&](const Frame& frame) { extend_box(box, frame.simulator.state().x); });
+  if (last_frame < 1) return box;
+  (void)stream_frames(scene, *simulator, [&](const Frame& frame) {
+    extend_box(box, frame.simulator.state().x);
+    return frame.index < last_frame ? StreamControl::go_on : StreamControl::stop;
+  });
   return box;
 }
 
-bool frame_cloth_if_no_camera(Scene& scene, const std::optional<Eigen::AlignedBox3d>& cloth_box_m) {
+bool frame_cloth_if_no_camera(Scene& scene, const Eigen::AlignedBox3d& cloth_box_m) {
   if (scene.camera_given) return false;
-  scene.render.camera = framing_camera(cloth_box_m ? *cloth_box_m : cloth_bounds_over_run(scene),
-                                       scene.render.camera, scene.render.width,
+  scene.render.camera = framing_camera(cloth_box_m, scene.render.camera, scene.render.width,
                                        scene.render.height);
   return true;
 }

@@ -3,7 +3,6 @@
 // box over the whole run, so that a cloth that falls, swings or drapes stays in view.
 
 #include <Eigen/Geometry>
-#include <optional>
 
 #include "app/scene/scene.h"
 #include "render/camera.h"
@@ -20,14 +19,15 @@ render::Camera framing_camera(const Eigen::AlignedBox3d& box_m, const render::Ca
 // Grows the box by the positions x (#V×3, m).
 void extend_box(Eigen::AlignedBox3d& box, const sim::Matrix3X& x);
 
-// The cloth's bounding box over frames 0..scene.frames of the scene (the frame stream without
-// rendering, on a simulator of its own); up to the frame a divergence stops at.
-Eigen::AlignedBox3d cloth_bounds_over_run(const Scene& scene);
+// The cloth's bounding box over frames 0..last_frame of the scene, simulated on a simulator of
+// its own (the frame stream without rendering); up to the frame a divergence stops at. For a
+// resumed weft run whose earlier frames' states are gone.
+Eigen::AlignedBox3d cloth_bounds_over_frames(const Scene& scene, int last_frame);
 
 // Where the scene gives no camera (Scene::camera_given), sets scene.render.camera to the
-// framing camera of the cloth over the run (the box `cloth_box_m` when given: weft render's,
-// from the saved states) and returns true; otherwise returns false.
-bool frame_cloth_if_no_camera(Scene& scene,
-                              const std::optional<Eigen::AlignedBox3d>& cloth_box_m = {});
+// framing camera of `cloth_box_m`, the cloth's bounding box over frames 0..scene.frames (or up
+// to a divergence): weft run's, grown frame by frame as it simulates; weft render's, from the
+// saved states. Returns whether it did.
+bool frame_cloth_if_no_camera(Scene& scene, const Eigen::AlignedBox3d& cloth_box_m);
 
 }  // namespace weft::app

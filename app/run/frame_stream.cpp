@@ -9,8 +9,8 @@ namespace weft::app {
 double frame_time_s(const Scene& scene, int frame) { return frame / scene.fps; }
 
 FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
-                             const std::function<void(const Frame&)>& on_frame,
-                             const std::function<bool()>& stop, int first_frame) {
+                             const std::function<StreamControl(const Frame&)>& on_frame,
+                             int first_frame) {
   FrameStreamEnd end;
   end.frames = first_frame - 1;
   for (int k = first_frame; k <= scene.frames; ++k) {
@@ -26,9 +26,13 @@ FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
     const double sim_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double time_s = scene.dynamics ? simulator.state().time_s : frame_time_s(scene, k);
-    if (on_frame) on_frame(Frame{k, time_s, sim_s, simulator});
+    const StreamControl control =
+        on_frame ? on_frame(Frame{k, time_s, sim_s, simulator}) : StreamControl::go_on;
     end.frames = k;
-    if (stop && stop()) break;
+    if (control == StreamControl::stop) {
+      end.stopped = k < scene.frames;
+      break;
+    }
   }
   return end;
 }

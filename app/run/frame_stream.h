@@ -28,20 +28,25 @@ struct FrameDivergence {
   sim::DivergenceError error;
 };
 
+// What the callback says after each frame: go on to the next one, or end the stream there
+// (weft measure --until-settled once the cloth has settled; weft run when a frame fails a check
+// the scene makes an error, simulation.self_collision.crossings).
+enum class StreamControl { go_on, stop };
+
 struct FrameStreamEnd {
   int frames = 0;  // frames handed to the callback
-  std::optional<FrameDivergence> divergence;  // none: every frame of the scene was made
+  std::optional<FrameDivergence> divergence;  // none: every frame the stream was to make was made
+  bool stopped = false;  // the callback ended the stream after `frames` (before the scene's last)
 };
 
-// Simulates frames 1..scene.frames on `simulator` (made by make_simulator(scene), at its start)
-// and calls on_frame for each; `stop`, if given, is asked after each frame and ends the stream
-// early when it says so (weft measure --until-settled). A divergence stops the stream and is
-// returned; what on_frame throws propagates. A simulator restored from a checkpoint of frame
-// k (weft run --resume) streams from first_frame = k + 1.
-[[nodiscard]] FrameStreamEnd stream_frames(const Scene& scene, sim::Simulator& simulator,
-                                           const std::function<void(const Frame&)>& on_frame,
-                                           const std::function<bool()>& stop = {},
-                                           int first_frame = 1);
+// Simulates frames first_frame..scene.frames on `simulator` (made by make_simulator(scene), at
+// its start) and calls on_frame, if given, for each; when on_frame returns StreamControl::stop
+// the stream ends after that frame. A divergence stops the stream and is returned; what on_frame
+// throws propagates. A simulator restored from a checkpoint of frame k (weft run --resume), or
+// one a stream stopped after frame k, streams on from first_frame = k + 1.
+[[nodiscard]] FrameStreamEnd stream_frames(
+    const Scene& scene, sim::Simulator& simulator,
+    const std::function<StreamControl(const Frame&)>& on_frame, int first_frame = 1);
 
 // The time of frame k of the scene, seconds: k / fps.
 double frame_time_s(const Scene& scene, int frame);

@@ -99,11 +99,12 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
     if (on_frame) on_frame(row);
   };
   record(0, simulator.state().time_s);
-  const FrameStreamEnd end = stream_frames(
-      scene, simulator, [&](const Frame& frame) { record(frame.index, frame.time_s); },
-      [&] {
-        return stop_when_settled && settled_for(m.rows, m.settle_threshold_m_s, settled_hold_s);
-      });
+  const FrameStreamEnd end = stream_frames(scene, simulator, [&](const Frame& frame) {
+    record(frame.index, frame.time_s);
+    return stop_when_settled && settled_for(m.rows, m.settle_threshold_m_s, settled_hold_s)
+               ? StreamControl::stop
+               : StreamControl::go_on;
+  });
   if (end.divergence) throw end.divergence->error;
   if (hangs_as_curtain(scene)) m.curtain = sim::count_curtain_folds(mesh, simulator.state().x);
   std::vector<double> time_s, speed_m_s;

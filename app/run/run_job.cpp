@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <string>
 
@@ -22,8 +23,10 @@
 #include "app/io/run_checkpoint.h"
 #include "app/report/run_report.h"
 #include "app/run/renderer_choice.h"
+#include "app/run/saved_states.h"
 #include "app/scene/scene.h"
 #include "app/io/stats_csv.h"
+#include "base/check.h"
 #include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -144,8 +147,8 @@ void print_phase_shares(const sim::PhaseTimers& timers) {
   std::printf("weft: time per phase: %s\n", text.c_str());
 }
 
-// Thrown by FrameWriter after writing a frame in which a self-colliding cloth passes through
-// itself, when the scene makes that an error (simulation.self_collision.crossings).
+// The frame in which a self-colliding cloth passed through itself, when the scene makes that an
+// error (simulation.self_collision.crossings): the run ends after writing it.
 struct CrossingStop {
   int frame;
   int crossings;
@@ -166,23 +169,36 @@ std::string frame_ranges(const std::vector<int>& frames) {
 }
 
 // Renders, writes and records each frame of the stream: frame_NNNN.png, the exported mesh,
-// its row of stats.csv, and the progress line.
+// its row of stats.csv, and the progress line. Says to stop the stream after a frame in which
+// the cloth passes through itself where the scene makes that an error (crossing_stop()).
+//
+// A scene without a camera is framed by the cloth's bounding box over the whole run, known only
+// when the simulation ends. Its frames are drawn then, from the states the writer keeps in the
+// folder meanwhile (state_NNNN.npy and a remeshed cloth's meshes, as --save-states keeps them),
+// the way weft render draws saved states: the run is simulated once, and the frames are the
+// bytes they would be if drawn as simulated. The writer grows the box frame by frame
+// (cloth_box()); draw_kept_frames() draws the frames once the scene's camera is set.
 class FrameWriter {
  public:
   FrameWriter(const Scene& scene, const RunOptions& options, const fs::path& dir,
               sim::Simulator& simulator, render::Renderer& renderer)
       : m_scene(scene), m_options(options), m_dir(dir), m_simulator(simulator),
-        m_stats(dir / "stats.csv"), m_painter(scene, renderer, simulator.mesh()),
+        m_renderer(renderer), m_stats(dir / "stats.csv"), m_draw_later(!scene.camera_given),
+        m_keep_states(options.save_states || m_draw_later),
         m_progress(stderr, scene.frames, "frame"), m_initial_x(simulator.state().x) {
-    if (options.save_states && scene.sim.remesh.enabled)
+    if (m_keep_states && scene.sim.remesh.enabled)
       m_initial_mesh = std::make_unique<sim::ClothMesh>(simulator.mesh());
+    if (m_draw_later)
+      extend_box(m_cloth_box, m_initial_x);
+    else
+      m_painter.emplace(scene, renderer, simulator.mesh());
   }
 
-  void write(const Frame& frame) {
-    const bool remeshed_states = m_initial_mesh != nullptr;  // --save-states of a remeshed run
+  StreamControl write(const Frame& frame) {
+    const bool remeshed_states = m_initial_mesh != nullptr;  // kept states of a remeshed run
     if (m_rows.empty()) {
       prepare_output(m_dir, m_scene, m_options);
-      if (m_options.save_states)
+      if (m_keep_states)
         write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
       if (remeshed_states) write_cloth_mesh_state(m_dir, 0, *m_initial_mesh);
     }
@@ -190,9 +206,10 @@ class FrameWriter {
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
     row.steps = m_simulator.take_step_statistics();
-    // Every simulated frame's state, for weft render (its camera frames them all); with
-    // remeshing, the mesh of each frame whose steps remeshed the cloth (cloth_mesh_states.h).
-    if (m_options.save_states)
+    // Every simulated frame's state, for weft render (its camera frames them all) or for drawing
+    // the frames when the run ends; with remeshing, the mesh of each frame whose steps remeshed
+    // the cloth (cloth_mesh_states.h).
+    if (m_keep_states)
       write_npy_points(m_dir / numbered_file_name("state", frame.index, "npy"),
                        m_simulator.state().x);
     // After a resume too: the interrupted run may not have saved states (nor meshes).
@@ -210,10 +227,14 @@ class FrameWriter {
     row.self_intersections =
         sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
     row.vertices = m_simulator.mesh().used_vertex_count();
-    const auto start = std::chrono::steady_clock::now();
-    if (m_options.selection.selects(frame.index, m_scene.frames)) render_frame(frame.index);
-    row.render_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (m_draw_later) {
+      extend_box(m_cloth_box, m_simulator.state().x);  // drawn by draw_kept_frames
+    } else {
+      const auto start = std::chrono::steady_clock::now();
+      if (m_options.selection.selects(frame.index, m_scene.frames))
+        render_frame(*m_painter, frame.index, m_simulator.state().x, m_simulator.state().time_s);
+      row.render_ms = milliseconds_since(start);
+    }
     m_stats.write(row);
     m_rows.push_back(row);
     char detail[128];
@@ -223,12 +244,16 @@ class FrameWriter {
     m_progress.update(frame.index, detail);
     if (m_scene.sim.self_collision.enabled && row.self_intersections > 0) {
       m_crossing_frames.push_back(frame.index);
-      if (m_scene.crossings == Scene::CrossingPolicy::error)
-        throw CrossingStop{frame.index, row.self_intersections};
+      if (m_scene.crossings == Scene::CrossingPolicy::error) {
+        m_crossing_stop = CrossingStop{frame.index, row.self_intersections};
+        return StreamControl::stop;
+      }
     }
+    return StreamControl::go_on;
   }
+  // Ends the progress line (unless draw_kept_frames did) and writes the point cache.
   void finish() {
-    m_progress.finish();
+    if (!m_draw_later) m_progress.finish();
     for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
       std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
   }
@@ -238,6 +263,49 @@ class FrameWriter {
     m_rows = checkpoint.rows;
     m_crossing_frames = checkpoint.crossing_frames;
     m_stats.restore(m_rows);
+    if (m_draw_later) resume_cloth_box(checkpoint.frame);
+  }
+  // Whether the frames are drawn when the simulation ends (the scene gives no camera).
+  bool draws_later() const { return m_draw_later; }
+  // The cloth's bounding box over frames 0..k so far (a writer that draws later).
+  const Eigen::AlignedBox3d& cloth_box() const { return m_cloth_box; }
+  // Draws the selected frames of the run from the kept states with the scene's camera, which
+  // must now be final — the PNGs, masks, exported meshes and point cache frames, as a writer
+  // with a camera draws them while simulating — fills in their render_ms in stats.csv and
+  // removes the kept states unless --save-states asked for them. Does nothing (but end the
+  // progress line) when no frame was written.
+  void draw_kept_frames() {
+    m_progress.finish();
+    if (!m_draw_later || m_rows.empty()) return;
+    const bool remeshed = m_scene.sim.remesh.enabled;
+    // The mesh each frame is drawn on: the scene's, or with remeshing the frame's own, read
+    // from the folder as weft render reads it.
+    sim::ClothMesh frame_mesh = m_simulator.mesh();
+    ClothMeshStates meshes(m_dir, frame_mesh);
+    FramePainter painter(m_scene, m_renderer, frame_mesh);
+    std::vector<int> selected;
+    for (int k = m_first_kept_frame; k <= m_rows.back().frame; ++k)
+      if (m_options.selection.selects(k, m_scene.frames)) selected.push_back(k);
+    Progress progress(stderr, static_cast<int>(selected.size()), "draw");
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+      const int k = selected[i];
+      const auto start = std::chrono::steady_clock::now();
+      if (remeshed) frame_mesh = meshes.at(k);
+      render_frame(painter, k, read_state(m_dir, k, frame_mesh.vertex_count()),
+                   state_time_s(m_scene, k));
+      FrameStats& row = m_rows[static_cast<std::size_t>(k - 1)];
+      WEFT_CHECK(row.frame == k, "stats.csv's row " + std::to_string(k) + " is of frame " +
+                                     std::to_string(row.frame));
+      row.render_ms = milliseconds_since(start);
+      progress.update(static_cast<int>(i + 1));
+    }
+    progress.finish();
+    m_stats.rewrite(m_rows);
+    if (!m_options.save_states) {
+      remove_numbered_files(m_dir, "state", "npy");
+      // After the states: a run stopped in between leaves no state without its mesh.
+      remove_numbered_files(m_dir, cloth_mesh_state_prefix, cloth_mesh_state_extension);
+    }
   }
   // The checkpoint of the frames written so far (the simulator at the last one's end).
   RunCheckpoint checkpoint(int every) const {
@@ -250,25 +318,62 @@ class FrameWriter {
   }
   // The frames in which a self-colliding cloth passes through itself, in order.
   const std::vector<int>& crossing_frames() const { return m_crossing_frames; }
+  // The frame that ended the run by passing through itself, if one did.
+  const std::optional<CrossingStop>& crossing_stop() const { return m_crossing_stop; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
  private:
-  void render_frame(int index) {
-    const render::RenderMesh cloth =
-        m_painter.paint(index, m_simulator.state().x, m_simulator.state().time_s, m_dir);
-    if (!m_options.export_cache.empty()) m_cache.add(cloth, m_simulator.state().time_s);
+  static double milliseconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  }
+
+  // Draws frame `index` (the cloth at x, the obstacles at time_s) and writes its exports.
+  void render_frame(FramePainter& painter, int index, const sim::Matrix3X& x, double time_s) {
+    const render::RenderMesh cloth = painter.paint(index, x, time_s, m_dir);
+    if (!m_options.export_cache.empty()) m_cache.add(cloth, time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
                   mesh_export_options(m_scene, m_options));
+  }
+
+  // The box of frames 0..k of a run resumed from the checkpoint of frame k. An interrupted run
+  // leaves the states of its frames in the folder, undrawn: the box is theirs, and they are
+  // drawn with the rest. A run that ended drew its frames and removed their states: frames 1..k
+  // are simulated again for the box alone, and only the frames after k are drawn anew.
+  void resume_cloth_box(int k) {
+    m_cloth_box.setEmpty();
+    bool kept = !m_scene.sim.remesh.enabled ||
+                fs::exists(m_dir / numbered_file_name(cloth_mesh_state_prefix, 0,
+                                                      cloth_mesh_state_extension));
+    for (int j = 0; j <= k && kept; ++j)
+      kept = fs::exists(m_dir / numbered_file_name("state", j, "npy"));
+    if (kept) {
+      for (int j = 0; j <= k; ++j)
+        extend_box(m_cloth_box, read_npy_points(m_dir / numbered_file_name("state", j, "npy")));
+      return;
+    }
+    std::fprintf(stderr,
+                 "weft: the states of frames 0..%d are not in %s (a run removes them once it has "
+                 "drawn its frames): simulating frames 1..%d again for the camera\n",
+                 k, m_dir.c_str(), k);
+    m_cloth_box = cloth_bounds_over_frames(m_scene, k);
+    m_first_kept_frame = k + 1;
   }
 
   const Scene& m_scene;
   const RunOptions& m_options;
   fs::path m_dir;
   sim::Simulator& m_simulator;
+  render::Renderer& m_renderer;
   StatsCsv m_stats;
-  FramePainter m_painter;  // draws the simulator's mesh as it is at each frame
+  bool m_draw_later;   // no camera: the frames are drawn when the simulation ends
+  bool m_keep_states;  // state_NNNN.npy (and remeshed meshes): --save-states, or to draw later
+  // Draws the simulator's mesh as it is at each frame (a writer that draws as it simulates).
+  std::optional<FramePainter> m_painter;
+  Eigen::AlignedBox3d m_cloth_box;  // the cloth over frames 0..k so far (drawing later)
+  int m_first_kept_frame = 1;       // the first frame whose state is kept (drawing later)
   // The current mesh's triangles and edges (crossings), of the mesh after this many remeshes.
   std::vector<std::array<sim::Index, 3>> m_triangles;
   std::vector<std::array<sim::Index, 2>> m_edges;
@@ -277,6 +382,7 @@ class FrameWriter {
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
   std::vector<int> m_crossing_frames;
+  std::optional<CrossingStop> m_crossing_stop;
   sim::Matrix3X m_initial_x;  // frame 0's state (--save-states)
   std::unique_ptr<sim::ClothMesh> m_initial_mesh;  // and its mesh, with simulation.remesh
   bool m_resumed_mesh_unsaved = false;  // resumed: the mesh goes with the first frame's state
@@ -400,9 +506,9 @@ int run_scene(const RunOptions& options) {
     }
   }
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
-  if (frame_cloth_if_no_camera(scene))
+  if (!scene.camera_given)
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
-                         "over the run (simulated once for it)\n");
+                         "over the run (the frames are drawn when the simulation ends)\n");
 
   const fs::path dir = options.resume ? (fs::is_directory(*options.resume)
                                               ? *options.resume
@@ -411,30 +517,44 @@ int run_scene(const RunOptions& options) {
   print_header(scene, *simulator, *renderer, options.explain);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
   if (resumed) {
-    writer.resume(*resumed);
     std::fprintf(stderr, "weft: resuming from the checkpoint of frame %d in %s\n", resumed->frame,
                  dir.c_str());
+    writer.resume(*resumed);
   }
-  FrameStreamEnd end;
-  try {
-    end = stream_frames(
-        scene, *simulator,
-        [&](const Frame& frame) {
-          writer.write(frame);
-          if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
-            write_checkpoint(dir, writer.checkpoint(every));
-        },
-        {}, resumed ? resumed->frame + 1 : 1);
-  } catch (const CrossingStop& stop) {
-    writer.finish();
+  const FrameStreamEnd end = stream_frames(
+      scene, *simulator,
+      [&](const Frame& frame) {
+        if (writer.write(frame) == StreamControl::stop) return StreamControl::stop;
+        if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
+          write_checkpoint(dir, writer.checkpoint(every));
+        return StreamControl::go_on;
+      },
+      resumed ? resumed->frame + 1 : 1);
+  if (writer.draws_later()) {
+    Eigen::AlignedBox3d box = writer.cloth_box();
+    // The camera frames the cloth over frames 0..N whatever the crossings policy, so that a run
+    // a crossing stopped draws its frames as a run that went on would: the rest of the run is
+    // simulated for the box alone (up to a divergence, like any run).
+    if (writer.crossing_stop())
+      (void)stream_frames(
+          scene, *simulator,
+          [&](const Frame& frame) {
+            extend_box(box, frame.simulator.state().x);
+            return StreamControl::go_on;
+          },
+          end.frames + 1);
+    frame_cloth_if_no_camera(scene, box);
+    writer.draw_kept_frames();
+  }
+  writer.finish();
+  if (const std::optional<CrossingStop>& stop = writer.crossing_stop()) {
     std::fprintf(stderr,
                  "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
                  "crossings; simulation.self_collision.crossings is \"error\")\n"
                  "weft: kept what frames 1..%d wrote and stats.csv in %s\n",
-                 stop.frame, stop.crossings, stop.frame, dir.c_str());
+                 stop->frame, stop->crossings, stop->frame, dir.c_str());
     return exit_diverged;
   }
-  writer.finish();
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
   print_summary(scene, options, dir, *simulator, writer);
   return exit_ok;

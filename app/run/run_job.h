@@ -46,7 +46,9 @@ struct RunOptions {
   // checkpoint, writing into DIR (app/io/run_checkpoint.h, docs/checkpoints.md).
   std::optional<int> checkpoint_every;
   std::optional<std::filesystem::path> resume;
-  bool save_states = false;  // --save-states: state_NNNN.npy per simulated frame (weft render)
+  // --save-states: state_NNNN.npy per simulated frame, kept for weft render. A scene without a
+  // camera writes them anyway, to draw its frames when the simulation ends, and then removes them.
+  bool save_states = false;
 };
 
 // Runs the job; bad input throws InputError before anything is written.

@@ -26,6 +26,7 @@ void simulate(SweepRun& run) {
   const FrameStreamEnd end = stream_frames(run.scene, simulator, [&](const Frame& frame) {
     run.wall_s += frame.sim_s;
     run.max_strain = std::max(run.max_strain, simulator.diagnostics().max_strain);
+    return StreamControl::go_on;
   });
   if (end.divergence) {
     run.diverged = true;

@@ -2,7 +2,9 @@
 // (SIGKILL) after frame 30 and resumed with --resume from its checkpoint of frame 24 writes the
 // same frames (PNG bytes) and stats.csv rows (minus the wall-time columns) as a run that never
 // stopped and never wrote a checkpoint; checkpoints of another scene or build, or damaged
-// ones, are refused with an error naming the file.
+// ones, are refused with an error naming the file. A run without a camera, which draws its
+// frames from its kept states when the simulation ends, resumes to the same bits too, whether
+// those states are still in the folder or not.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -46,11 +48,13 @@ class CheckpointCli : public CliDirectoryTest {
  protected:
   CheckpointCli() : CliDirectoryTest("checkpoint_cli") {}
 
-  // `weft run ARGS --out DIR` killed with SIGKILL as soon as DIR/frame_00NN.png exists; true
-  // when the kill came before the run ended by itself.
-  bool run_and_kill(const std::string& args, const fs::path& out, int kill_after) {
+  // `weft run ARGS --out DIR` killed with SIGKILL as soon as DIR/frame_00NN.png (or another
+  // numbered file, `prefix`_00NN.`extension`) exists; true when the kill came before the run
+  // ended by itself.
+  bool run_and_kill(const std::string& args, const fs::path& out, int kill_after,
+                    const char* prefix = "frame", const char* extension = "png") {
     char frame[32];
-    std::snprintf(frame, sizeof frame, "frame_%04d.png", kill_after);
+    std::snprintf(frame, sizeof frame, "%s_%04d.%s", prefix, kill_after, extension);
     const fs::path script = m_dir / "run_and_kill.sh";
     std::ofstream(script) << WEFT_EXECUTABLE << " run " << args << " --out " << out.string()
                           << " >/dev/null 2>&1 &\npid=$!\nwhile kill -0 $pid 2>/dev/null && [ ! -e "
@@ -130,6 +134,66 @@ TEST_F(CheckpointCli, ACentralDifferenceRunResumedTwiceGivesTheSameBits) {
     EXPECT_TRUE(file_bytes(whole / name) == file_bytes(cut / name)) << name << " differs";
   }
   EXPECT_EQ(stats_without_wall_times(whole / "stats.csv"), stats_without_wall_times(cut / "stats.csv"));
+}
+
+// Without a camera the frames are drawn when the simulation ends, from the states kept in the
+// folder meanwhile; the camera frames the cloth over frames 0..48. Killed after frame 30's state
+// (no frame drawn yet), the run resumed from frame 24 takes frames 0..24's box from the kept
+// states and draws all 48 frames; resumed again from the same checkpoint once those states are
+// gone (the run removed them after drawing), it simulates frames 1..24 again for the box. Both
+// give the frames of the run that never stopped.
+TEST_F(CheckpointCli, ARunWithoutACameraResumedAfterAKillGivesTheSameBits) {
+  std::string text = tiny_scene();
+  const std::string camera = R"(, "camera": {"eye": [0.6, -0.5, 0.6], "target": [0, 0.1, 0.4]})";
+  text.erase(text.find(camera), camera.size());
+  const std::string scene = write_scene("no_camera.json", text).string();
+  const fs::path whole = m_dir / "whole", cut = m_dir / "cut";
+  const auto reference = run_weft("run " + scene + " --frames 48 --mask --out " + whole.string());
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+  EXPECT_CONTAINS(reference.output, "framing the cloth's bounding box");
+  EXPECT_FALSE(fs::exists(whole / "state_0000.npy")) << "the kept states are removed";
+  EXPECT_FALSE(fs::exists(whole / "state_0048.npy"));
+
+  const bool killed =
+      run_and_kill(scene + " --frames 48 --mask --checkpoint-every 24", cut, 30, "state", "npy");
+  ASSERT_TRUE(fs::exists(cut / "checkpoint.weft"));
+  std::printf("killed: %s\n", killed ? "yes" : "no (the run ended first)");
+  if (killed) {
+    EXPECT_FALSE(fs::exists(cut / "frame_0001.png")) << "no frame drawn before the end";
+  }
+  // Frames first..48 (and their masks) as the uninterrupted run's; stats.csv the same.
+  const auto expect_whole_run = [&](int first, const std::string& when) {
+    for (int k = first; k <= 48; ++k) {
+      char frame[32], mask[32];
+      std::snprintf(frame, sizeof frame, "frame_%04d.png", k);
+      std::snprintf(mask, sizeof mask, "mask_%04d.png", k);
+      ASSERT_TRUE(fs::exists(cut / frame)) << frame << ", " << when;
+      EXPECT_TRUE(file_bytes(whole / frame) == file_bytes(cut / frame)) << frame << " differs, " << when;
+      EXPECT_TRUE(file_bytes(whole / mask) == file_bytes(cut / mask)) << mask << " differs, " << when;
+    }
+    EXPECT_EQ(stats_without_wall_times(whole / "stats.csv"),
+              stats_without_wall_times(cut / "stats.csv")) << when;
+    EXPECT_FALSE(fs::exists(cut / "state_0000.npy")) << when;
+  };
+
+  const auto resumed = run_weft("run --resume " + cut.string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_CONTAINS(resumed.output, "resuming from the checkpoint of frame 24");
+  EXPECT_EQ(resumed.output.find("simulating frames 1..24 again"), std::string::npos)
+      << "the kept states give frames 0..24's box\n" << resumed.output;
+  expect_whole_run(1, "resumed with the kept states");
+
+  for (int k = 1; k <= 48; ++k) {
+    char frame[32];
+    std::snprintf(frame, sizeof frame, "frame_%04d.png", k);
+    fs::remove(cut / frame);
+  }
+  const auto again = run_weft("run --resume " + cut.string());
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_CONTAINS(again.output, "simulating frames 1..24 again for the camera");
+  EXPECT_FALSE(fs::exists(cut / "frame_0024.png"))
+      << "frames 1..24 were drawn by the run that removed their states";
+  expect_whole_run(25, "resumed again without the states");
 }
 
 TEST_F(CheckpointCli, CheckpointsOfAnotherSceneOrBuildOrDamagedOnesAreRefused) {
