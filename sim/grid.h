@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -22,6 +23,9 @@ namespace weft::sim {
 // at a corner only (for any ellipse: the parallelogram law), so the kept cells form a
 // manifold mesh.
 enum class SpecimenShape { rectangle, disc };
+
+inline constexpr base::EnumNames<SpecimenShape, 2> specimen_shape_names{
+    {{SpecimenShape::rectangle, "rectangle"}, {SpecimenShape::disc, "disc"}}};
 
 struct GridSpec {
   double size_u_m = 1.0, size_v_m = 1.0;  // extent along warp (u) and weft (v); the disc's diameters

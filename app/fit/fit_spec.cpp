@@ -93,8 +93,7 @@ PhotoTarget read_photo(ObjectReader r) {
   PhotoTarget t;
   t.image_path = relative_to(r.file(), r.string("image", required));
   if (r.has("mask")) t.mask_path = relative_to(r.file(), r.string("mask", required));
-  t.metric = r.enumeration<PhotoMetric>(
-      "metric", {{"chamfer", PhotoMetric::chamfer}, {"iou", PhotoMetric::iou}}, PhotoMetric::chamfer);
+  t.metric = r.enumeration("metric", photo_metric_names, {PhotoMetric::chamfer});
   if (r.has("mm_per_px")) t.mm_per_px = r.number("mm_per_px", required, Range::gt(0.0));
   r.finish();
   try {
@@ -128,9 +127,7 @@ void read_options(ObjectReader& root, FitSpec& spec) {
   spec.settle.max_iterations = s.integer("max_iterations", spec.settle.max_iterations, Range::ge(1));
   s.finish();
   ObjectReader o = root.object("optimizer");
-  spec.optimizer.method = o.enumeration<FitMethod>(
-      "method", {{"bobyqa", FitMethod::bobyqa}, {"nelder_mead", FitMethod::nelder_mead}},
-      spec.optimizer.method);
+  spec.optimizer.method = o.enumeration("method", fit_method_names, {spec.optimizer.method});
   spec.optimizer.max_evaluations =
       static_cast<int>(o.integer("max_evaluations", spec.optimizer.max_evaluations, Range::ge(1)));
   spec.optimizer.initial_step = o.number("initial_step", spec.optimizer.initial_step, Range::gt(0.0));

@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "app/fit/chamfer_3d.h"
 #include "app/scene/scene.h"
 #include "app/scene/scene_patch.h"
@@ -59,6 +60,8 @@ struct PointCloudTarget {
 };
 
 enum class PhotoMetric { chamfer, iou };
+inline constexpr base::EnumNames<PhotoMetric, 2> photo_metric_names{
+    {{PhotoMetric::chamfer, "chamfer"}, {PhotoMetric::iou, "iou"}}};
 
 // A photo seen through the scene's camera (render.camera and render.size, which must match the
 // photo's size): its silhouette (the mask if given, else render/photo_compare's segmentation)
@@ -86,6 +89,8 @@ struct SettleSettings {
 };
 
 enum class FitMethod { bobyqa, nelder_mead };
+inline constexpr base::EnumNames<FitMethod, 2> fit_method_names{
+    {{FitMethod::bobyqa, "bobyqa"}, {FitMethod::nelder_mead, "nelder_mead"}}};
 
 struct OptimizerSettings {
   FitMethod method = FitMethod::bobyqa;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "sim/grid.h"
 #include "sim/types.h"
 
@@ -19,6 +20,10 @@ enum class PatternSource {
   uv,         // (u, v) = uv_scale_m · (the vertex's texture coordinates), turned by −warp_angle
   plane,      // the vertex's coordinates in the mesh's own plane (a flat mesh), in metres
 };
+
+// The names a scene may give (cloth.pattern); automatic is the key left out.
+inline constexpr base::EnumNames<PatternSource, 2> pattern_source_names{
+    {{PatternSource::uv, "uv"}, {PatternSource::plane, "plane"}}};
 
 struct ClothMeshFileSpec {
   std::filesystem::path path;

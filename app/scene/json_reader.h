@@ -122,15 +122,16 @@ class ObjectReader {
   // ([[a, b], [c, d]]); element paths "key[i][j]".
   Eigen::MatrixXd matrix(const std::string& key, int rows, int cols);
 
-  // A string naming one of `choices`; the error lists them.
-  template <class E>
-  E enumeration(const std::string& key, const std::vector<std::pair<std::string, E>>& choices,
-                std::optional<E> fallback);
-
-  // The same for an enum with a base::EnumNames table (base/enum_names.h), listed in its order.
+  // A string naming one of an enum's values, through its base::EnumNames table
+  // (base/enum_names.h); the error lists the names in the table's order.
   template <class E, std::size_t N>
   E enumeration(const std::string& key, const base::EnumNames<E, N>& names,
                 std::optional<E> fallback);
+  // A string naming one of `choices`, values that are no enum (a material preset, a bool);
+  // the error lists them.
+  template <class T>
+  T choice(const std::string& key, const std::vector<std::pair<std::string, T>>& choices,
+           std::optional<T> fallback);
 
   // A nested object. When absent, a reader over an empty object: every key takes its default.
   ObjectReader object(const std::string& key);
@@ -158,10 +159,9 @@ class ObjectReader {
   std::set<std::string> m_read;
 };
 
-template <class E>
-E ObjectReader::enumeration(const std::string& key,
-                            const std::vector<std::pair<std::string, E>>& choices,
-                            std::optional<E> fallback) {
+template <class T>
+T ObjectReader::choice(const std::string& key, const std::vector<std::pair<std::string, T>>& choices,
+                       std::optional<T> fallback) {
   std::vector<std::string> names;
   for (const auto& c : choices) names.push_back(c.first);
   const std::size_t k = enumeration_index(key, names, !fallback.has_value());

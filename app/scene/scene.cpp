@@ -144,11 +144,7 @@ sim::ProjectionSettings read_constraints(ObjectReader r) {
   using sim::ProjectionMethod;
   sim::ProjectionSettings p;
   p.method = r.enumeration("method", sim::projection_method_names, {p.method});
-  p.edges = r.enumeration<sim::ConstrainedEdges>(
-      "edges",
-      {{"warp_weft", sim::ConstrainedEdges::warp_weft},
-       {"triangle_edges", sim::ConstrainedEdges::triangle_edges}},
-      p.edges);
+  p.edges = r.enumeration("edges", sim::constrained_edges_names, {p.edges});
   p.tolerance = r.number("tolerance", p.tolerance, Range::gt(0.0));
   p.max_iterations = static_cast<int>(r.integer("max_iterations", p.max_iterations,
                                                 Range::closed(1, std::numeric_limits<int>::max())));
@@ -218,10 +214,7 @@ sim::AeroSettings read_aerodynamics(ObjectReader r) {
 sim::SelfCollisionSettings read_self_collision(ObjectReader r, Scene::CrossingPolicy& crossings) {
   sim::SelfCollisionSettings c;
   c.enabled = r.boolean("enabled", true);
-  using Policy = Scene::CrossingPolicy;
-  const std::vector<std::pair<std::string, Policy>> policies{{"warn", Policy::warn},
-                                                             {"error", Policy::error}};
-  crossings = r.enumeration("crossings", policies, {crossings});
+  crossings = r.enumeration("crossings", Scene::crossing_policy_names, {crossings});
   c.thickness_m = r.quantity("thickness", Quantity::length, c.thickness_m, Range::gt(0.0));
   c.marble_radius_m =
       r.quantity("marble_radius", Quantity::length, c.marble_radius_m, Range::ge(0.0));
@@ -273,11 +266,7 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
                         "the mesh may grow before it is coarsened), got " +
                             std::to_string(m.coarsen));
   }
-  m.transfer = r.enumeration<sim::remesh::PositionTransfer>(
-      "transfer",
-      {{"quadratic", sim::remesh::PositionTransfer::quadratic},
-       {"linear", sim::remesh::PositionTransfer::linear}},
-      m.transfer);
+  m.transfer = r.enumeration("transfer", sim::remesh::position_transfer_names, {m.transfer});
   m.relax_steps = r.integer("relax", m.relax_steps, Range::closed(0, 1000));
   if (m.h_max_m < m.h_min_m)
     r.fail("h_max", "expected at least h_min (" + std::to_string(m.h_min_m) + " m), got " +
@@ -324,11 +313,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   s.model = r.enumeration("model", sim::cloth_model_names, {s.model});
   s.integrator = r.enumeration("integrator", sim::integrator_names, {s.integrator});
   s.sparse_backend = read_linear_solver(r, s.sparse_backend);
-  s.implicit_solve = r.enumeration<sim::ImplicitSolve>(
-      "implicit_solver",
-      {{"direct", sim::ImplicitSolve::direct},
-       {"conjugate_gradient", sim::ImplicitSolve::conjugate_gradient}},
-      s.implicit_solve);
+  s.implicit_solve = r.enumeration("implicit_solver", sim::implicit_solve_names, {s.implicit_solve});
   s.implicit_cg_tolerance =
       r.number("cg_tolerance", s.implicit_cg_tolerance, Range::gt(0.0).lt(1.0));
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);

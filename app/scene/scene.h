@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "app/io/input_error.h"
 #include "app/scene/tension_field_scene.h"
 #include "render/render_settings.h"
@@ -47,6 +48,9 @@ struct Scene {
   // cloth passes through itself (edge–triangle crossings, stats.csv's self_intersections):
   // warn at the end naming the frames, or stop there with the divergence exit code.
   enum class CrossingPolicy { warn, error };
+
+  static constexpr base::EnumNames<CrossingPolicy, 2> crossing_policy_names{
+      {{CrossingPolicy::warn, "warn"}, {CrossingPolicy::error, "error"}}};
   CrossingPolicy crossings = CrossingPolicy::warn;
 
   render::RenderSettings render;

@@ -31,7 +31,7 @@ sim::Material read_material(ObjectReader r) {
   std::vector<std::pair<std::string, sim::Material>> presets;
   for (const sim::MaterialPreset& p : sim::material_presets())
     presets.emplace_back(p.name, p.material);
-  sim::Material m = r.enumeration<sim::Material>("preset", presets, sim::Material{});
+  sim::Material m = r.choice<sim::Material>("preset", presets, sim::Material{});
   const Range positive = Range::gt(0.0);
   m.density_kg_m2 = r.quantity("density", Quantity::areal_density, m.density_kg_m2, positive);
   m.stretch_warp_N_m =
@@ -138,7 +138,7 @@ sim::PinSpec read_pin(ObjectReader r, sim::PinPath& path, const MeshColours& col
     // A box in material coordinates (u, v: two values each) or in the world (x, y, z).
     ObjectReader box = r.required_object("box");
     sim::PinBox b;
-    b.world = box.enumeration<bool>("space", {{"material", false}, {"world", true}}, false);
+    b.world = box.choice<bool>("space", {{"material", false}, {"world", true}}, false);
     const std::size_t n = b.world ? 3 : 2;
     const auto lo = box.quantities("min", Quantity::length, n, required);
     const auto hi = box.quantities("max", Quantity::length, n, required);
@@ -199,9 +199,7 @@ void read_cloth_mesh(ObjectReader& r, Scene& scene, MeshColours& colours) {
   ClothMeshFileSpec spec;
   const std::filesystem::path file = r.string("mesh", required);
   spec.path = file.is_absolute() ? file : std::filesystem::path(r.file()).parent_path() / file;
-  spec.pattern = r.enumeration<PatternSource>(
-      "pattern", {{"uv", PatternSource::uv}, {"plane", PatternSource::plane}},
-      PatternSource::automatic);
+  spec.pattern = r.enumeration("pattern", pattern_source_names, {PatternSource::automatic});
   spec.uv_scale_m = r.quantity("uv_scale", Quantity::length, 1.0, Range::gt(0.0));
   spec.warp_angle_rad = r.angle_deg("warp_angle", 0.0) * base::kPi / 180.0;
   spec.scale = r.number("scale", 1.0, Range::gt(0.0));
@@ -234,9 +232,7 @@ void read_cloth_grid(ObjectReader& r, Scene& scene) {
   const auto n = r.integers("resolution", 2, required, Range::closed(2, 4096));
   g.nu = static_cast<sim::Index>(n[0]);
   g.nv = static_cast<sim::Index>(n[1]);
-  g.shape = r.enumeration<sim::SpecimenShape>(
-      "shape", {{"rectangle", sim::SpecimenShape::rectangle}, {"disc", sim::SpecimenShape::disc}},
-      g.shape);
+  g.shape = r.enumeration("shape", sim::specimen_shape_names, {g.shape});
   g.origin = r.quantity_vec3("origin", Quantity::length, g.origin);
   g.warp_axis = r.unit_vec3("warp_axis", g.warp_axis);
   g.weft_axis = r.unit_vec3("weft_axis", g.weft_axis);

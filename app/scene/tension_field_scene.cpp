@@ -37,13 +37,8 @@ TensionFieldShape read_tension_field_shape(ObjectReader r) {
   s.load_constant = r.number("load_constant", s.load_constant, Range::gt(0.0));
   s.tolerance = r.number("tolerance", s.tolerance, Range::gt(0.0).lt(1.0));
   if (r.has("ratio")) s.ratio = r.number("ratio", required, Range::gt(1.0));
-  s.interpolation = r.enumeration<sim::FoldInterpolation>(
-      "interpolation",
-      {{"cosine", sim::FoldInterpolation::cosine}, {"linear", sim::FoldInterpolation::linear}},
-      s.interpolation);
-  s.shape = r.enumeration<sim::MembraneShape>(
-      "shape", {{"rectangle", sim::MembraneShape::rectangle}, {"cosine", sim::MembraneShape::cosine}},
-      s.shape);
+  s.interpolation = r.enumeration("interpolation", sim::fold_interpolation_names, {s.interpolation});
+  s.shape = r.enumeration("shape", sim::membrane_shape_names, {s.shape});
   r.finish();
   return s;
 }

@@ -24,6 +24,9 @@ struct EdgeConstraint {
 // the triangle mesh is constrained (the "locking" configuration of seed 000 §3).
 enum class ConstrainedEdges { warp_weft, triangle_edges };
 
+inline constexpr base::EnumNames<ConstrainedEdges, 2> constrained_edges_names{
+    {{ConstrainedEdges::warp_weft, "warp_weft"}, {ConstrainedEdges::triangle_edges, "triangle_edges"}}};
+
 // The constrained edges of the grid, without edges whose two ends are both pinned (nothing can
 // change their length: a redundant, all-zero row of the Jacobian).
 std::vector<EdgeConstraint> make_edge_constraints(const ClothMesh& mesh, ConstrainedEdges which,

@@ -23,6 +23,7 @@
 
 #include <vector>
 
+#include "base/enum_names.h"
 #include "sim/folds/tension_field.h"
 #include "sim/types.h"
 
@@ -30,9 +31,15 @@ namespace weft::sim {
 
 enum class FoldInterpolation { linear, cosine };
 
+inline constexpr base::EnumNames<FoldInterpolation, 2> fold_interpolation_names{
+    {{FoldInterpolation::cosine, "cosine"}, {FoldInterpolation::linear, "linear"}}};
+
 // rectangle: the membrane is h tall everywhere (a curtain); cosine: the membrane between the
 // top wrinkle line and line 0 — the shape for which the wrinkle-line solution is exact.
 enum class MembraneShape { rectangle, cosine };
+
+inline constexpr base::EnumNames<MembraneShape, 2> membrane_shape_names{
+    {{MembraneShape::rectangle, "rectangle"}, {MembraneShape::cosine, "cosine"}}};
 
 struct FoldPattern {
   double span_m = 0.0;               // l, > 0

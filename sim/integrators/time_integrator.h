@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "base/enum_names.h"
 #include "sim/integrators/integrator.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/state.h"
@@ -49,6 +50,9 @@ class TimeIntegrator {
 // at a relative residual ‖r‖/‖b‖ ≤ tolerance (inexact Newton: cheaper per step on large meshes;
 // the step's accuracy is then that of the residual).
 enum class ImplicitSolve { direct, conjugate_gradient };
+
+inline constexpr base::EnumNames<ImplicitSolve, 2> implicit_solve_names{
+    {{ImplicitSolve::direct, "direct"}, {ImplicitSolve::conjugate_gradient, "conjugate_gradient"}}};
 
 struct ImplicitSolveSettings {
   ImplicitSolve method = ImplicitSolve::direct;

@@ -20,6 +20,7 @@
 
 #include <vector>
 
+#include "base/enum_names.h"
 #include "sim/remesh/point_locator.h"
 #include "sim/remesh/remesh_types.h"
 
@@ -32,6 +33,9 @@ enum class PositionTransfer {
   quadratic,  // plus the fitted curvature patches' correction (transfer_quadratic): on the
               // curved surface rather than on its chords
 };
+
+inline constexpr base::EnumNames<PositionTransfer, 2> position_transfer_names{
+    {{PositionTransfer::quadratic, "quadratic"}, {PositionTransfer::linear, "linear"}}};
 
 // Where each new vertex lies in the old mesh: the old triangle and weights, or, for a kept old
 // vertex (new_to_old[i] ≥ 0), that vertex alone (triangle −1, weights unused).

@@ -45,7 +45,8 @@ TEST(JsonReader, ReadsEachKindAndMarksKeysRead) {
   EXPECT_EQ(r.vec3("v", required), Eigen::Vector3d(1, 2, 3));
   EXPECT_DOUBLE_EQ(r.angle_deg("a", required), 30.0);
   enum class E { one, two };
-  EXPECT_EQ(r.enumeration<E>("e", {{"one", E::one}, {"two", E::two}}, required), E::two);
+  constexpr base::EnumNames<E, 2> e_names{{{E::one, "one"}, {E::two, "two"}}};
+  EXPECT_EQ(r.enumeration("e", e_names, std::optional<E>(required)), E::two);
   ObjectReader o = r.object("o");
   EXPECT_EQ(o.path(), "o");
   EXPECT_EQ(o.number("k", required), 1.0);
