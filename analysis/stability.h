@@ -28,10 +28,10 @@
 #include "sim/material.h"
 #include "sim/types.h"
 
-namespace weft::sim {
+namespace weft::analysis {
 
 // Adds the internal forces at positions x (#V×3, m) to f (#V×3, N).
-using InternalForces = std::function<void(const Matrix3X& x, Matrix3X& f)>;
+using InternalForces = std::function<void(const sim::Matrix3X& x, sim::Matrix3X& f)>;
 
 // --- 1. the largest eigenvalue of M⁻¹K ------------------------------------------------------
 
@@ -63,7 +63,7 @@ struct LargestEigenvalue {
 // analytic spectrum of a chain and a dense eigen-solve of the FD Hessian). Lanczos finds the
 // extreme eigenvalue from a random start unless the start misses its eigenvector entirely.
 [[nodiscard]] LargestEigenvalue largest_eigenvalue_mass_stiffness(
-    const InternalForces& forces, const Matrix3X& x, const Eigen::VectorXd& mass_kg,
+    const InternalForces& forces, const sim::Matrix3X& x, const Eigen::VectorXd& mass_kg,
     const Eigen::VectorXd& inv_mass, const EigenvalueSettings& settings = {});
 
 // --- 2. predicted critical steps ------------------------------------------------------------
@@ -96,20 +96,20 @@ struct CriticalStep {
 //                         for ω → 0, when α² > 2ω_max²; cloth has α ≪ ω_max.)
 //   implicit Euler        always_stable.
 // Throws std::invalid_argument for ω ≤ 0 or α < 0.
-CriticalStep predicted_critical_step(Integrator method, double omega_rad_s,
+CriticalStep predicted_critical_step(sim::Integrator method, double omega_rad_s,
                                      double damping_1_s = 0.0);
 
 // --- 3. blow-up test and observed critical step ---------------------------------------------
 
 // One step of an integrator on a fixed system: advances x (m) and v (m/s) by h_s. Returns
 // false when the step failed (implicit Euler's linear solve), which counts as a blow-up.
-using StepFunction = std::function<bool(Matrix3X& x, Matrix3X& v, double h_s)>;
+using StepFunction = std::function<bool(sim::Matrix3X& x, sim::Matrix3X& v, double h_s)>;
 // Makes a fresh stepper for each run (central difference remembers its previous step).
 using StepperFactory = std::function<StepFunction()>;
 
 // The integrator `method` on `system` (make_time_integrator; implicit Euler by a direct solve).
 // dynamic_relaxation, which does not integrate physical time, is a bug (base::InternalError).
-StepperFactory stepper_factory(Integrator method, System system);
+StepperFactory stepper_factory(sim::Integrator method, sim::System system);
 
 struct BlowUpSettings {
   long steps = 1000;             // steps per run (fewer if it blows up first)
@@ -129,7 +129,7 @@ struct BlowUpResult {
 // Runs `step` at h_s from x_rest (#V×3, m) plus a seeded perturbation of the free vertices
 // (inv_mass > 0), starting at rest. Linear near rest when the perturbation times the growth
 // factor stays ≪ the edge lengths (the defaults: 0.1 mm at most).
-[[nodiscard]] BlowUpResult run_blow_up_test(const StepFunction& step, const Matrix3X& x_rest,
+[[nodiscard]] BlowUpResult run_blow_up_test(const StepFunction& step, const sim::Matrix3X& x_rest,
                                             const Eigen::VectorXd& mass_kg,
                                             const Eigen::VectorXd& inv_mass, double h_s,
                                             const BlowUpSettings& settings = {});
@@ -146,13 +146,10 @@ struct CriticalStepSearch {
 // around the guess (widening by 4× up to 8 times), then halves the bracket until
 // unstable/stable ≤ 1 + relative_tolerance. Assumes stability is monotone in h (true for
 // the explicit integrators on a linear system).
-[[nodiscard]] CriticalStepSearch find_critical_step(const StepperFactory& make_stepper,
-                                                    const Matrix3X& x_rest,
-                                                    const Eigen::VectorXd& mass_kg,
-                                                    const Eigen::VectorXd& inv_mass,
-                                                    double guess_h_s,
-                                                    const BlowUpSettings& settings = {},
-                                                    double relative_tolerance = 1e-3);
+[[nodiscard]] CriticalStepSearch find_critical_step(
+    const StepperFactory& make_stepper, const sim::Matrix3X& x_rest, const Eigen::VectorXd& mass_kg,
+    const Eigen::VectorXd& inv_mass, double guess_h_s, const BlowUpSettings& settings = {},
+    double relative_tolerance = 1e-3);
 
 // --- the standard cloth of `weft stability` -------------------------------------------------
 
@@ -163,32 +160,32 @@ struct CriticalStepSearch {
 class StabilityCloth {
  public:
   // Throws std::invalid_argument for n < 3 or stiffness_scale ≤ 0.
-  StabilityCloth(Index n, double stiffness_scale);
+  StabilityCloth(sim::Index n, double stiffness_scale);
   StabilityCloth(const StabilityCloth&) = delete;
   StabilityCloth& operator=(const StabilityCloth&) = delete;
 
-  const ClothMesh& mesh() const { return m_mesh; }
-  const Material& material() const { return m_material; }
-  const std::vector<Index>& pinned() const { return m_pinned; }
-  const MassSpringModel& model() const { return *m_model; }
+  const sim::ClothMesh& mesh() const { return m_mesh; }
+  const sim::Material& material() const { return m_material; }
+  const std::vector<sim::Index>& pinned() const { return m_pinned; }
+  const sim::MassSpringModel& model() const { return *m_model; }
   const Eigen::VectorXd& mass_kg() const { return m_mass_kg; }
   const Eigen::VectorXd& inv_mass() const { return m_inv_mass; }  // 0 at the pins
-  const Matrix3X& rest_positions() const { return m_mesh.rest_positions; }
+  const sim::Matrix3X& rest_positions() const { return m_mesh.rest_positions; }
   InternalForces forces() const;  // the model's springs and bending
   // Its System (no gravity) with mass damping α.
-  System system(double damping_1_s) const;
+  sim::System system(double damping_1_s) const;
 
   // λ_max(M⁻¹K) at rest.
   [[nodiscard]] LargestEigenvalue largest_eigenvalue(const EigenvalueSettings& s = {}) const;
   // A fresh stepper of `method` (implicit Euler included) with mass damping α.
-  StepperFactory stepper_factory(Integrator method, double damping_1_s) const;
+  StepperFactory stepper_factory(sim::Integrator method, double damping_1_s) const;
 
  private:
-  ClothMesh m_mesh;
-  Material m_material;
-  std::vector<Index> m_pinned;
-  std::unique_ptr<MassSpringModel> m_model;
+  sim::ClothMesh m_mesh;
+  sim::Material m_material;
+  std::vector<sim::Index> m_pinned;
+  std::unique_ptr<sim::MassSpringModel> m_model;
   Eigen::VectorXd m_mass_kg, m_inv_mass;
 };
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace weft::app {
+namespace weft::analysis {
 
 sim::Vec3 position_at_material_point(const sim::ClothMesh& mesh, const sim::Matrix3X& x,
                                      const sim::Vec2& uv) {
@@ -149,4 +149,4 @@ std::vector<bool> pareto_optimal(const std::vector<double>& time_s,
   return optimal;
 }
 
-}  // namespace weft::app
+}  // namespace weft::analysis

@@ -9,7 +9,7 @@
 #include "sim/grid.h"
 #include "sim/types.h"
 
-namespace weft::app {
+namespace weft::analysis {
 
 // The reference cloth's position at material point uv = (u, v) metres: bilinear interpolation
 // of `x` (#V×3, metres) over the warp/weft grid `mesh` (its material coordinates are a regular
@@ -67,4 +67,4 @@ std::vector<bool> pareto_optimal(const std::vector<double>& time_s,
                                  const std::vector<double>& error,
                                  const std::vector<bool>& eligible);
 
-}  // namespace weft::app
+}  // namespace weft::analysis

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace weft::sim {
+namespace weft::analysis {
 
 int count_alternating_extremes(const std::vector<double>& values, double min_prominence) {
   if (!(min_prominence > 0.0))
@@ -34,7 +34,7 @@ int count_alternating_extremes(const std::vector<double>& values, double min_pro
   return direction == 0 ? 0 : extremes + 1;  // the last run's end is an extreme too
 }
 
-CurtainFolds count_curtain_folds(const ClothMesh& mesh, const Matrix3X& x,
+CurtainFolds count_curtain_folds(const sim::ClothMesh& mesh, const sim::Matrix3X& x,
                                  double prominence_fraction, double min_prominence_m) {
   mesh.require_grid("counting curtain folds (down the grid's centre column)");
   if (mesh.nu < 2 || mesh.nv < 2)
@@ -43,19 +43,21 @@ CurtainFolds count_curtain_folds(const ClothMesh& mesh, const Matrix3X& x,
     throw std::invalid_argument("count_curtain_folds: expected " +
                                 std::to_string(mesh.vertex_count()) + " positions, got " +
                                 std::to_string(x.rows()));
-  const Vec3 left = x.row(mesh.index(0, 0)).transpose();
-  const Vec3 right = x.row(mesh.index(mesh.nu - 1, 0)).transpose();
-  const Vec3 rest_warp = (mesh.rest_positions.row(mesh.index(mesh.nu - 1, 0)) -
-                          mesh.rest_positions.row(mesh.index(0, 0))).transpose();
-  const Vec3 rest_weft = (mesh.rest_positions.row(mesh.index(0, mesh.nv - 1)) -
-                          mesh.rest_positions.row(mesh.index(0, 0))).transpose();
+  const sim::Vec3 left = x.row(mesh.index(0, 0)).transpose();
+  const sim::Vec3 right = x.row(mesh.index(mesh.nu - 1, 0)).transpose();
+  const sim::Vec3 rest_warp = (mesh.rest_positions.row(mesh.index(mesh.nu - 1, 0)) -
+                               mesh.rest_positions.row(mesh.index(0, 0)))
+                                  .transpose();
+  const sim::Vec3 rest_weft = (mesh.rest_positions.row(mesh.index(0, mesh.nv - 1)) -
+                               mesh.rest_positions.row(mesh.index(0, 0)))
+                                  .transpose();
   // The supports' plane: through both top corners, containing the (rest) weft direction.
-  Vec3 across = right - left;
+  sim::Vec3 across = right - left;
   if (!(across.norm() > 0.0)) across = rest_warp;
-  const Vec3 normal = across.cross(rest_weft).normalized();
+  const sim::Vec3 normal = across.cross(rest_weft).normalized();
   CurtainFolds out;
-  const Index column = (mesh.nu - 1) / 2;
-  for (Index j = 0; j < mesh.nv; ++j)
+  const sim::Index column = (mesh.nu - 1) / 2;
+  for (sim::Index j = 0; j < mesh.nv; ++j)
     out.offsets_m.push_back((x.row(mesh.index(column, j)).transpose() - left).dot(normal));
   const auto [lo, hi] = std::minmax_element(out.offsets_m.begin(), out.offsets_m.end());
   out.min_prominence_m = std::max(prominence_fraction * (*hi - *lo), min_prominence_m);
@@ -63,4 +65,4 @@ CurtainFolds count_curtain_folds(const ClothMesh& mesh, const Matrix3X& x,
   return out;
 }
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

@@ -14,7 +14,7 @@
 #include "sim/grid.h"
 #include "sim/types.h"
 
-namespace weft::sim {
+namespace weft::analysis {
 
 // The alternating extremes of a sequence (zigzag with hysteresis min_prominence, > 0).
 int count_alternating_extremes(const std::vector<double>& values, double min_prominence);
@@ -30,8 +30,7 @@ struct CurtainFolds {
 // the grid column nearest the middle of the warp extent. The hysteresis is the larger of
 // prominence_fraction of the offsets' range and min_prominence_m. Throws std::invalid_argument
 // for a grid narrower than 2 vertices or x of the wrong size.
-CurtainFolds count_curtain_folds(const ClothMesh& mesh, const Matrix3X& x,
-                                 double prominence_fraction = 0.1,
-                                 double min_prominence_m = 2e-3);
+CurtainFolds count_curtain_folds(const sim::ClothMesh& mesh, const sim::Matrix3X& x,
+                                 double prominence_fraction = 0.1, double min_prominence_m = 2e-3);
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

@@ -8,7 +8,7 @@
 
 #include "base/constants.h"
 
-namespace weft::sim {
+namespace weft::analysis {
 
 namespace {
 
@@ -17,14 +17,14 @@ bool finite_nonnegative(double v) { return std::isfinite(v) && v >= 0.0; }
 // Marks the cells of `mask` whose centres lie inside triangle abc (projected), by the
 // crossing rule: on each row of cell centres y = y_c, an edge pq counts when exactly one of
 // p, q has y ≤ y_c; the two crossings bound a half-open run [x_left, x_right) of centres.
-void fill_triangle(const Vec2& a, const Vec2& b, const Vec2& c, ShadowMask& mask) {
+void fill_triangle(const sim::Vec2& a, const sim::Vec2& b, const sim::Vec2& c, ShadowMask& mask) {
   const double h = mask.cell_m;
   const double y_min = std::min({a.y(), b.y(), c.y()}), y_max = std::max({a.y(), b.y(), c.y()});
   // Rows whose centre y0 + (iy + ½)h lies in [y_min, y_max].
   const int iy_begin = std::max(0, static_cast<int>(std::ceil((y_min - mask.y0_m) / h - 0.5)));
   const int iy_end =
       std::min(mask.ny - 1, static_cast<int>(std::floor((y_max - mask.y0_m) / h - 0.5)));
-  const std::array<std::pair<Vec2, Vec2>, 3> edges{{{a, b}, {b, c}, {c, a}}};
+  const std::array<std::pair<sim::Vec2, sim::Vec2>, 3> edges{{{a, b}, {b, c}, {c, a}}};
   for (int iy = iy_begin; iy <= iy_end; ++iy) {
     const double yc = mask.y0_m + (iy + 0.5) * h;
     double xs[2];
@@ -52,15 +52,15 @@ long ShadowMask::cell_count() const {
   return static_cast<long>(std::count(inside.begin(), inside.end(), std::uint8_t{1}));
 }
 
-ShadowMask rasterize_shadow(const Matrix3X& x, const Triangles& triangles, double cell_m) {
+ShadowMask rasterize_shadow(const sim::Matrix3X& x, const Triangles& triangles, double cell_m) {
   if (!(std::isfinite(cell_m) && cell_m > 0.0))
     throw std::invalid_argument("rasterize_shadow: the cell size must be finite and > 0, got " +
                                 std::to_string(cell_m));
-  const Index n = static_cast<Index>(x.rows());
+  const sim::Index n = static_cast<sim::Index>(x.rows());
   double x_lo = std::numeric_limits<double>::infinity(), y_lo = x_lo;
   double x_hi = -x_lo, y_hi = -x_lo;
   for (const auto& t : triangles) {
-    for (Index v : t) {
+    for (sim::Index v : t) {
       if (v < 0 || v >= n)
         throw std::invalid_argument("rasterize_shadow: vertex index " + std::to_string(v) +
                                     " out of range (" + std::to_string(n) + " positions)");
@@ -90,7 +90,7 @@ ShadowMask rasterize_shadow(const Matrix3X& x, const Triangles& triangles, doubl
   mask.y0_m = y_lo - cell_m;
   mask.inside.assign(static_cast<std::size_t>(mask.nx) * static_cast<std::size_t>(mask.ny), 0);
   for (const auto& t : triangles) {
-    const Vec2 a(x(t[0], 0), x(t[0], 1)), b(x(t[1], 0), x(t[1], 1)), c(x(t[2], 0), x(t[2], 1));
+    const sim::Vec2 a(x(t[0], 0), x(t[0], 1)), b(x(t[1], 0), x(t[1], 1)), c(x(t[2], 0), x(t[2], 1));
     fill_triangle(a, b, c, mask);
   }
   return mask;
@@ -101,16 +101,16 @@ double shadow_area_error_bound_m2(double perimeter_m, double cell_m, int boundar
   return 2.0 * r * perimeter_m + base::kPi * r * r * boundary_loops;
 }
 
-double specimen_rest_area_m2(const ClothMesh& mesh) {
+double specimen_rest_area_m2(const sim::ClothMesh& mesh) {
   double area = 0.0;
   for (const auto& q : mesh.quads) {
-    const Vec3 d02 = mesh.rest_positions.row(q[2]) - mesh.rest_positions.row(q[0]);
-    const Vec3 d13 = mesh.rest_positions.row(q[3]) - mesh.rest_positions.row(q[1]);
+    const sim::Vec3 d02 = mesh.rest_positions.row(q[2]) - mesh.rest_positions.row(q[0]);
+    const sim::Vec3 d13 = mesh.rest_positions.row(q[3]) - mesh.rest_positions.row(q[1]);
     area += 0.5 * d02.cross(d13).norm();
   }
   for (const auto& t : mesh.faces) {  // a mesh without a grid
-    const Vec3 d01 = mesh.rest_positions.row(t[1]) - mesh.rest_positions.row(t[0]);
-    const Vec3 d02 = mesh.rest_positions.row(t[2]) - mesh.rest_positions.row(t[0]);
+    const sim::Vec3 d01 = mesh.rest_positions.row(t[1]) - mesh.rest_positions.row(t[0]);
+    const sim::Vec3 d02 = mesh.rest_positions.row(t[2]) - mesh.rest_positions.row(t[0]);
     area += 0.5 * d01.cross(d02).norm();
   }
   return area;
@@ -127,31 +127,31 @@ double drape_coefficient(double shadow_m2, double support_m2, double specimen_m2
   return (shadow_m2 - support_m2) / (specimen_m2 - support_m2);
 }
 
-std::optional<DrapeSupport> find_support(const std::vector<Obstacle>& obstacles,
-                                         const Vec3& cloth_center_m) {
-  const Vec2 c(cloth_center_m.x(), cloth_center_m.y());
+std::optional<DrapeSupport> find_support(const std::vector<sim::Obstacle>& obstacles,
+                                         const sim::Vec3& cloth_center_m) {
+  const sim::Vec2 c(cloth_center_m.x(), cloth_center_m.y());
   std::optional<DrapeSupport> best;
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
     DrapeSupport s;
     s.obstacle = k;
     bool under = false;
     // std::get_if rather than std::visit: obstacle kinds that cannot be supports need no case.
-    if (const auto* cyl = std::get_if<CylinderObstacle>(&obstacles[k])) {
+    if (const auto* cyl = std::get_if<sim::CylinderObstacle>(&obstacles[k])) {
       if (std::abs(std::abs(cyl->axis.z()) - 1.0) > 1e-6) continue;  // tilted
       s.kind = "cylinder";
       s.axis_m = cyl->center_m.head<2>();
       s.top_z_m = cyl->center_m.z() + 0.5 * cyl->height_m;
       s.area_m2 = base::kPi * cyl->radius_m * cyl->radius_m;
       under = (c - s.axis_m).norm() <= cyl->radius_m;
-    } else if (const auto* box = std::get_if<BoxObstacle>(&obstacles[k])) {
+    } else if (const auto* box = std::get_if<sim::BoxObstacle>(&obstacles[k])) {
       s.kind = "box";
       s.axis_m = box->center_m.head<2>();
       s.top_z_m = box->center_m.z() + box->half_size_m.z();
       s.area_m2 = 4.0 * box->half_size_m.x() * box->half_size_m.y();
-      const Vec3 d(c.x() - s.axis_m.x(), c.y() - s.axis_m.y(), 0.0);
-      under = std::abs(d.dot(box_axis_x(*box))) <= box->half_size_m.x() &&
-              std::abs(d.dot(box_axis_y(*box))) <= box->half_size_m.y();
-    } else if (const auto* sphere = std::get_if<SphereObstacle>(&obstacles[k])) {
+      const sim::Vec3 d(c.x() - s.axis_m.x(), c.y() - s.axis_m.y(), 0.0);
+      under = std::abs(d.dot(sim::box_axis_x(*box))) <= box->half_size_m.x() &&
+              std::abs(d.dot(sim::box_axis_y(*box))) <= box->half_size_m.y();
+    } else if (const auto* sphere = std::get_if<sim::SphereObstacle>(&obstacles[k])) {
       s.kind = "sphere";
       s.axis_m = sphere->center_m.head<2>();
       s.top_z_m = sphere->center_m.z() + sphere->radius_m;
@@ -164,7 +164,7 @@ std::optional<DrapeSupport> find_support(const std::vector<Obstacle>& obstacles,
   return best;
 }
 
-std::vector<double> outline_radii(const ShadowMask& shadow, const Vec2& center_m, int bins) {
+std::vector<double> outline_radii(const ShadowMask& shadow, const sim::Vec2& center_m, int bins) {
   if (bins < 3)
     throw std::invalid_argument("outline_radii: expected at least 3 angular bins, got " +
                                 std::to_string(bins));
@@ -172,7 +172,7 @@ std::vector<double> outline_radii(const ShadowMask& shadow, const Vec2& center_m
   for (int iy = 0; iy < shadow.ny; ++iy) {
     for (int ix = 0; ix < shadow.nx; ++ix) {
       if (!shadow.inside[static_cast<std::size_t>(iy) * shadow.nx + ix]) continue;
-      const Vec2 d = shadow.cell_center_m(ix, iy) - center_m;
+      const sim::Vec2 d = shadow.cell_center_m(ix, iy) - center_m;
       double theta = std::atan2(d.y(), d.x());
       if (theta < 0.0) theta += 2.0 * base::kPi;
       const int k = std::min(bins - 1, static_cast<int>(theta / (2.0 * base::kPi) * bins));
@@ -244,7 +244,7 @@ int count_folds(const std::vector<double>& radii_m, const FoldCountSettings& set
   return static_cast<int>(fold_crests(radii_m, settings).size());
 }
 
-DrapeShape measure_shadow(const ShadowMask& shadow, const Vec2& axis_m, double support_m2,
+DrapeShape measure_shadow(const ShadowMask& shadow, const sim::Vec2& axis_m, double support_m2,
                           double specimen_m2, const DrapeMeasureSettings& settings) {
   DrapeShape shape;
   shape.cell_m = shadow.cell_m;
@@ -258,17 +258,18 @@ DrapeShape measure_shadow(const ShadowMask& shadow, const Vec2& axis_m, double s
   return shape;
 }
 
-DrapeShape measure_drape(const ClothMesh& mesh, const Triangles& triangles, const Matrix3X& x,
-                         const DrapeSupport& support, const DrapeMeasureSettings& settings) {
+DrapeShape measure_drape(const sim::ClothMesh& mesh, const Triangles& triangles,
+                         const sim::Matrix3X& x, const DrapeSupport& support,
+                         const DrapeMeasureSettings& settings) {
   const double specimen_m2 = specimen_rest_area_m2(mesh);
   double cell_m = settings.cell_fraction * std::sqrt(specimen_m2);
   // Coarser cells when the shadow spreads wide: at most 4096 along its longer side (plus the
   // margin), about 17 million cells, under max_shadow_cells.
   double extent_m = 0.0;
   if (!triangles.empty()) {
-    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    sim::Vec2 lo = sim::Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (const auto& t : triangles)
-      for (Index v : t)
+      for (sim::Index v : t)
         if (v >= 0 && v < x.rows()) {
           lo = lo.cwiseMin(x.row(v).head<2>().transpose());
           hi = hi.cwiseMax(x.row(v).head<2>().transpose());
@@ -280,4 +281,4 @@ DrapeShape measure_drape(const ClothMesh& mesh, const Triangles& triangles, cons
                         specimen_m2, settings);
 }
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

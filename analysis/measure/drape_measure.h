@@ -19,9 +19,9 @@
 #include "sim/grid.h"
 #include "sim/types.h"
 
-namespace weft::sim {
+namespace weft::analysis {
 
-using Triangles = std::vector<std::array<Index, 3>>;
+using Triangles = std::vector<std::array<sim::Index, 3>>;
 
 // The shadow: the vertical projection of the triangles on the horizontal (x, y) plane, as a
 // mask on a grid of square cells. A cell belongs to the shadow when its centre lies inside the
@@ -36,7 +36,7 @@ struct ShadowMask {
 
   long cell_count() const;  // cells in the shadow
   double area_m2() const { return static_cast<double>(cell_count()) * cell_m * cell_m; }
-  Vec2 cell_center_m(int ix, int iy) const {
+  sim::Vec2 cell_center_m(int ix, int iy) const {
     return {x0_m + (ix + 0.5) * cell_m, y0_m + (iy + 0.5) * cell_m};
   }
 };
@@ -51,7 +51,7 @@ inline constexpr long max_shadow_cells = 1L << 26;
 // double-counted and nothing falls through the cracks. Throws std::invalid_argument for a
 // cell_m that is not finite and > 0, a vertex index out of range, a non-finite position, or a
 // grid of more than max_shadow_cells cells (choose a coarser cell).
-ShadowMask rasterize_shadow(const Matrix3X& x, const Triangles& triangles, double cell_m);
+ShadowMask rasterize_shadow(const sim::Matrix3X& x, const Triangles& triangles, double cell_m);
 
 // Bound on |ShadowMask::area_m2() − exact area| for a shadow whose boundary has total length
 // perimeter_m and consists of boundary_loops closed curves: only cells the boundary crosses
@@ -63,7 +63,7 @@ double shadow_area_error_bound_m2(double perimeter_m, double cell_m, int boundar
 // The specimen's rest area: the sum of its quads' rest areas (a planar quad p0 p1 p2 p3 has
 // area |(p2 − p0) × (p3 − p1)|/2), so a specimen that keeps only some grid cells (a disc)
 // counts just those. m².
-double specimen_rest_area_m2(const ClothMesh& mesh);
+double specimen_rest_area_m2(const sim::ClothMesh& mesh);
 
 // DC = (shadow − support)/(specimen − support), areas in m², dimensionless. Throws
 // std::invalid_argument unless all three are finite and ≥ 0 and specimen > support (a specimen
@@ -74,7 +74,7 @@ double drape_coefficient(double shadow_m2, double support_m2, double specimen_m2
 struct DrapeSupport {
   std::size_t obstacle = 0;  // index in the obstacle list
   std::string kind;          // "cylinder", "box" or "sphere"
-  Vec2 axis_m{0.0, 0.0};     // (x, y) of the support's vertical axis
+  sim::Vec2 axis_m{0.0, 0.0};  // (x, y) of the support's vertical axis
   double top_z_m = 0.0;      // height of its highest point
   double area_m2 = 0.0;      // its horizontal area: the disc, the box's top face, the sphere's great circle
 };
@@ -84,8 +84,8 @@ struct DrapeSupport {
 // (within 1e-6), boxes (any yaw) and spheres; planes, capsules and tilted cylinders are never
 // supports — the one with the highest top (the first in list order among equal tops). None:
 // nothing holds the cloth from below (a hang). cloth_center_m: e.g. the mean rest position.
-std::optional<DrapeSupport> find_support(const std::vector<Obstacle>& obstacles,
-                                         const Vec3& cloth_center_m);
+std::optional<DrapeSupport> find_support(const std::vector<sim::Obstacle>& obstacles,
+                                         const sim::Vec3& cloth_center_m);
 
 // The outline radius r(θ): bin k of `bins` covers angles θ ∈ [2πk/bins, 2π(k+1)/bins) about
 // center_m, counter-clockwise from +x, and holds the largest distance from center_m of a shadow
@@ -95,7 +95,7 @@ std::optional<DrapeSupport> find_support(const std::vector<Obstacle>& obstacles,
 // |dr/(r dθ)| there: such a disc fits inside the shadow and the bin ρ√(1 + s²) below a point of
 // the outline that lies ρ/r inside the bin's edge (curvature neglected). About 1.7 h on a circle.
 // Throws std::invalid_argument for bins < 3.
-std::vector<double> outline_radii(const ShadowMask& shadow, const Vec2& center_m, int bins);
+std::vector<double> outline_radii(const ShadowMask& shadow, const sim::Vec2& center_m, int bins);
 
 // Circular moving average over `window` bins (odd, ≥ 1; 1 returns the input). A box filter of
 // width w reduces a wave of period P bins by sinc(w/P) = sin(πw/P)/(πw/P): by 14 % for 12 folds
@@ -148,13 +148,14 @@ struct DrapeShape {
 // (measure_drape) or a top-view photo's silhouette (app/run/drape_photo.h): one ruler. The shadow's
 // area, DC against support_m2 and specimen_m2 (drape_coefficient), r(θ) about axis_m
 // (outline_radii) and the folds (count_folds, min_prominence_m raised to at least 2 cells).
-DrapeShape measure_shadow(const ShadowMask& shadow, const Vec2& axis_m, double support_m2,
+DrapeShape measure_shadow(const ShadowMask& shadow, const sim::Vec2& axis_m, double support_m2,
                           double specimen_m2, const DrapeMeasureSettings& settings = {});
 
 // Measures the drape of positions x (#V×3, m) of `mesh` over `support`. Throws
 // std::invalid_argument when the specimen is no larger than the support (drape_coefficient) or
 // a position is not finite.
-DrapeShape measure_drape(const ClothMesh& mesh, const Triangles& triangles, const Matrix3X& x,
-                         const DrapeSupport& support, const DrapeMeasureSettings& settings = {});
+DrapeShape measure_drape(const sim::ClothMesh& mesh, const Triangles& triangles,
+                         const sim::Matrix3X& x, const DrapeSupport& support,
+                         const DrapeMeasureSettings& settings = {});
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

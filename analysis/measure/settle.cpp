@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace weft::sim {
+namespace weft::analysis {
 
 std::optional<double> settle_time_s(const std::vector<double>& time_s,
                                     const std::vector<double>& value, double threshold) {
@@ -37,4 +37,4 @@ std::optional<double> settle_time_s(const std::vector<double>& time_s,
   return t0 + fraction * (t1 - t0);
 }
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-namespace weft::sim {
+namespace weft::analysis {
 
 inline constexpr double settle_speed_threshold_m_s = 0.01;
 
@@ -29,4 +29,4 @@ inline constexpr double settle_speed_threshold_m_s = 0.01;
 std::optional<double> settle_time_s(const std::vector<double>& time_s,
                                     const std::vector<double>& value, double threshold);
 
-}  // namespace weft::sim
+}  // namespace weft::analysis

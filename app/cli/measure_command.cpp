@@ -61,7 +61,7 @@ void print_table(const Scene& scene, const SceneMeasurement& m) {
                      m.settle_time_s ? format("%.2f s", *m.settle_time_s)
                                      : format("not settled by t = %.2f s", last.time_s));
   if (m.final_drape) {
-    const sim::DrapeShape& d = *m.final_drape;
+    const analysis::DrapeShape& d = *m.final_drape;
     lines.emplace_back("drape coefficient", format("%.3f", d.drape_coefficient));
     lines.emplace_back("folds", std::to_string(d.folds));
     lines.emplace_back("shadow area", format("%.1f cm^2", 1e4 * d.shadow_m2) +
@@ -98,7 +98,7 @@ int run_measure(const MeasureOptions& options) {
     scene.frames = static_cast<int>(std::ceil(*options.until_settled_max_s * scene.fps - 1e-9));
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
-  const std::optional<sim::DrapeSupport> support =
+  const std::optional<analysis::DrapeSupport> support =
       scene_support(scene, simulator->mesh(), options.require_drape);
 
   // The output folder is touched when the first frame is measured (start_output).
@@ -141,7 +141,7 @@ int run_measure(const MeasureOptions& options) {
   }
   progress.finish();
   if (m.final_drape) {
-    write_outline(dir / "outline.csv", *m.final_drape, sim::DrapeMeasureSettings{}.folds);
+    write_outline(dir / "outline.csv", *m.final_drape, analysis::DrapeMeasureSettings{}.folds);
   }
   print_table(scene, m);
   std::printf("weft: wrote measure.csv%s to %s (%s)\n", m.final_drape ? " and outline.csv" : "",

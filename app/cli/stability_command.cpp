@@ -44,8 +44,8 @@ double damping_for(Integrator method, double omega_rad_s) {
   return method == Integrator::explicit_euler ? kEulerDampingRatio * omega_rad_s : 0.0;
 }
 
-sim::BlowUpSettings blow_up_settings(Integrator method) {
-  sim::BlowUpSettings s;
+analysis::BlowUpSettings blow_up_settings(Integrator method) {
+  analysis::BlowUpSettings s;
   s.steps = method == Integrator::implicit_euler ? kImplicitSteps : kStepsPerRun;
   return s;
 }
@@ -58,11 +58,11 @@ struct Row {  // one stiffness scale
 
 struct Panel {  // one integrator
   Integrator method;
-  sim::StepLimit limit = sim::StepLimit::bounded;
+  analysis::StepLimit limit = analysis::StepLimit::bounded;
   std::vector<double> predicted_h_s;   // per row; NaN unless bounded
   std::vector<double> gershgorin_h_s;  // per row: the prediction from the Gershgorin ω
   std::vector<double> observed_h_s;    // per row; NaN when not searched or not bracketed
-  std::vector<std::vector<sim::BlowUpResult>> runs;  // [row][column]
+  std::vector<std::vector<analysis::BlowUpResult>> runs;  // [row][column]
   bool all_stable() const {
     for (const auto& row : runs)
       for (const auto& r : row)
@@ -134,7 +134,7 @@ chart::Plot heatmap_panel(const Panel& panel, const std::vector<Row>& rows,
   chart::Plot plot;
   plot.title = sim::integrator_name(panel.method);
   if (panel.method == Integrator::explicit_euler) plot.note = "(α = ω_max)";
-  if (panel.limit == sim::StepLimit::always_stable)
+  if (panel.limit == analysis::StepLimit::always_stable)
     plot.note = panel.all_stable() ? "(stable everywhere)" : "(NOT stable everywhere)";
   plot.x = {"time step h [s]", chart::Scale::log, h_lo, h_hi};
   plot.y = {"stiffness scale s", chart::Scale::linear, 0.0, static_cast<double>(rows.size())};
@@ -218,11 +218,11 @@ namespace {
 
 // The rows: one cloth per stiffness scale, its ω_max (Lanczos) and Gershgorin bound.
 std::vector<Row> measure_rows(const std::vector<double>& scales,
-                              const std::vector<std::unique_ptr<sim::StabilityCloth>>& cloths) {
+                              const std::vector<std::unique_ptr<analysis::StabilityCloth>>& cloths) {
   std::vector<Row> rows;
   for (std::size_t r = 0; r < scales.size(); ++r) {
-    const sim::StabilityCloth& cloth = *cloths[r];
-    const sim::LargestEigenvalue e = cloth.largest_eigenvalue();
+    const analysis::StabilityCloth& cloth = *cloths[r];
+    const analysis::LargestEigenvalue e = cloth.largest_eigenvalue();
     if (!e.converged)
       std::fprintf(stderr, "weft: warning: s = %g: lambda_max not converged in %d steps\n",
                    scales[r], e.iterations);
@@ -250,12 +250,12 @@ std::vector<Panel> predict_panels(const std::vector<Integrator>& integrators,
     p.method = method;
     for (const Row& row : rows) {
       const double alpha = damping_for(method, row.omega_rad_s);
-      const sim::CriticalStep predicted = sim::predicted_critical_step(method, row.omega_rad_s, alpha);
+      const analysis::CriticalStep predicted = analysis::predicted_critical_step(method, row.omega_rad_s, alpha);
       p.limit = predicted.limit;
-      const bool bounded = predicted.limit == sim::StepLimit::bounded;
+      const bool bounded = predicted.limit == analysis::StepLimit::bounded;
       p.predicted_h_s.push_back(bounded ? predicted.h_s : kNaN);
       p.gershgorin_h_s.push_back(
-          bounded ? sim::predicted_critical_step(method, row.gershgorin_omega_rad_s, alpha).h_s
+          bounded ? analysis::predicted_critical_step(method, row.gershgorin_omega_rad_s, alpha).h_s
                   : kNaN);
       const double reference = bounded ? predicted.h_s : 2.0 / row.omega_rad_s;
       h_min = std::min(h_min, reference);
@@ -274,23 +274,23 @@ std::vector<Panel> predict_panels(const std::vector<Integrator>& integrators,
 
 // Every cell's blow-up run, and the observed critical step of each bounded row (bisection).
 void run_panels(std::vector<Panel>& panels, const std::vector<Row>& rows,
-                const std::vector<std::unique_ptr<sim::StabilityCloth>>& cloths,
+                const std::vector<std::unique_ptr<analysis::StabilityCloth>>& cloths,
                 const std::vector<double>& h_s, Progress& progress) {
   int done = 0;
   for (Panel& p : panels) {
     p.runs.resize(rows.size());
     for (std::size_t r = 0; r < rows.size(); ++r) {
       const double alpha = damping_for(p.method, rows[r].omega_rad_s);
-      const sim::StepperFactory make = cloths[r]->stepper_factory(p.method, alpha);
-      const sim::BlowUpSettings settings = blow_up_settings(p.method);
-      const sim::StabilityCloth& cloth = *cloths[r];
+      const analysis::StepperFactory make = cloths[r]->stepper_factory(p.method, alpha);
+      const analysis::BlowUpSettings settings = blow_up_settings(p.method);
+      const analysis::StabilityCloth& cloth = *cloths[r];
       for (double h : h_s)
-        p.runs[r].push_back(sim::run_blow_up_test(make(), cloth.rest_positions(), cloth.mass_kg(),
+        p.runs[r].push_back(analysis::run_blow_up_test(make(), cloth.rest_positions(), cloth.mass_kg(),
                                                   cloth.inv_mass(), h, settings));
       double observed = kNaN;
-      if (p.limit == sim::StepLimit::bounded) {
-        const sim::CriticalStepSearch search =
-            sim::find_critical_step(make, cloth.rest_positions(), cloth.mass_kg(),
+      if (p.limit == analysis::StepLimit::bounded) {
+        const analysis::CriticalStepSearch search =
+            analysis::find_critical_step(make, cloth.rest_positions(), cloth.mass_kg(),
                                     cloth.inv_mass(), p.predicted_h_s[r], settings,
                                     kBisectionTolerance);
         if (search.bracketed) observed = search.h_s();
@@ -330,7 +330,7 @@ void write_tables(const StabilityOptions& options, const std::string& cloth_text
     for (std::size_t r = 0; r < rows.size(); ++r) {
       const double predicted = p.predicted_h_s[r], observed = p.observed_h_s[r];
       char line[200];
-      if (p.limit == sim::StepLimit::always_stable) {
+      if (p.limit == analysis::StepLimit::always_stable) {
         long stable = 0;
         for (const auto& run : p.runs[r]) stable += run.stable;
         std::snprintf(line, sizeof line, "  %-18s   %7.3g   %15s   stable at %ld of %zu steps (%ld steps each)\n",
@@ -346,7 +346,7 @@ void write_tables(const StabilityOptions& options, const std::string& cloth_text
                    << format_e(predicted) << ',' << format_e(p.gershgorin_h_s[r]) << ','
                    << format_e(observed) << ',' << format_e(observed / predicted) << '\n';
       for (std::size_t j = 0; j < h_s.size(); ++j) {
-        const sim::BlowUpResult& run = p.runs[r][j];
+        const analysis::BlowUpResult& run = p.runs[r][j];
         sweep_csv << name << ',' << rows[r].scale << ',' << format_e(h_s[j]) << ','
                   << format_e(predicted) << ',' << (run.stable ? 1 : 0) << ',' << run.steps_run
                   << ',' << format_e(run.max_growth) << '\n';
@@ -368,8 +368,8 @@ int run_stability(const StabilityOptions& options) {
     throw InputError("--stiffness-scales: a value is listed twice");
   fs::create_directories(options.out);
 
-  std::vector<std::unique_ptr<sim::StabilityCloth>> cloths;
-  for (double s : scales) cloths.push_back(std::make_unique<sim::StabilityCloth>(options.size, s));
+  std::vector<std::unique_ptr<analysis::StabilityCloth>> cloths;
+  for (double s : scales) cloths.push_back(std::make_unique<analysis::StabilityCloth>(options.size, s));
   const std::vector<Row> rows = measure_rows(scales, cloths);
   Steps steps;
   std::vector<Panel> panels = predict_panels(options.integrators, rows, options.steps_per_row, steps);

@@ -167,8 +167,8 @@ std::vector<std::pair<std::string, double>> FitProblem::measure(const Scene& sce
     }
     if (t->drape_coefficient || t->folds) {
       const auto support = scene_support(scene, s.mesh(), true);
-      const sim::DrapeShape d =
-          sim::measure_drape(s.mesh(), s.mesh().triangles(), s.state().x, *support);
+      const analysis::DrapeShape d =
+          analysis::measure_drape(s.mesh(), s.mesh().triangles(), s.state().x, *support);
       m.emplace_back("drape_coefficient", d.drape_coefficient);
       m.emplace_back("folds", d.folds);
       if (t->drape_coefficient) objective += relative_misfit(d.drape_coefficient, *t->drape_coefficient);

@@ -56,7 +56,7 @@ render::Image read_input(const fs::path& path, const char* option) {
 
 void print_table(const MeasurePhotoOptions& o, const render::Silhouette& s,
                  const DrapePhotoMeasurement& m) {
-  const sim::DrapeShape& d = m.shape;
+  const analysis::DrapeShape& d = m.shape;
   std::string crests;
   for (int k : d.crests)
     crests += (crests.empty() ? " at " : ", ") +
@@ -95,8 +95,8 @@ double drape_photo_mm_per_px(const DrapePhotoSetup& setup, const std::string& so
   return setup.disc_mm / *setup.disc_px;
 }
 
-sim::ShadowMask shadow_from_mask(const render::Mask& mask, double cell_m) {
-  sim::ShadowMask s;
+analysis::ShadowMask shadow_from_mask(const render::Mask& mask, double cell_m) {
+  analysis::ShadowMask s;
   s.cell_m = cell_m;
   s.nx = mask.width;
   s.ny = mask.height;
@@ -114,7 +114,7 @@ sim::Vec2 shadow_point_m(const render::Mask& mask, double cell_m, const sim::Vec
 DrapePhotoMeasurement measure_drape_silhouette(const render::Mask& silhouette,
                                                const DrapePhotoSetup& setup,
                                                const std::string& source,
-                                               const sim::DrapeMeasureSettings& settings) {
+                                               const analysis::DrapeMeasureSettings& settings) {
   DrapePhotoMeasurement m;
   m.mm_per_px = drape_photo_mm_per_px(setup, source);
   m.silhouette = render::fill_holes(render::largest_component(silhouette));
@@ -136,7 +136,7 @@ DrapePhotoMeasurement measure_drape_silhouette(const render::Mask& silhouette,
   m.specimen_radius_px = 0.5 * setup.specimen_mm / m.mm_per_px;
   m.support_m2 = base::kPi * std::pow(0.5e-3 * setup.disc_mm, 2);
   m.specimen_m2 = base::kPi * std::pow(0.5e-3 * setup.specimen_mm, 2);
-  m.shape = sim::measure_shadow(shadow_from_mask(m.silhouette, cell_m),
+  m.shape = analysis::measure_shadow(shadow_from_mask(m.silhouette, cell_m),
                                 shadow_point_m(m.silhouette, cell_m, m.center_px), m.support_m2,
                                 m.specimen_m2, settings);
   check_areas(m, source);
@@ -144,7 +144,7 @@ DrapePhotoMeasurement measure_drape_silhouette(const render::Mask& silhouette,
 }
 
 render::Image drape_photo_overlay(const render::Image& photo, const DrapePhotoMeasurement& m,
-                                  const sim::FoldCountSettings& folds) {
+                                  const analysis::FoldCountSettings& folds) {
   const int w = photo.width(), h = photo.height();
   const int thick = std::max(1, static_cast<int>(std::lround(std::hypot(w, h) / 400.0)));
   render::Canvas canvas(photo);
@@ -164,7 +164,7 @@ render::Image drape_photo_overlay(const render::Image& photo, const DrapePhotoMe
   canvas.line(cx - 3 * thick, cy, cx + 3 * thick, cy, {0, 220, 255}, thick);
   canvas.line(cx, cy - 3 * thick, cx, cy + 3 * thick, {0, 220, 255}, thick);
   const std::vector<double> smooth =
-      sim::circular_moving_average(m.shape.radii_m, folds.smoothing_bins);
+      analysis::circular_moving_average(m.shape.radii_m, folds.smoothing_bins);
   const int bins = static_cast<int>(smooth.size());
   for (int k : m.shape.crests) {
     const double theta = 2.0 * base::kPi * (k + 0.5) / bins;
@@ -186,7 +186,7 @@ int run_measure_photo(const MeasurePhotoOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(source + ": " + e.what());
   }
-  const sim::DrapeMeasureSettings settings;
+  const analysis::DrapeMeasureSettings settings;
   const DrapePhotoMeasurement m = measure_drape_silhouette(s.mask, o.setup, source, settings);
   const fs::path dir = o.out.value_or(fs::path("out") / o.photo.stem());
   start_output(dir, {}, {{"measure.txt", run_record(o.command_line, {{"photo", o.photo.string()}})}});

@@ -39,7 +39,7 @@ double drape_photo_mm_per_px(const DrapePhotoSetup& setup, const std::string& so
 
 // The mask as a shadow of square cells cell_m wide: pixel (x, y) is cell (x, height − 1 − y),
 // cell (0, 0)'s corner at the origin.
-sim::ShadowMask shadow_from_mask(const render::Mask& mask, double cell_m);
+analysis::ShadowMask shadow_from_mask(const render::Mask& mask, double cell_m);
 // Pixel coordinates → the shadow's plane, m.
 sim::Vec2 shadow_point_m(const render::Mask& mask, double cell_m, const sim::Vec2& pixel);
 
@@ -50,7 +50,7 @@ struct DrapePhotoMeasurement {
   bool center_given = false;
   double disc_radius_px = 0.0, specimen_radius_px = 0.0;
   double support_m2 = 0.0, specimen_m2 = 0.0;
-  sim::DrapeShape shape;  // cell_m = the pixel's side
+  analysis::DrapeShape shape;  // cell_m = the pixel's side
 };
 
 // Measures a silhouette (1 = cloth). Throws InputError naming `source` for a bad setup
@@ -60,12 +60,12 @@ struct DrapePhotoMeasurement {
 DrapePhotoMeasurement measure_drape_silhouette(const render::Mask& silhouette,
                                                const DrapePhotoSetup& setup,
                                                const std::string& source,
-                                               const sim::DrapeMeasureSettings& settings = {});
+                                               const analysis::DrapeMeasureSettings& settings = {});
 
 // The photo with the silhouette's outline (magenta), the disc and the flat specimen (cyan,
 // dashed grey), the centre, and each fold crest marked at its smoothed radius (orange dots).
 render::Image drape_photo_overlay(const render::Image& photo, const DrapePhotoMeasurement& m,
-                                  const sim::FoldCountSettings& folds);
+                                  const analysis::FoldCountSettings& folds);
 
 struct MeasurePhotoOptions {
   std::filesystem::path photo;                    // photo or silhouette (PNG/JPG)

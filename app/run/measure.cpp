@@ -17,16 +17,16 @@ namespace weft::app {
 namespace fs = std::filesystem;
 using base::format;
 
-std::string support_name(const sim::DrapeSupport& s) {
+std::string support_name(const analysis::DrapeSupport& s) {
   return "the " + s.kind + " obstacles[" + std::to_string(s.obstacle) + "]";
 }
 
-void write_outline(const fs::path& path, const sim::DrapeShape& drape,
-                   const sim::FoldCountSettings& folds) {
+void write_outline(const fs::path& path, const analysis::DrapeShape& drape,
+                   const analysis::FoldCountSettings& folds) {
   std::ostringstream out;
   out << "theta_deg,radius_m,smoothed_radius_m\n";
   const std::vector<double> smooth =
-      sim::circular_moving_average(drape.radii_m, folds.smoothing_bins);
+      analysis::circular_moving_average(drape.radii_m, folds.smoothing_bins);
   const int bins = static_cast<int>(drape.radii_m.size());
   out.precision(9);
   for (int k = 0; k < bins; ++k)
@@ -46,17 +46,17 @@ sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh) {
   return used ? sim::Vec3(sum / used) : sum;
 }
 
-std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
+std::optional<analysis::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
                                                bool require_drape) {
   const sim::Vec3 c = cloth_center_m(mesh);
-  std::optional<sim::DrapeSupport> support = sim::find_support(scene.sim.obstacles, c);
+  std::optional<analysis::DrapeSupport> support = analysis::find_support(scene.sim.obstacles, c);
   char where[96];
   std::snprintf(where, sizeof where, "(%.3g, %.3g, %.3g) m", c.x(), c.y(), c.z());
   if (!support && require_drape)
     throw InputError(scene.source + ": obstacles: --drape needs a support under the cloth centre " +
                      where + " to measure the drape coefficient and folds: a cylinder with a "
                      "vertical axis, a box or a sphere whose top is below it; found none");
-  const double specimen_m2 = sim::specimen_rest_area_m2(mesh);
+  const double specimen_m2 = analysis::specimen_rest_area_m2(mesh);
   if (support && !(specimen_m2 > support->area_m2))
     throw InputError(scene.source + ": cloth: the specimen (" + format("%.4g", specimen_m2) +
                      " m^2) is no larger than its support, " + support_name(*support) + " (" +
@@ -78,8 +78,8 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
   SceneMeasurement m;
   const sim::ClothMesh& mesh = simulator.mesh();
   m.support = scene_support(scene, mesh, require_drape);
-  m.specimen_m2 = sim::specimen_rest_area_m2(mesh);
-  const sim::DrapeMeasureSettings settings;
+  m.specimen_m2 = analysis::specimen_rest_area_m2(mesh);
+  const analysis::DrapeMeasureSettings settings;
 
   const auto record = [&](int frame, double time_s) {
     MeasureRow row;
@@ -91,7 +91,7 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
     if (m.support) {
       // The frame's own triangles: with simulation.remesh the mesh changes between frames.
       m.final_drape =
-          sim::measure_drape(mesh, mesh.triangles(), simulator.state().x, *m.support, settings);
+          analysis::measure_drape(mesh, mesh.triangles(), simulator.state().x, *m.support, settings);
       row.drape_coefficient = m.final_drape->drape_coefficient;
       row.folds = m.final_drape->folds;
     }
@@ -106,13 +106,13 @@ SceneMeasurement measure_scene(const Scene& scene, sim::Simulator& simulator, bo
                : StreamControl::go_on;
   });
   if (end.divergence) throw end.divergence->error;
-  if (hangs_as_curtain(scene)) m.curtain = sim::count_curtain_folds(mesh, simulator.state().x);
+  if (hangs_as_curtain(scene)) m.curtain = analysis::count_curtain_folds(mesh, simulator.state().x);
   std::vector<double> time_s, speed_m_s;
   for (const MeasureRow& r : m.rows) {
     time_s.push_back(r.time_s);
     speed_m_s.push_back(r.max_speed_m_s);
   }
-  m.settle_time_s = sim::settle_time_s(time_s, speed_m_s, m.settle_threshold_m_s);
+  m.settle_time_s = analysis::settle_time_s(time_s, speed_m_s, m.settle_threshold_m_s);
   const auto triangles = mesh.triangles();
   m.self_intersections = sim::count_edge_triangle_crossings(simulator.state().x, triangles,
                                                             sim::unique_edges(triangles));
@@ -134,12 +134,12 @@ bool hangs_as_curtain(const Scene& scene) {
 
 std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulator& simulator) {
   if (hangs_as_curtain(scene))
-    return std::to_string(sim::count_curtain_folds(simulator.mesh(), simulator.state().x).folds) +
+    return std::to_string(analysis::count_curtain_folds(simulator.mesh(), simulator.state().x).folds) +
            " curtain folds (bulges down the centre column)";
-  const auto support = sim::find_support(scene.sim.obstacles, cloth_center_m(simulator.mesh()));
-  const double specimen_m2 = sim::specimen_rest_area_m2(simulator.mesh());
+  const auto support = analysis::find_support(scene.sim.obstacles, cloth_center_m(simulator.mesh()));
+  const double specimen_m2 = analysis::specimen_rest_area_m2(simulator.mesh());
   if (!support || !(specimen_m2 > support->area_m2)) return std::nullopt;
-  const sim::DrapeShape d = sim::measure_drape(simulator.mesh(), simulator.mesh().triangles(),
+  const analysis::DrapeShape d = analysis::measure_drape(simulator.mesh(), simulator.mesh().triangles(),
                                                simulator.state().x, *support);
   return format("drape coefficient %.3f, ", d.drape_coefficient) + std::to_string(d.folds) +
          " folds over " + support_name(*support);

@@ -28,14 +28,14 @@ struct MeasureRow {
 };
 
 struct SceneMeasurement {
-  std::optional<sim::DrapeSupport> support;  // none: a hang, only the settle time is measured
+  std::optional<analysis::DrapeSupport> support;  // none: a hang, only the settle time is measured
   double specimen_m2 = 0.0;                  // the cloth's rest area
   std::vector<MeasureRow> rows;              // frames 0..N
-  double settle_threshold_m_s = sim::settle_speed_threshold_m_s;
+  double settle_threshold_m_s = analysis::settle_speed_threshold_m_s;
   std::optional<double> settle_time_s;       // none: still moving at the end
-  std::optional<sim::DrapeShape> final_drape;  // at the last frame, with a support
+  std::optional<analysis::DrapeShape> final_drape;  // at the last frame, with a support
   int self_intersections = 0;                // edge–triangle crossings at the last frame
-  std::optional<sim::CurtainFolds> curtain;   // at the last frame, for a curtain (hangs_as_curtain)
+  std::optional<analysis::CurtainFolds> curtain;   // at the last frame, for a curtain (hangs_as_curtain)
 };
 
 // Whether the cloth hangs as a curtain: weft along gravity (its top edge at v = 0) and both
@@ -46,10 +46,10 @@ bool hangs_as_curtain(const Scene& scene);
 // (ClothMesh::start(): a grid's rest positions; a mesh cloth's placement, not its flat pattern).
 sim::Vec3 cloth_center_m(const sim::ClothMesh& mesh);
 
-// The scene's drape support (sim::find_support under cloth_center_m), or none. With
+// The scene's drape support (analysis::find_support under cloth_center_m), or none. With
 // require_drape, none is a InputError naming the scene file; so is a specimen no larger than
 // its support.
-std::optional<sim::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
+std::optional<analysis::DrapeSupport> scene_support(const Scene& scene, const sim::ClothMesh& mesh,
                                                bool require_drape);
 
 // How long the max speed must have stayed below the settle threshold for --until-settled to
@@ -74,10 +74,10 @@ std::optional<std::string> drape_summary(const Scene& scene, const sim::Simulato
 
 // Writes outline.csv: theta_deg, radius_m and smoothed_radius_m (smoothed as `folds` says),
 // one row per bin of drape.radii_m.
-void write_outline(const std::filesystem::path& path, const sim::DrapeShape& drape,
-                   const sim::FoldCountSettings& folds);
+void write_outline(const std::filesystem::path& path, const analysis::DrapeShape& drape,
+                   const analysis::FoldCountSettings& folds);
 
 // "the cylinder obstacles[0]": the support as the scene names it.
-std::string support_name(const sim::DrapeSupport& support);
+std::string support_name(const analysis::DrapeSupport& support);
 
 }  // namespace weft::app

@@ -48,15 +48,15 @@ constexpr int kSilhouetteCells = 256;
 void compare_with_reference(std::vector<SweepRun>& runs, std::size_t reference) {
   const SweepRun& ref = runs[reference];
   const render::Camera& camera = ref.scene.render.camera;
-  const OrthoView view = ortho_view(camera.target - camera.eye, camera.up);
+  const analysis::OrthoView view = analysis::ortho_view(camera.target - camera.eye, camera.up);
   const auto ref_triangles = ref.mesh.triangles();
   for (SweepRun& run : runs) {
     if (!finished(run)) continue;
-    run.rms_error_m = rms_distance_m(ref.mesh, ref.x, run.mesh, run.x);
-    const Window window = joint_window(view, ref.x, run.x);
-    run.silhouette_difference = silhouette_difference(
-        silhouette(ref_triangles, ref.x, view, window, kSilhouetteCells),
-        silhouette(run.mesh.triangles(), run.x, view, window, kSilhouetteCells));
+    run.rms_error_m = analysis::rms_distance_m(ref.mesh, ref.x, run.mesh, run.x);
+    const analysis::Window window = analysis::joint_window(view, ref.x, run.x);
+    run.silhouette_difference = analysis::silhouette_difference(
+        analysis::silhouette(ref_triangles, ref.x, view, window, kSilhouetteCells),
+        analysis::silhouette(run.mesh.triangles(), run.x, view, window, kSilhouetteCells));
   }
   std::vector<double> time_s, error_m;
   std::vector<bool> finished;
@@ -65,7 +65,7 @@ void compare_with_reference(std::vector<SweepRun>& runs, std::size_t reference) 
     error_m.push_back(run.rms_error_m);
     finished.push_back(app::finished(run));
   }
-  const std::vector<bool> optimal = pareto_optimal(time_s, error_m, finished);
+  const std::vector<bool> optimal = analysis::pareto_optimal(time_s, error_m, finished);
   for (std::size_t k = 0; k < runs.size(); ++k) runs[k].pareto = optimal[k];
 }
 

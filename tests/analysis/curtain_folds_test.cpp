@@ -14,7 +14,7 @@
 #include "sim/grid.h"
 #include "analysis/measure/curtain_folds.h"
 
-namespace weft::sim {
+namespace weft::analysis {
 namespace {
 
 std::vector<double> sampled(int samples, const std::function<double(double)>& f) {
@@ -45,19 +45,19 @@ TEST(CurtainFolds, WigglesBelowTheHysteresisDoNotCount) {
   EXPECT_THROW(count_alternating_extremes(v, 0.0), std::invalid_argument);
 }
 
-GridSpec curtain_grid(double width_m, double height_m, Index n) {
-  GridSpec g;
+sim::GridSpec curtain_grid(double width_m, double height_m, sim::Index n) {
+  sim::GridSpec g;
   g.size_u_m = width_m;
   g.size_v_m = height_m;
   g.nu = g.nv = n;
-  g.origin = Vec3(-0.5 * width_m, 0.0, 1.6);
-  g.warp_axis = Vec3(1, 0, 0);
-  g.weft_axis = Vec3(0, 0, -1);
+  g.origin = sim::Vec3(-0.5 * width_m, 0.0, 1.6);
+  g.warp_axis = sim::Vec3(1, 0, 0);
+  g.weft_axis = sim::Vec3(0, 0, -1);
   return g;
 }
 
 TEST(CurtainFolds, AFlatCurtainHasNone) {
-  const ClothMesh mesh = make_grid(curtain_grid(1.4, 1.4, 31));
+  const sim::ClothMesh mesh = sim::make_grid(curtain_grid(1.4, 1.4, 31));
   EXPECT_EQ(count_curtain_folds(mesh, mesh.rest_positions).folds, 0);
 }
 
@@ -66,7 +66,7 @@ TEST(CurtainFolds, TheTensionFieldShapeHasOneBulgePerWrinkleLine) {
   // the paper's Q: n = 5, 7, 8 wrinkles for h = 90, 140, 235 cm.
   const double heights[] = {0.90, 1.40, 2.35}, ratios[] = {1.31, 1.29, 1.34};
   for (int k = 0; k < 3; ++k) {
-    TensionFieldInputs in;
+    sim::TensionFieldInputs in;
     in.height_m = heights[k];
     in.width_m = 1.40;
     in.support_shift_m = 0.10;
@@ -74,13 +74,14 @@ TEST(CurtainFolds, TheTensionFieldShapeHasOneBulgePerWrinkleLine) {
     in.youngs_modulus_Pa = 165e6;
     in.weight_N_m2 = 1.5;
     in.ratio = ratios[k];
-    const TensionFieldResult r = solve_tension_field(in);
-    const FoldPattern pattern = make_fold_pattern(in, r);
-    const ClothMesh mesh = make_grid(curtain_grid(in.width_m, in.height_m, 141));
-    const Matrix3X x = fold_rest_positions(pattern, mesh.rest_positions, Vec3(0.0, 0.0, 1.6));
+    const sim::TensionFieldResult r = sim::solve_tension_field(in);
+    const sim::FoldPattern pattern = sim::make_fold_pattern(in, r);
+    const sim::ClothMesh mesh = sim::make_grid(curtain_grid(in.width_m, in.height_m, 141));
+    const sim::Matrix3X x =
+        sim::fold_rest_positions(pattern, mesh.rest_positions, sim::Vec3(0.0, 0.0, 1.6));
     EXPECT_EQ(count_curtain_folds(mesh, x).folds, r.wrinkles + 1) << "h = " << heights[k];
   }
 }
 
 }  // namespace
-}  // namespace weft::sim
+}  // namespace weft::analysis

@@ -14,18 +14,18 @@
 #include "analysis/measure/drape_measure.h"
 #include "analysis/measure/settle.h"
 
-namespace weft::sim {
+namespace weft::analysis {
 namespace {
 
 struct Mesh {
-  Matrix3X x;
+  sim::Matrix3X x;
   Triangles triangles;
 };
 
 // A star-shaped polygon about `center` at height z as a triangle fan: vertex 0 the centre,
 // then `n` rim points at θ_k = 2πk/n with radius r(θ_k).
 template <class Radius>
-Mesh fan(const Vec2& center, int n, Radius r, double z = 0.2) {
+Mesh fan(const sim::Vec2& center, int n, Radius r, double z = 0.2) {
   Mesh m;
   m.x.resize(n + 1, 3);
   m.x.row(0) << center.x(), center.y(), z;
@@ -42,7 +42,7 @@ Mesh fan(const Vec2& center, int n, Radius r, double z = 0.2) {
 double polygon_area(const Mesh& m) {
   double twice = 0.0;
   for (const auto& t : m.triangles) {
-    const Vec3 a = m.x.row(t[1]) - m.x.row(t[0]), b = m.x.row(t[2]) - m.x.row(t[0]);
+    const sim::Vec3 a = m.x.row(t[1]) - m.x.row(t[0]), b = m.x.row(t[2]) - m.x.row(t[0]);
     twice += a.x() * b.y() - a.y() * b.x();
   }
   return 0.5 * twice;
@@ -51,7 +51,8 @@ double polygon_area(const Mesh& m) {
 TEST(ShadowArea, FlatDiscWithinTheStatedBoundAtEveryScale) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const double radius = 0.1 * scale, cell = radius / 200.0;
-    const Mesh disc = fan(Vec2(0.31, -0.17) * scale, 4096, [&](double) { return radius; }, 0.2 * scale);
+    const Mesh disc = fan(
+        sim::Vec2(0.31, -0.17) * scale, 4096, [&](double) { return radius; }, 0.2 * scale);
     const double exact = polygon_area(disc);
     ASSERT_NEAR(exact, base::kPi * radius * radius, 1e-6 * exact);  // the polygon is the circle
     const ShadowMask shadow = rasterize_shadow(disc.x, disc.triangles, cell);
@@ -62,7 +63,7 @@ TEST(ShadowArea, FlatDiscWithinTheStatedBoundAtEveryScale) {
 }
 
 TEST(ShadowArea, ErrorShrinksWithTheCell) {
-  const Mesh disc = fan(Vec2(0.0, 0.0), 4096, [](double) { return 0.1; });
+  const Mesh disc = fan(sim::Vec2(0.0, 0.0), 4096, [](double) { return 0.1; });
   const double exact = polygon_area(disc);
   for (double cell : {4e-3, 1e-3, 2.5e-4}) {
     const double error = std::abs(rasterize_shadow(disc.x, disc.triangles, cell).area_m2() - exact);
@@ -71,15 +72,15 @@ TEST(ShadowArea, ErrorShrinksWithTheCell) {
 }
 
 // A square sheet turned 30° about z (so its edges are not aligned with the cells).
-Mesh turned_square(double side_m, double z_m, Index n = 21) {
-  GridSpec spec;
+Mesh turned_square(double side_m, double z_m, sim::Index n = 21) {
+  sim::GridSpec spec;
   spec.size_u_m = spec.size_v_m = side_m;
   spec.nu = spec.nv = n;
   const double c = std::cos(base::kPi / 6.0), s = std::sin(base::kPi / 6.0);
-  spec.warp_axis = Vec3(c, s, 0.0);
-  spec.weft_axis = Vec3(-s, c, 0.0);
-  spec.origin = Vec3(0.0, 0.0, z_m) - 0.5 * side_m * (spec.warp_axis + spec.weft_axis);
-  const ClothMesh mesh = make_grid(spec);
+  spec.warp_axis = sim::Vec3(c, s, 0.0);
+  spec.weft_axis = sim::Vec3(-s, c, 0.0);
+  spec.origin = sim::Vec3(0.0, 0.0, z_m) - 0.5 * side_m * (spec.warp_axis + spec.weft_axis);
+  const sim::ClothMesh mesh = sim::make_grid(spec);
   return {mesh.rest_positions, mesh.triangles()};
 }
 
@@ -94,19 +95,19 @@ TEST(ShadowArea, LayersAndFoldsCountOnce) {
   two.x.resize(2 * sheet.x.rows(), 3);
   two.x << sheet.x, sheet.x.rowwise() + Eigen::RowVector3d(0.0, 0.0, 0.01);
   two.triangles = sheet.triangles;
-  const Index offset = static_cast<Index>(sheet.x.rows());
+  const sim::Index offset = static_cast<sim::Index>(sheet.x.rows());
   for (const auto& t : sheet.triangles)
     two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   EXPECT_NEAR(rasterize_shadow(two.x, two.triangles, cell).area_m2(), side * side, bound);
 
   // Folded in half along the line x = 0 (axis-aligned sheet): half the area.
-  GridSpec spec;
+  sim::GridSpec spec;
   spec.size_u_m = spec.size_v_m = side;
   spec.nu = spec.nv = 21;  // a vertex column on x = 0
-  spec.origin = Vec3(-0.5 * side, -0.5 * side, 0.2);
-  const ClothMesh flat = make_grid(spec);
-  Matrix3X folded = flat.rest_positions;
-  for (Index v = 0; v < folded.rows(); ++v) {
+  spec.origin = sim::Vec3(-0.5 * side, -0.5 * side, 0.2);
+  const sim::ClothMesh flat = sim::make_grid(spec);
+  sim::Matrix3X folded = flat.rest_positions;
+  for (sim::Index v = 0; v < folded.rows(); ++v) {
     if (folded(v, 0) > 0.0) {
       folded(v, 2) += 1e-3 * folded(v, 0);  // lifted slightly, as a real fold would be
       folded(v, 0) = -folded(v, 0);
@@ -117,33 +118,33 @@ TEST(ShadowArea, LayersAndFoldsCountOnce) {
 }
 
 TEST(ShadowArea, EdgeOnTrianglesCastNoShadow) {
-  Matrix3X x(3, 3);
+  sim::Matrix3X x(3, 3);
   x << 0.0, 0.0, 0.0, 0.1, 0.05, 0.0, 0.0, 0.0, 0.1;  // a vertical triangle
   EXPECT_EQ(rasterize_shadow(x, {{0, 1, 2}}, 1e-4).cell_count(), 0);
 }
 
 TEST(ShadowArea, RejectsBadInput) {
-  const Mesh disc = fan(Vec2(0.0, 0.0), 16, [](double) { return 0.1; });
+  const Mesh disc = fan(sim::Vec2(0.0, 0.0), 16, [](double) { return 0.1; });
   EXPECT_THROW(rasterize_shadow(disc.x, disc.triangles, 0.0), std::invalid_argument);
   EXPECT_THROW(rasterize_shadow(disc.x, disc.triangles, 1e-7), std::invalid_argument);  // too many cells
   EXPECT_THROW(rasterize_shadow(disc.x, {{0, 1, 99}}, 1e-3), std::invalid_argument);
-  Matrix3X bad = disc.x;
+  sim::Matrix3X bad = disc.x;
   bad(3, 1) = std::nan("");
   EXPECT_THROW(rasterize_shadow(bad, disc.triangles, 1e-3), std::invalid_argument);
 }
 
 TEST(SpecimenArea, SumsTheKeptQuadsOnly) {
-  GridSpec spec;
+  sim::GridSpec spec;
   spec.size_u_m = 0.4;
   spec.size_v_m = 0.3;
   spec.nu = 9;
   spec.nv = 7;
-  EXPECT_NEAR(specimen_rest_area_m2(make_grid(spec)), 0.12, 1e-12);
+  EXPECT_NEAR(specimen_rest_area_m2(sim::make_grid(spec)), 0.12, 1e-12);
 
   spec.size_v_m = 0.4;
   spec.nu = spec.nv = 41;
-  spec.shape = SpecimenShape::disc;
-  const ClothMesh disc = make_grid(spec);
+  spec.shape = sim::SpecimenShape::disc;
+  const sim::ClothMesh disc = sim::make_grid(spec);
   const double cell_area = 0.01 * 0.01;
   EXPECT_NEAR(specimen_rest_area_m2(disc), cell_area * static_cast<double>(disc.quads.size()), 1e-12);
   EXPECT_LT(disc.quads.size(), 40u * 40u);
@@ -160,12 +161,12 @@ TEST(DrapeCoefficient, FlatUnsupportedSpecimenIsOne) {
   EXPECT_NEAR(dc, 1.0, shadow_area_error_bound_m2(4.0 * side, cell) / (side * side - support));
 
   // A disc specimen: its shadow is exactly its kept cells, the area it is measured against.
-  GridSpec spec;
+  sim::GridSpec spec;
   spec.size_u_m = spec.size_v_m = 0.3;
   spec.nu = spec.nv = 31;
-  spec.shape = SpecimenShape::disc;
-  spec.origin = Vec3(-0.15, -0.15, 0.2);
-  const ClothMesh disc = make_grid(spec);
+  spec.shape = sim::SpecimenShape::disc;
+  spec.origin = sim::Vec3(-0.15, -0.15, 0.2);
+  const sim::ClothMesh disc = sim::make_grid(spec);
   const double disc_area = specimen_rest_area_m2(disc);
   const double perimeter = 4.0 * 0.3;  // the staircase outline of the kept cells
   EXPECT_NEAR(drape_coefficient(rasterize_shadow(disc.rest_positions, disc.triangles(), cell).area_m2(),
@@ -176,15 +177,15 @@ TEST(DrapeCoefficient, FlatUnsupportedSpecimenIsOne) {
 // The overhang beyond a square support hangs straight down: the shadow is the support, DC = 0.
 TEST(DrapeCoefficient, OverhangHangingStraightDownIsZero) {
   const double side = 0.3, half_support = 0.05, cell = 2.5e-4;
-  GridSpec spec;
+  sim::GridSpec spec;
   spec.size_u_m = spec.size_v_m = side;
   spec.nu = spec.nv = 31;
-  spec.origin = Vec3(-0.5 * side, -0.5 * side, 0.1);
-  const ClothMesh mesh = make_grid(spec);
-  Matrix3X x = mesh.rest_positions;
-  for (Index v = 0; v < x.rows(); ++v) {
-    const Vec2 p(x(v, 0), x(v, 1));
-    const Vec2 clamped = p.cwiseMax(-half_support).cwiseMin(half_support);
+  spec.origin = sim::Vec3(-0.5 * side, -0.5 * side, 0.1);
+  const sim::ClothMesh mesh = sim::make_grid(spec);
+  sim::Matrix3X x = mesh.rest_positions;
+  for (sim::Index v = 0; v < x.rows(); ++v) {
+    const sim::Vec2 p(x(v, 0), x(v, 1));
+    const sim::Vec2 clamped = p.cwiseMax(-half_support).cwiseMin(half_support);
     x(v, 0) = clamped.x();
     x(v, 1) = clamped.y();
     x(v, 2) -= (p - clamped).norm();  // the overhang goes down the sides
@@ -202,12 +203,12 @@ TEST(DrapeCoefficient, RejectsASpecimenNoLargerThanItsSupport) {
 }
 
 TEST(Support, TheHighestObstacleUnderTheClothCentre) {
-  const Vec3 centre(0.01, 0.02, 0.5);
-  std::vector<Obstacle> obstacles;
-  obstacles.push_back(PlaneObstacle{Vec3(0, 0, 0), Vec3(0, 0, 1)});
+  const sim::Vec3 centre(0.01, 0.02, 0.5);
+  std::vector<sim::Obstacle> obstacles;
+  obstacles.push_back(sim::PlaneObstacle{sim::Vec3(0, 0, 0), sim::Vec3(0, 0, 1)});
   EXPECT_FALSE(find_support(obstacles, centre));  // a plane holds a cloth but is no support
 
-  CylinderObstacle disc{Vec3(0.0, 0.0, 0.2), Vec3(0.0, 0.0, -1.0), 0.1, 0.02};
+  sim::CylinderObstacle disc{sim::Vec3(0.0, 0.0, 0.2), sim::Vec3(0.0, 0.0, -1.0), 0.1, 0.02};
   obstacles.push_back(disc);
   auto s = find_support(obstacles, centre);
   ASSERT_TRUE(s);
@@ -216,32 +217,34 @@ TEST(Support, TheHighestObstacleUnderTheClothCentre) {
   EXPECT_NEAR(s->area_m2, base::kPi * 0.01, 1e-15);
   EXPECT_NEAR(s->top_z_m, 0.21, 1e-15);
 
-  BoxObstacle box{Vec3(0.0, 0.0, 0.15), Vec3(0.05, 0.02, 0.15), 0.5};  // top at 0.30, turned
+  sim::BoxObstacle box{sim::Vec3(0.0, 0.0, 0.15), sim::Vec3(0.05, 0.02, 0.15),
+                       0.5};  // top at 0.30, turned
   obstacles.push_back(box);
   s = find_support(obstacles, centre);
   ASSERT_TRUE(s);
   EXPECT_EQ(s->kind, "box");
   EXPECT_NEAR(s->area_m2, 4.0 * 0.05 * 0.02, 1e-15);
   // The same box with the centre beyond its narrow side: back to the disc.
-  EXPECT_EQ(find_support(obstacles, Vec3(0.0, 0.035, 0.5))->kind, "cylinder");
+  EXPECT_EQ(find_support(obstacles, sim::Vec3(0.0, 0.035, 0.5))->kind, "cylinder");
 
-  obstacles.push_back(SphereObstacle{Vec3(0.0, 0.0, 0.3), 0.05});  // top at 0.35
+  obstacles.push_back(sim::SphereObstacle{sim::Vec3(0.0, 0.0, 0.3), 0.05});  // top at 0.35
   s = find_support(obstacles, centre);
   ASSERT_TRUE(s);
   EXPECT_EQ(s->kind, "sphere");
   EXPECT_NEAR(s->area_m2, base::kPi * 0.0025, 1e-15);
-  EXPECT_EQ(s->axis_m, Vec2(0.0, 0.0));
+  EXPECT_EQ(s->axis_m, sim::Vec2(0.0, 0.0));
 
   // Nothing is a support for a cloth below it, or beside it; a tilted cylinder never is.
-  EXPECT_FALSE(find_support(obstacles, Vec3(0.0, 0.0, 0.1)));
-  EXPECT_FALSE(find_support(obstacles, Vec3(0.5, 0.0, 0.5)));
-  EXPECT_FALSE(find_support({CylinderObstacle{Vec3(0, 0, 0), Vec3(1, 0, 0), 0.1, 0.02}}, centre));
+  EXPECT_FALSE(find_support(obstacles, sim::Vec3(0.0, 0.0, 0.1)));
+  EXPECT_FALSE(find_support(obstacles, sim::Vec3(0.5, 0.0, 0.5)));
+  EXPECT_FALSE(find_support(
+      {sim::CylinderObstacle{sim::Vec3(0, 0, 0), sim::Vec3(1, 0, 0), 0.1, 0.02}}, centre));
 }
 
 // The rasterized outline of r(θ) = R(1 + a cos k(θ − φ)) has k folds.
 TEST(Folds, StarOutlinesGiveTheirNumberOfLobes) {
   const double radius = 0.2, amplitude = 0.1, phase = 0.3;
-  const Vec2 centre(0.05, -0.02);
+  const sim::Vec2 centre(0.05, -0.02);
   for (int k = 6; k <= 12; ++k) {
     const Mesh star = fan(centre, 2048, [&](double t) {
       return radius * (1.0 + amplitude * std::cos(k * (t - phase)));
@@ -278,10 +281,11 @@ TEST(Folds, SmallRipplesAndACircleAreNotFolds) {
   EXPECT_EQ(count_folds(r, {}), 8);
 
   const double cell = 5e-4;
-  const Mesh disc = fan(Vec2(0.0, 0.0), 2048, [](double) { return 0.2; });
+  const Mesh disc = fan(sim::Vec2(0.0, 0.0), 2048, [](double) { return 0.2; });
   FoldCountSettings settings;
   settings.min_prominence_m = 2.0 * cell;
-  EXPECT_EQ(count_folds(outline_radii(rasterize_shadow(disc.x, disc.triangles, cell), Vec2::Zero(), 360),
+  EXPECT_EQ(count_folds(outline_radii(rasterize_shadow(disc.x, disc.triangles, cell),
+                                      sim::Vec2::Zero(), 360),
                         settings),
             0);
 }
@@ -348,4 +352,4 @@ TEST(SettleTime, LateMotionAndBadInput) {
 }
 
 }  // namespace
-}  // namespace weft::sim
+}  // namespace weft::analysis

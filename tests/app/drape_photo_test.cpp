@@ -61,7 +61,7 @@ double exact_dc(double r_mm, double a_mm) {
 // outline of length about 2π(R + a)·√(1 + (na/R)²) ≥ the true length's mean-slope estimate.
 double dc_tolerance(double r_mm, double a_mm, int n) {
   const double perimeter_m = 2e-3 * kPi * (r_mm + a_mm) * std::sqrt(1.0 + std::pow(n * a_mm / r_mm, 2));
-  const double bound = weft::sim::shadow_area_error_bound_m2(perimeter_m, 1e-3 * kMmPerPx);
+  const double bound = weft::analysis::shadow_area_error_bound_m2(perimeter_m, 1e-3 * kMmPerPx);
   return bound / (kPi * 0.25e-6 * (kSpecimenMm * kSpecimenMm - kDiscMm * kDiscMm));
 }
 

@@ -49,11 +49,12 @@ TEST(SweepMetrics, InterpolationIsExactForBilinearFunctions) {
   const sim::Matrix3X x = positions(mesh, f);
   for (const sim::Vec2& uv : {sim::Vec2(0.0, 0.0), sim::Vec2(2.0, 1.5), sim::Vec2(0.37, 1.21),
                              sim::Vec2(1.5, 0.5), sim::Vec2(1.999, 0.001)}) {
-    EXPECT_LT((position_at_material_point(mesh, x, uv) - f(uv)).norm(), 1e-12)
+    EXPECT_LT((analysis::position_at_material_point(mesh, x, uv) - f(uv)).norm(), 1e-12)
         << "at (" << uv.x() << ", " << uv.y() << ")";
   }
   // Outside the cloth: clamped to its edge.
-  EXPECT_LT((position_at_material_point(mesh, x, {3.0, -1.0}) - f({2.0, 0.0})).norm(), 1e-12);
+  EXPECT_LT((analysis::position_at_material_point(mesh, x, {3.0, -1.0}) - f({2.0, 0.0})).norm(),
+            1e-12);
 }
 
 TEST(SweepMetrics, IdenticalClothsAreZeroApart) {
@@ -61,7 +62,7 @@ TEST(SweepMetrics, IdenticalClothsAreZeroApart) {
   const sim::Matrix3X x = positions(mesh, [](const sim::Vec2& uv) {
     return sim::Vec3(uv.x(), 0.2 * std::sin(3 * uv.y()), std::cos(uv.x() * uv.y()));
   });
-  EXPECT_EQ(rms_distance_m(mesh, x, mesh, x), 0.0);
+  EXPECT_EQ(analysis::rms_distance_m(mesh, x, mesh, x), 0.0);
 }
 
 TEST(SweepMetrics, TranslatedSheetIsItsShiftApart) {
@@ -69,12 +70,12 @@ TEST(SweepMetrics, TranslatedSheetIsItsShiftApart) {
   const sim::Matrix3X x = mesh.rest_positions;
   sim::Matrix3X moved = x;
   moved.rowwise() += Eigen::RowVector3d(0.03, -0.04, 0.0);  // |shift| = 5 cm
-  EXPECT_NEAR(rms_distance_m(mesh, x, mesh, moved), 0.05, 1e-12);
+  EXPECT_NEAR(analysis::rms_distance_m(mesh, x, mesh, moved), 0.05, 1e-12);
   // The same with a coarser run: the flat sheet is bilinear, so resolution adds nothing.
   const sim::ClothMesh coarse = sheet(4, 3);
   sim::Matrix3X coarse_moved = coarse.rest_positions;
   coarse_moved.rowwise() += Eigen::RowVector3d(0.03, -0.04, 0.0);
-  EXPECT_NEAR(rms_distance_m(mesh, x, coarse, coarse_moved), 0.05, 1e-12);
+  EXPECT_NEAR(analysis::rms_distance_m(mesh, x, coarse, coarse_moved), 0.05, 1e-12);
 }
 
 // A parabola z = u² sampled on a reference with spacing h = 0.5 is off by a(1−a)h² at the
@@ -84,39 +85,44 @@ TEST(SweepMetrics, DifferentResolutionsCompareThroughInterpolation) {
   const auto parabola = [](const sim::Vec2& uv) { return sim::Vec3(uv.x(), uv.y(), uv.x() * uv.x()); };
   const sim::ClothMesh reference = sheet(3, 2), run = sheet(5, 2);
   const double expected = 0.0625 * std::sqrt(4.0 / 10.0);  // 4 of 10 vertices off by 0.0625
-  EXPECT_NEAR(rms_distance_m(reference, positions(reference, parabola), run, positions(run, parabola)),
+  EXPECT_NEAR(analysis::rms_distance_m(reference, positions(reference, parabola), run,
+                                       positions(run, parabola)),
               expected, 1e-12);
 }
 
 // ---- silhouettes ----
 
 // Looking down −z with +y up on the image, x is to the right.
-OrthoView top_view() { return ortho_view({0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}); }
+analysis::OrthoView top_view() {
+  return analysis::ortho_view({0.0, 0.0, -1.0}, {0.0, 1.0, 0.0});
+}
 
 TEST(SweepMetrics, OrthoViewIsOrthonormalAndRejectsParallelUp) {
-  const OrthoView view = ortho_view({1.0, 2.0, -0.5}, {0.0, 0.0, 3.0});
+  const analysis::OrthoView view = analysis::ortho_view({1.0, 2.0, -0.5}, {0.0, 0.0, 3.0});
   EXPECT_NEAR(view.right.norm(), 1.0, 1e-12);
   EXPECT_NEAR(view.up.norm(), 1.0, 1e-12);
   EXPECT_NEAR(view.right.dot(view.up), 0.0, 1e-12);
   EXPECT_NEAR(view.right.dot(sim::Vec3(1.0, 2.0, -0.5)), 0.0, 1e-12);
   EXPECT_GT(view.up.z(), 0.0);  // up stays up
-  const OrthoView top = top_view();
+  const analysis::OrthoView top = top_view();
   EXPECT_NEAR((top.right - sim::Vec3(1, 0, 0)).norm(), 0.0, 1e-12);
-  EXPECT_THROW(ortho_view({0, 0, 1}, {0, 0, 2}), std::invalid_argument);
+  EXPECT_THROW(analysis::ortho_view({0, 0, 1}, {0, 0, 2}), std::invalid_argument);
 }
 
 TEST(SweepMetrics, SheetFillsItsOwnWindowAndHalfASheetGivesOneHalf) {
   const sim::ClothMesh full = sheet(5, 5);                  // [0, 1]²
   const sim::ClothMesh half = sheet(3, 5, 0.5, 1.0);        // [0, 0.5] × [0, 1]
-  const Window window{0.0, 0.0, 1.0};
+  const analysis::Window window{0.0, 0.0, 1.0};
   const int n = 64;
-  const Mask a = silhouette(full.triangles(), full.rest_positions, top_view(), window, n);
-  const Mask b = silhouette(half.triangles(), half.rest_positions, top_view(), window, n);
+  const analysis::Mask a =
+      analysis::silhouette(full.triangles(), full.rest_positions, top_view(), window, n);
+  const analysis::Mask b =
+      analysis::silhouette(half.triangles(), half.rest_positions, top_view(), window, n);
   EXPECT_EQ(a.count(), n * n);
   EXPECT_EQ(b.count(), n * n / 2);
   EXPECT_TRUE(b.at(0, 0) && b.at(n / 2 - 1, n - 1) && !b.at(n / 2, 0));  // the left half
-  EXPECT_DOUBLE_EQ(silhouette_difference(a, b), 0.5);
-  EXPECT_DOUBLE_EQ(silhouette_difference(a, a), 0.0);
+  EXPECT_DOUBLE_EQ(analysis::silhouette_difference(a, b), 0.5);
+  EXPECT_DOUBLE_EQ(analysis::silhouette_difference(a, a), 0.0);
 }
 
 TEST(SweepMetrics, ShiftedSheetsOverlapByTheirCommonPart) {
@@ -124,23 +130,27 @@ TEST(SweepMetrics, ShiftedSheetsOverlapByTheirCommonPart) {
   const sim::ClothMesh mesh = sheet(3, 3);
   sim::Matrix3X shifted = mesh.rest_positions;
   shifted.col(0).array() += 0.5;
-  const Window window = joint_window(top_view(), mesh.rest_positions, shifted, 0.0);
+  const analysis::Window window =
+      analysis::joint_window(top_view(), mesh.rest_positions, shifted, 0.0);
   EXPECT_NEAR(window.side_m, 1.5, 1e-12);  // square: the larger side of the 1.5 × 1 box
-  const Mask a = silhouette(mesh.triangles(), mesh.rest_positions, top_view(), window, 120);
-  const Mask b = silhouette(mesh.triangles(), shifted, top_view(), window, 120);
-  EXPECT_NEAR(silhouette_difference(a, b), 1.0 / 1.5, 0.02);
+  const analysis::Mask a =
+      analysis::silhouette(mesh.triangles(), mesh.rest_positions, top_view(), window, 120);
+  const analysis::Mask b = analysis::silhouette(mesh.triangles(), shifted, top_view(), window, 120);
+  EXPECT_NEAR(analysis::silhouette_difference(a, b), 1.0 / 1.5, 0.02);
 }
 
 TEST(SweepMetrics, SilhouetteIgnoresFacingAndEdgeOnTriangles) {
   const sim::ClothMesh mesh = sheet(2, 2);
   auto flipped = mesh.triangles();
   for (auto& t : flipped) std::swap(t[1], t[2]);  // clockwise seen from above
-  const Window window{0.0, 0.0, 1.0};
-  EXPECT_EQ(silhouette(flipped, mesh.rest_positions, top_view(), window, 16).count(), 256);
+  const analysis::Window window{0.0, 0.0, 1.0};
+  EXPECT_EQ(analysis::silhouette(flipped, mesh.rest_positions, top_view(), window, 16).count(),
+            256);
   // The same sheet seen edge-on (looking along +y) covers no area.
-  const OrthoView side = ortho_view({0.0, 1.0, 0.0}, {0.0, 0.0, 1.0});
-  EXPECT_EQ(silhouette(mesh.triangles(), mesh.rest_positions, side,
-                       joint_window(side, mesh.rest_positions, mesh.rest_positions), 16)
+  const analysis::OrthoView side = analysis::ortho_view({0.0, 1.0, 0.0}, {0.0, 0.0, 1.0});
+  EXPECT_EQ(analysis::silhouette(
+                mesh.triangles(), mesh.rest_positions, side,
+                analysis::joint_window(side, mesh.rest_positions, mesh.rest_positions), 16)
                 .count(),
             0);
 }
@@ -153,10 +163,10 @@ TEST(SweepMetrics, ParetoFrontKeepsRunsNoOtherBeatsInBoth) {
   const std::vector<double> error{4.0, 3.0, 5.0, 0.0, 0.1};
   // Run 5 diverged: it neither counts nor dominates the others.
   const std::vector<bool> eligible{true, true, true, true, false};
-  const std::vector<bool> front = pareto_optimal(time, error, eligible);
+  const std::vector<bool> front = analysis::pareto_optimal(time, error, eligible);
   EXPECT_EQ(front, (std::vector<bool>{true, true, false, true, false}));
   // Ties: two equal runs are both optimal; a run equal in time but worse in error is not.
-  EXPECT_EQ(pareto_optimal({1, 1, 1}, {2, 2, 3}, {true, true, true}),
+  EXPECT_EQ(analysis::pareto_optimal({1, 1, 1}, {2, 2, 3}, {true, true, true}),
             (std::vector<bool>{true, true, false}));
 }
 

@@ -41,7 +41,7 @@ TEST(TensionFieldScene, StartsOnTheFoldsWithTheSupportsASpanApart) {
   const double span =
       (x.row(mesh.index(mesh.nu - 1, 0)) - x.row(mesh.index(0, 0))).norm();
   EXPECT_NEAR(span, 1.30, 1e-9);
-  EXPECT_EQ(sim::count_curtain_folds(mesh, x).folds, r.wrinkles + 1);
+  EXPECT_EQ(analysis::count_curtain_folds(mesh, x).folds, r.wrinkles + 1);
   // Vertical fibres keep their length (chords of the folded fibre: within 1 %).
   for (sim::Index i = 0; i < mesh.nu; i += 7) {
     double length = 0.0;
