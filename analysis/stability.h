@@ -1,5 +1,5 @@
 #pragma once
-// Stability of the time integrators near rest (issue 4, item 6; `weft stability`).
+// Stability of the time integrators near rest (`weft stability`).
 //
 // Near a rest state x₀ without gravity the equations of motion linearise to
 //   M ü + α M u̇ + K u = 0,   u = x − x₀,   K = −∂f/∂x at x₀ (N/m),

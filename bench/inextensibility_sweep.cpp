@@ -163,7 +163,7 @@ std::vector<int> parse_list(const char* text) {
 void print_targets(const std::vector<std::pair<int, Row>>& rows) {
   if (rows.empty()) return;
   const auto target_ms = [](int n) { return n == 64 ? 17.0 : n == 128 ? 80.0 : n == 256 ? 400.0 : 0.0; };
-  std::printf("\nissue 18 targets, fast projection tol 1e-2 (wall ms per frame, median):\n");
+  std::printf("\ntargets, fast projection tol 1e-2 (wall ms per frame, median):\n");
   std::printf("%-6s %10s %8s %8s %11s %7s %s\n", "size", "ms/frame", "cpu ms", "target",
               "max strain", "unconv", "met");  // strain: every frame
   for (const auto& [n, r] : rows) {

@@ -1,5 +1,5 @@
 #pragma once
-// Folds of a hanging curtain (issue 6: the tension-field shape beside the simulated one). A
+// Folds of a hanging curtain, to set the tension-field shape beside the simulated one. A
 // cloth hanging from supports at its top corners forms swags stacked one below the other
 // (seed 001's wrinkle lines); down the middle of the curtain they show as bulges that alternate
 // out of the supports' plane, one way then the other. The count is the number of those

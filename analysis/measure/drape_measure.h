@@ -1,5 +1,5 @@
 #pragma once
-// Drape measurements (issue 5 item 5): the cloth's shadow on the horizontal plane and its area,
+// Drape measurements: the cloth's shadow on the horizontal plane and its area,
 // the drape coefficient, the outline radius r(θ) about the support's axis and the fold count.
 // Pure functions of positions and triangles; `weft measure` (app/cli/measure_command.h) applies
 // them frame by frame. docs/measure.md states the rules and their error bounds.

@@ -1,5 +1,5 @@
 #pragma once
-// Settle time (issue 5 item 5): when a motion has "basically stopped" (seed 002, Zhou & Sze,
+// Settle time: when a motion has "basically stopped" (seed 002, Zhou & Sze,
 // section 4.6: the two-corner hangs stop moving by about 2 s and 2.4 s).
 //
 // The criterion weft uses is the cloth's largest vertex speed staying below

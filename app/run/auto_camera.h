@@ -1,5 +1,5 @@
 #pragma once
-// The camera of a scene that gives none (issue 20 item 3): weft run frames the cloth's bounding
+// The camera of a scene that gives none: weft run frames the cloth's bounding
 // box over the whole run, so that a cloth that falls, swings or drapes stays in view.
 
 #include <Eigen/Geometry>

@@ -406,7 +406,7 @@ int report_divergence(const FrameDivergence& d, const fs::path& dir, const Scene
 // Fast projection after a fixed implicit step misses its tolerance where the step is long for
 // the mesh: its prediction then lies far from the constraints (the 256² hang at 1/120 s missed
 // in 11 of 240 steps; the adaptive step chose about 1/276 s there and missed none, at 0.28 of
-// the CPU time: docs/benchmarks.md, "Issue 18: 256² converged"). Empty when that is not the case.
+// the CPU time: docs/benchmarks.md, "256² converged"). Empty when that is not the case.
 std::string shorter_step_advice(const Scene& scene) {
   if (scene.sim.integrator != sim::Integrator::implicit_euler || scene.sim.time_step.is_adaptive() ||
       scene.sim.projection.method != sim::ProjectionMethod::fast_projection)
@@ -468,14 +468,9 @@ Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) 
   return scene;
 }
 
-}  // namespace
-
-int run_scene(const RunOptions& options) {
-  std::optional<RunCheckpoint> resumed;
-  if (options.resume) resumed = read_checkpoint(*options.resume);
-  Scene scene = resumed ? resumed_scene(*resumed, options)
-                        : load_scene_with(options.scene, options.overrides);
-  const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
+// What rejects the run's options against its scene (and a checkpoint), before anything runs.
+void check_run_input(const Scene& scene, const RunOptions& options,
+                     const std::optional<RunCheckpoint>& resumed, int every) {
   if ((every > 0 || resumed) && !options.export_cache.empty())
     throw InputError("--export-cache: not with --checkpoint-every or --resume (the point cache "
                      "holds every frame and is not checkpointed; export meshes per frame with "
@@ -494,9 +489,13 @@ int run_scene(const RunOptions& options) {
     throw InputError("--start/--end: expected 1 <= start <= end <= " +
                      std::to_string(scene.frames) + " (the scene's frames), got start " +
                      std::to_string(f.start) + ", end " + std::to_string(f.end.value_or(scene.frames)));
-  apply_threads(scene, options.threads);
-  // Everything that can reject the input happens before the output folder is touched.
-  const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
+}
+
+// The scene's simulator, at the checkpoint's state when resumed.
+std::unique_ptr<sim::Simulator> simulator_for(const Scene& scene,
+                                              const std::optional<RunCheckpoint>& resumed,
+                                              const RunOptions& options) {
+  std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   if (resumed) {
     sim::StateReader state(resumed->simulator_state, options.resume->string());
     try {
@@ -505,6 +504,50 @@ int run_scene(const RunOptions& options) {
       throw InputError(std::string(e.what()) + " (a damaged checkpoint)");
     }
   }
+  return simulator;
+}
+
+// A scene without a camera: frames the cloth's box over the run the writer kept (frames 0..N,
+// or up to a divergence) and draws the kept frames. The camera frames the cloth over frames
+// 0..N whatever the crossings policy, so that a run a crossing stopped draws its frames as a
+// run that went on would: the rest of that run is simulated for the box alone.
+void draw_with_the_automatic_camera(Scene& scene, sim::Simulator& simulator, FrameWriter& writer,
+                                    const FrameStreamEnd& end) {
+  Eigen::AlignedBox3d box = writer.cloth_box();
+  if (writer.crossing_stop())
+    (void)stream_frames(
+        scene, simulator,
+        [&](const Frame& frame) {
+          extend_box(box, frame.simulator.state().x);
+          return StreamControl::go_on;
+        },
+        end.frames + 1);
+  frame_cloth_if_no_camera(scene, box);
+  writer.draw_kept_frames();
+}
+
+// Says where a crossing stopped the run and what it kept.
+int report_crossing_stop(const CrossingStop& stop, const fs::path& dir) {
+  std::fprintf(stderr,
+               "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
+               "crossings; simulation.self_collision.crossings is \"error\")\n"
+               "weft: kept what frames 1..%d wrote and stats.csv in %s\n",
+               stop.frame, stop.crossings, stop.frame, dir.c_str());
+  return exit_diverged;
+}
+
+}  // namespace
+
+int run_scene(const RunOptions& options) {
+  std::optional<RunCheckpoint> resumed;
+  if (options.resume) resumed = read_checkpoint(*options.resume);
+  Scene scene = resumed ? resumed_scene(*resumed, options)
+                        : load_scene_with(options.scene, options.overrides);
+  const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
+  check_run_input(scene, options, resumed, every);
+  apply_threads(scene, options.threads);
+  // Everything that can reject the input happens before the output folder is touched.
+  const std::unique_ptr<sim::Simulator> simulator = simulator_for(scene, resumed, options);
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
   if (!scene.camera_given)
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
@@ -530,31 +573,10 @@ int run_scene(const RunOptions& options) {
         return StreamControl::go_on;
       },
       resumed ? resumed->frame + 1 : 1);
-  if (writer.draws_later()) {
-    Eigen::AlignedBox3d box = writer.cloth_box();
-    // The camera frames the cloth over frames 0..N whatever the crossings policy, so that a run
-    // a crossing stopped draws its frames as a run that went on would: the rest of the run is
-    // simulated for the box alone (up to a divergence, like any run).
-    if (writer.crossing_stop())
-      (void)stream_frames(
-          scene, *simulator,
-          [&](const Frame& frame) {
-            extend_box(box, frame.simulator.state().x);
-            return StreamControl::go_on;
-          },
-          end.frames + 1);
-    frame_cloth_if_no_camera(scene, box);
-    writer.draw_kept_frames();
-  }
+  if (writer.draws_later()) draw_with_the_automatic_camera(scene, *simulator, writer, end);
   writer.finish();
-  if (const std::optional<CrossingStop>& stop = writer.crossing_stop()) {
-    std::fprintf(stderr,
-                 "weft: error: frame %d: the cloth passes through itself (%d edge–triangle "
-                 "crossings; simulation.self_collision.crossings is \"error\")\n"
-                 "weft: kept what frames 1..%d wrote and stats.csv in %s\n",
-                 stop->frame, stop->crossings, stop->frame, dir.c_str());
-    return exit_diverged;
-  }
+  if (const std::optional<CrossingStop>& stop = writer.crossing_stop())
+    return report_crossing_stop(*stop, dir);
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
   print_summary(scene, options, dir, *simulator, writer);
   return exit_ok;

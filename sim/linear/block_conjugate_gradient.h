@@ -8,7 +8,7 @@
 // column index per 9 values) once; set_matrix() scatters the values into it. Each thread
 // multiplies a contiguous range of block rows, and every block row is summed in one fixed
 // order, so the product — and with the sequential vector updates and dot products, every
-// iterate — is the same bits for any number of threads (DESIGN.md, Determinism).
+// iterate — is the same bits for any number of threads.
 //
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.

@@ -1,5 +1,5 @@
 #pragma once
-// One adaptive remeshing step (seed 002 §5.2 e–h, issue 21 item 2): curvature of the deformed
+// One adaptive remeshing step (seed 002 §5.2 e–h): curvature of the deformed
 // cloth → target sizes (eq. 29) → a new mesh of the material domain graded by them (CGAL
 // Delaunay refinement, boundary and pins kept) → positions and velocities interpolated onto it.
 // When to call it (every N steps, or when remesh_indicator passes a threshold) is the caller's.

@@ -24,7 +24,7 @@ class SelfCollisionCli : public CliDirectoryTest {
 // (tests/sim/self_collision_test.cpp, FoldsSharperThanAnEdgeHoldWithNeighbourhoodZero).
 std::string dropped_drape(const std::string& self_collision) {
   return R"({
-  "description": "issue 23's sphere drape at 32 x 32, dropped from 30 cm above the sphere",
+  "description": "the self-colliding sphere drape at 32 x 32, dropped from 30 cm above the sphere",
   "cloth": {"size": ["1 m", "1 m"], "resolution": [32, 32], "origin": ["-0.5 m", "-0.5 m", "1.15 m"],
     "material": {"density": "0.019 gf/cm^2", "stretch_warp": "1118.2 gf/cm",
       "stretch_weft": "759.5 gf/cm", "shear": "41.8 gf/cm", "bend_warp": "0.083 gf*cm",
