@@ -36,6 +36,10 @@ int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char
 // (app/cli/main.cpp; tests/app/hostile_input_cli_test.cpp walks their numeric options).
 std::vector<Command> register_commands(CLI::App& app, const std::string& command_line);
 
+// The weft program: the app with its version flag and every command, the command line parsed
+// and dispatched; with no command, the help and exit_bad_input.
+int run_weft(int argc, char** argv);
+
 // Bounds a numeric option: each value must be a finite number in `range`, else a command-line
 // error "--NAME: expected a number in …, got 'TEXT'" (NaN and infinities included). Every
 // numeric option of every command goes through it or through the scene reader.
