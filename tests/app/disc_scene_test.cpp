@@ -207,17 +207,20 @@ TEST(DiscScene, TheMiddleRegionPinsTheCentreOfEitherDisc) {
   EXPECT_EQ(sim::resolve_pins(smooth.pins, cloth_mesh(smooth)), std::vector<sim::Index>{0});
 }
 
-// The Cusick drape scene: a Ø30 cm wool disc centred over a Ø18 cm support disc.
+// The Cusick drape scene: a Ø30 cm wool disc with a smooth edge centred over a Ø18 cm support
+// disc.
 TEST(DiscScene, CusickDrapeSceneIsTheStandardGeometry) {
   const Scene s = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" /
                              "cusick_drape.json");
   EXPECT_EQ(s.grid.shape, sim::SpecimenShape::disc);
+  EXPECT_EQ(s.grid.disc_edge, sim::DiscEdge::smooth);
   EXPECT_NEAR(s.grid.size_u_m, 0.30, 1e-12);
   EXPECT_NEAR(s.grid.size_v_m, 0.30, 1e-12);
   // Held at its centre only, in place of the standard's upper clamping disc.
-  const sim::ClothMesh mesh = sim::make_grid(s.grid);
-  EXPECT_EQ(sim::resolve_pins(s.pins, mesh),
-            std::vector<sim::Index>{mesh.index((mesh.nu - 1) / 2, (mesh.nv - 1) / 2)});
+  const sim::ClothMesh mesh = cloth_mesh(s);
+  EXPECT_EQ(sim::resolve_pins(s.pins, mesh), std::vector<sim::Index>{0});
+  EXPECT_TRUE(sim::Vec3(mesh.rest_positions.row(0).transpose())
+                  .isApprox(s.grid.origin + 0.15 * s.grid.warp_axis + 0.15 * s.grid.weft_axis));
   EXPECT_EQ(s.material.density_kg_m2, sim::material_preset("wool_kang_yu").material.density_kg_m2);
   const sim::Vec3 centre = s.grid.origin + 0.15 * s.grid.warp_axis + 0.15 * s.grid.weft_axis;
   bool support = false;
