@@ -69,7 +69,8 @@ TEST(InputErrors, UnknownKeyNestedNamesItsPath) {
   s["cloth"]["materal"] = Json::object();
   EXPECT_EQ(scene_error_of(s),
             "scene.json: cloth.materal: unknown key; did you mean 'material'? (known keys here: "
-            "mesh, size, resolution, shape, origin, warp_axis, weft_axis, initial_shape, material, pins)");
+            "mesh, size, resolution, shape, edge, origin, warp_axis, weft_axis, initial_shape, "
+            "material, pins)");
   s = valid_scene();
   s["cloth"]["material"]["densty"] = 0.2;
   EXPECT_CONTAINS(scene_error_of(s),
