@@ -33,7 +33,7 @@ std::string static_solve_refusal(const SimSettings& s) {
   if (s.projection.method != ProjectionMethod::none)
     return "simulation.constraints: a static solve needs the cloth's stretch as springs, not "
            "constraints (projection '" + std::string(base::enum_name(projection_method_names, s.projection.method)) + "')";
-  if (!s.obstacle_motions.empty())
+  if (any_moves(s.obstacle_motions))
     return "obstacles move: a static solve needs still obstacles";
   if (s.aero.enabled) return "simulation.air: drag and wind have no static potential";
   if (s.remesh.enabled) return "simulation.remesh: a static solve keeps the scene's mesh";

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "base/check.h"
+#include "sim/linear/cholmod_solver.h"
 #include "sim/linear/stiffness_assembly.h"
 
 namespace weft::sim {
@@ -40,6 +41,17 @@ double squared_free_norm(const Matrix3X& g, const Eigen::VectorXd& inv_mass) {
   for (Index i = 0; i < g.rows(); ++i)
     if (inv_mass[i] > 0.0) sum += g.row(i).squaredNorm();
   return sum;
+}
+
+// A static solve factorizes one matrix per Newton iteration, hundreds of times: CHOLMOD's
+// supernodal factorization (dense blocks through BLAS) when weft has CHOLMOD, Eigen's LDLᵀ
+// otherwise.
+std::unique_ptr<SparseSpdSolver> make_static_solver() {
+  if (default_sparse_backend() != SparseBackend::cholmod)
+    return make_sparse_spd_solver(default_sparse_backend());
+  CholmodSettings settings;
+  settings.factorization = CholmodFactorization::supernodal;
+  return make_cholmod_solver(settings);
 }
 
 }  // namespace
@@ -143,8 +155,7 @@ struct StaticEquilibrium::Newton {
   StiffnessAssembly assembly;
   std::unique_ptr<SparseSpdSolver> solver;
   Shift shift;
-  double radius_m;      // the most a vertex moves in one step
-  double max_radius_m;  // with obstacles: the starting radius, so no step jumps through one
+  double radius_m;  // the most a vertex moves in one step: doubled after a step taken whole
   double energy_J = 0.0;
   Matrix3X g;
   int exact_blocked = 0;  // iterations left before the exact Hessian is tried again
@@ -152,9 +163,8 @@ struct StaticEquilibrium::Newton {
   Newton(const StaticEquilibrium& s, const Matrix3X& x)
       : statics(s),
         assembly(s.m_system, StiffnessAssembly::Terms::all, "StaticEquilibrium"),
-        solver(make_sparse_spd_solver(default_sparse_backend())),
+        solver(make_static_solver()),
         radius_m(s.m_settings.max_move * s.m_shortest_edge_m),
-        max_radius_m(s.m_obstacles.empty() ? std::numeric_limits<double>::infinity() : radius_m),
         energy_J(s.energy(x)),
         g(s.gradient(x)) {
     solver->analyze(assembly.matrix());
@@ -188,13 +198,32 @@ struct StaticEquilibrium::Newton {
     return p.allFinite() && p.dot(gv) < 0.0;
   }
 
+  // The largest α ≤ 1 at which no vertex moves more than the trust radius, nor, near an
+  // obstacle, more than max(δ, its distance to the nearest surface): it can reach the surface
+  // but never jump through the obstacle, whose penalty then stops it.
+  double longest_step(const Matrix3X& x, const Eigen::Map<const Matrix3X>& step) const {
+    double alpha = 1.0;
+    for (Index i = 0; i < x.rows(); ++i) {
+      const double move = step.row(i).norm();
+      if (move == 0.0) continue;
+      double cap = radius_m;
+      if (!statics.m_obstacles.empty()) {
+        double d = std::numeric_limits<double>::infinity();
+        for (const Obstacle& o : statics.m_obstacles)
+          d = std::min(d, signed_distance(o, x.row(i).transpose()));
+        cap = std::min(cap, std::max(statics.m_thickness_m, d));
+      }
+      alpha = std::min(alpha, cap / move);
+    }
+    return alpha;
+  }
+
   // Backtracking from the step capped to the trust radius; moves x and returns true when a step
   // was taken (first_trial: at the capped length).
   bool line_search(Matrix3X& x, const Eigen::VectorXd& p, bool& first_trial) {
     const Eigen::VectorXd& inv_mass = statics.m_system.inv_mass;
     const Eigen::Map<const Matrix3X> step(p.data(), x.rows(), 3);
-    const double longest = step.rowwise().norm().maxCoeff();
-    const double first_alpha = longest > radius_m ? radius_m / longest : 1.0;
+    const double first_alpha = longest_step(x, step);
     const double slope = p.dot(Eigen::Map<const Eigen::VectorXd>(g.data(), g.size()));
     for (double alpha = first_alpha; alpha >= kSmallestStep; alpha *= 0.5) {
       Matrix3X trial = x + alpha * step;
@@ -230,7 +259,7 @@ struct StaticEquilibrium::Newton {
       if (direction(x, exact, p, result) && line_search(x, p, first_trial)) {
         if (first_trial) {
           shift.relax();
-          radius_m = std::min(2.0 * radius_m, max_radius_m);
+          radius_m *= 2.0;
         } else {
           radius_m *= 0.5;
         }

@@ -4,21 +4,33 @@
 // over the free vertices (pins fixed), found by Newton's method — what a drape test, a
 // cantilever or a hang reads once the cloth has stopped moving, without simulating the motion.
 //
-// Each iteration solves (K + μ M) p = −∇Π with K the force terms' Hessian, each element's
-// projected onto the positive semi-definite cone (sim/linear/stiffness_assembly.h), plus the
-// contact penalties' k n nᵀ; M the lumped masses and μ ≥ 0 a Levenberg–Marquardt shift raised
-// when the factorization fails or the step does not descend, and lowered after full steps.
-// The step is capped so that no vertex moves more than `max_move` (a trust region: a Newton
-// step of a flat sheet can be metres long, and a step longer than the obstacle's thickness
-// could jump through it), then a backtracking line search takes the longest α ≤ 1 with
-// Π(x + α p) ≤ Π(x) + 1e-4 α ∇Πᵀp (Armijo). Newton's steps on the energy cannot diverge:
-// every accepted step lowers Π.
+// Each iteration solves (K + μ M) p = −∇Π with K the force terms' Hessian plus the contact
+// penalties' k n nᵀ, M the lumped masses and μ a Levenberg–Marquardt shift (at least 1e-8 of
+// the mean diag(K)/m, which keeps the rigid motions of a pinless or frictionless cloth from
+// making K singular; raised ×10 when the factorization fails or p does not descend, lowered ÷3
+// after a step taken whole). Far from rest each element's Hessian is projected onto the positive
+// semi-definite cone (sim/linear/stiffness_assembly.h): a descent direction whatever the shape.
+// Below a residual of 1e-2 the exact Hessian is tried first: positive definite near a stable
+// equilibrium, it converges quadratically where the projected one, exact only where nothing is
+// compressed or bent past its rest, converges linearly; when it is indefinite (a saddle: the
+// shape is about to buckle) the projected one is used for the next 10 iterations.
+//
+// The step is capped: no vertex moves more than a trust radius (½ the shortest rest edge at
+// first, doubled after every step taken whole, halved after a backtrack), and none nearer an
+// obstacle than its distance to that surface (or the thickness δ), so no step jumps through an
+// obstacle before its penalty can stop it. Then a backtracking line search takes the longest
+// α ≤ 1 with Π(x + α p) ≤ Π(x) + 1e-4 α ∇Πᵀp (Armijo); near the minimum, where Π's decrease is
+// below its rounding, a whole step that lowers ‖∇Π‖ is taken on the residual's word. Every
+// accepted step lowers Π (or the residual at the end): the iteration cannot diverge.
+//
+// The factorizations (hundreds per solve) are CHOLMOD's supernodal L Lᵀ through BLAS when weft
+// has CHOLMOD (sim/linear/cholmod_solver.h), Eigen's LDLᵀ otherwise.
 //
 // Contact. An obstacle is a one-sided penalty on the signed distance d of each free vertex to
 // its surface, ½ k_i (δ − d)² where d < δ (δ = the collision thickness), with
 // k_i = contact_stiffness × m_i |g| / δ: a vertex pressed with a force F sinks F / k_i into the
-// layer, 1 % of δ for one that carries 10 times its own weight at the default 1000. Frictionless: a static
-// solve has no path along which friction could act. The Hessian keeps k n nᵀ and drops the
+// layer, 1 % of δ for one that carries 10 times its own weight at the default 1000.
+// Frictionless: a static solve has no path along which friction could act. The Hessian keeps k n nᵀ and drops the
 // surface's curvature term (still PSD). Self-contact is not modelled (the count of crossing
 // edges after the solve says whether it mattered).
 //

@@ -9,7 +9,7 @@ struct StaticSettings {
   double contact_stiffness = 1e3; // k_i = this × m_i |g| / δ
   double imperfection = 1e-3;     // × the mean rest edge length; 0: none
   unsigned seed = 1;
-  double max_move = 0.5;          // × the shortest rest edge: the most a vertex moves per step
+  double max_move = 0.5;          // × the shortest rest edge: the first trust radius
 };
 
 }  // namespace weft::sim
