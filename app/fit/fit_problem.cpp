@@ -13,6 +13,7 @@
 #include "app/run/measure.h"
 #include "app/run/obstacle_meshes.h"
 #include "app/run/renderer_choice.h"
+#include "app/run/rest_shape.h"
 #include "app/scene/scene_patch.h"
 #include "render/photo_compare/metrics.h"
 
@@ -51,8 +52,16 @@ double relative_misfit(double simulated, double target) {
 }  // namespace
 
 Settled settle_to_rest(Scene scene, const SettleSettings& settings) {
-  scene.sim.integrator = sim::Integrator::dynamic_relaxation;
   Settled s;
+  if (settings.method == SettleMethod::static_solve) {
+    RestShape rest = solve_rest_shape(scene);
+    s.simulator = std::move(rest.simulator);
+    s.converged = rest.solve.converged;
+    s.iterations = rest.solve.iterations;
+    s.residual = rest.solve.residual;
+    return s;
+  }
+  scene.sim.integrator = sim::Integrator::dynamic_relaxation;
   s.simulator = make_simulator(scene);
   sim::Simulator& simulator = *s.simulator;
   const double h = simulator.time_step();

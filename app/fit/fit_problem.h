@@ -18,13 +18,14 @@ namespace weft::app {
 // A cloth settled to rest (SettleSettings): the simulator holds the positions.
 struct Settled {
   std::unique_ptr<sim::Simulator> simulator;
-  bool converged = false;   // residual ≤ tolerance or still; false: max_iterations ran out
-  long iterations = 0;
+  bool converged = false;   // residual ≤ tolerance or still; false: the iterations ran out
+  long iterations = 0;      // Newton iterations, or dynamic relaxation's
   double residual = 0.0;    // ‖R‖/‖Mg‖ at the end
 };
 
-// Simulates `scene` with its integrator replaced by dynamic relaxation until it rests. Throws
-// sim::DivergenceError, InputError as make_simulator.
+// The scene's cloth at rest by the settings' method: a static solve, or dynamic relaxation (the
+// scene's integrator replaced) until it rests. Throws sim::DivergenceError, InputError as
+// make_simulator and solve_rest_shape.
 Settled settle_to_rest(Scene scene, const SettleSettings& settings);
 
 // The cantilever measures of MeasuredTarget: clamp = mean of the pinned vertices, tip = mean of

@@ -7,6 +7,7 @@
 
 #include "app/scene/json_reader.h"
 #include "app/io/npy_file.h"
+#include "sim/simulator.h"
 
 namespace weft::app {
 namespace {
@@ -29,6 +30,12 @@ const std::vector<ParameterKind>& parameter_kinds() {
       {"shear", {"cloth.material.shear"}, Quantity::force_per_length, "N/m"},
       {"density", {"cloth.material.density"}, Quantity::areal_density, "kg/m^2"},
       {"friction", {"simulation.collision_friction"}, std::nullopt, ""},
+      // The coefficients of cloth.material.bending_law (one law for both directions, whose form
+      // the fit file's "set" gives): sim/bending_law.h.
+      {"bend_law_B", {"cloth.material.bending_law.B"}, Quantity::bending_rigidity, "N*m"},
+      {"bend_law_M0", {"cloth.material.bending_law.M0"}, Quantity::moment_per_width, "N"},
+      {"bend_law_kappa0", {"cloth.material.bending_law.kappa0"}, Quantity::curvature, "1/m"},
+      {"bend_law_C", {"cloth.material.bending_law.C"}, Quantity::cubic_bending, "N*m^3"},
   };
   return kinds;
 }
@@ -121,6 +128,16 @@ FitTarget read_target(ObjectReader r) {
 
 void read_options(ObjectReader& root, FitSpec& spec) {
   ObjectReader s = root.object("settle");
+  spec.settle.method = s.enumeration("method", settle_method_names, {spec.settle.method});
+  if (spec.settle.method == SettleMethod::static_solve) {
+    for (const char* key : {"tolerance", "still", "check_every", "max_iterations"})
+      if (s.has(key))
+        s.fail(key, "applies to method \"dynamic_relaxation\"; a static solve takes the scene's "
+                    "simulation.static settings");
+    if (const std::string why = sim::static_solve_refusal(spec.base.sim); !why.empty())
+      s.fail("method", "the scene cannot be solved statically (" + why +
+                           "): give \"method\": \"dynamic_relaxation\"");
+  }
   spec.settle.tolerance = s.number("tolerance", spec.settle.tolerance, Range::gt(0.0));
   spec.settle.still_m = s.quantity("still", Quantity::length, spec.settle.still_m, Range::ge(0.0));
   spec.settle.check_every = s.integer("check_every", spec.settle.check_every, Range::ge(1));

@@ -77,11 +77,18 @@ struct PhotoTarget {
 
 using FitTarget = std::variant<MeasuredTarget, PointCloudTarget, PhotoTarget>;
 
-// The settle to rest of each evaluation: dynamic relaxation (the scene's integrator is
+// The settle to rest of each evaluation. static (the default): the static equilibrium solver
+// (app/run/rest_shape.h) with the scene's simulation.static settings — each evaluation a
+// deterministic function of the parameters. dynamic_relaxation (the scene's integrator is
 // replaced) until ‖R‖/‖Mg‖ ≤ tolerance, or no vertex moved more than still_m over the last
 // check_every iterations (a drape on a support keeps a residual: its contact forces are not
-// part of R), or max_iterations.
+// part of R), or max_iterations: for scenes a static solve cannot take (constraints, air).
+enum class SettleMethod { static_solve, dynamic_relaxation };
+inline constexpr base::EnumNames<SettleMethod, 2> settle_method_names{
+    {{SettleMethod::static_solve, "static"}, {SettleMethod::dynamic_relaxation, "dynamic_relaxation"}}};
+
 struct SettleSettings {
+  SettleMethod method = SettleMethod::static_solve;
   double tolerance = 1e-4;
   double still_m = 1e-7;
   long check_every = 100;
