@@ -70,7 +70,7 @@ MeasuredTarget read_measured(ObjectReader r) {
   if (r.has("drop")) t.drop_m = r.quantity("drop", Quantity::length, required, Range::gt(0.0));
   if (r.has("drape_coefficient"))
     t.drape_coefficient = r.number("drape_coefficient", required, Range::gt(0.0).le(1.0));
-  if (r.has("folds")) t.folds = static_cast<int>(r.integer("folds", required, Range::ge(1)));
+  if (r.has("folds")) t.folds = r.number("folds", required, Range::ge(1.0));
   if (!t.overhang_m && !t.drop_m && !t.drape_coefficient && !t.folds)
     throw_scene_error(r.file(), r.path(), "expected at least one of 'overhang', 'drop', 'drape_coefficient', 'folds'");
   r.finish();

@@ -49,7 +49,8 @@ struct MeasuredTarget {
   std::optional<double> overhang_m, drop_m;
   // A drape over a support (analysis/measure/drape_measure.h, as `weft measure` measures it).
   std::optional<double> drape_coefficient;
-  std::optional<int> folds;
+  // A real number ≥ 1: the mean node count of several specimens, e.g. 7.5.
+  std::optional<double> folds;
 };
 
 // A point cloud in the scene's frame, metres (.npy, N×3; app/io/npy_file.h). Objective: the
