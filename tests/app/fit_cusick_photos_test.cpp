@@ -7,7 +7,7 @@
 // Each evaluation settles by dynamic relaxation, which does not settle a drape resting on its
 // support: it runs the fit's 30 000 iterations every time (NOT settled) and the drape keeps
 // creeping, so the drape at B is the state after 30 000 iterations — a deterministic function of
-// B, but a rough one: its drape coefficient jumps about below B ≈ 9e-6 N·m, and B only 0.3 %
+// B, but a rough one: its drape coefficient jumps about below B ≈ 9e-6 N·m, and B only 0.4 %
 // off the truth can give 6 nodes instead of 8 (docs/photos.md has the figures). The test's
 // B = 1.2e-5 N·m lies in the smoother part; the fit starts 2× above it with a first step of
 // ×1.78 (initial_step 0.25), which reaches the truth's basin past the local minimum at
@@ -24,6 +24,7 @@
 
 #include "app/fit/fit_report.h"
 #include "app/run/measure.h"
+#include "base/constants.h"
 
 namespace weft::app {
 namespace {
@@ -74,14 +75,16 @@ TEST(CusickPhotoFit, RecoversBendingFromSyntheticSilhouettesStarting2xOff) {
   const fs::path dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "fit_cusick_photos";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  write_silhouettes(dir, truth, {{"a.png", 0.5, 0.0, false}, {"b.png", 0.5, 0.7, true},
-                                 {"held_out_turned.png", 0.6, 2.0, false}});
+  // tests/data/photos/cusick_synthetic holds copies of these four (assets/fits/cusick_photos_synthetic.json).
+  write_silhouettes(dir, truth, {{"drape_0deg.png", 0.5, 0.0, false},
+                                 {"drape_40deg_mirrored.png", 0.5, base::deg_to_rad(40.0), true},
+                                 {"check_115deg_0.6mm.png", 0.6, base::deg_to_rad(115.0), false}});
   // Another specimen: the same fabric on a 27 × 27 grid, whose nodes form differently.
-  write_silhouettes(dir, truth, {{"held_out_27.png", 0.5, 0.0, false}}, 27);
+  write_silhouettes(dir, truth, {{"check_27x27.png", 0.5, 0.0, false}}, 27);
   const FitSpec spec = parse_fit_spec(
-      cusick_fit("2.4e-5 N*m", R"({"drape_photos": {"images": ["a.png", "b.png"], "mm_per_px": 0.5,
-          "specimen": "30 cm", "support": "18 cm",
-          "check_images": [{"image": "held_out_turned.png", "mm_per_px": 0.6}, "held_out_27.png"]}})"),
+      cusick_fit("2.4e-5 N*m", R"({"drape_photos": {"images": ["drape_0deg.png", "drape_40deg_mirrored.png"],
+          "mm_per_px": 0.5, "specimen": "30 cm", "support": "18 cm",
+          "check_images": [{"image": "check_115deg_0.6mm.png", "mm_per_px": 0.6}, "check_27x27.png"]}})"),
       (dir / "fit.json").string());
   FitProblem problem(spec);
   const std::clock_t cpu_start = std::clock();
@@ -99,9 +102,14 @@ TEST(CusickPhotoFit, RecoversBendingFromSyntheticSilhouettesStarting2xOff) {
   ASSERT_TRUE(out.drape_check);
   for (const DrapePhotoComparison& c : out.drape_check->images)
     std::printf("  %s\n", describe_comparison(c, out.drape_check->fitted).c_str());
-  EXPECT_NEAR(r.best.values[0] / truth, 1.0, 0.05) << r.stop_reason;
-  EXPECT_LE(r.fitted[0].band_low, r.best.values[0]);
-  EXPECT_GE(r.fitted[0].band_high, r.best.values[0]);
+  std::printf("  band %s%.4g … %s%.4g N·m\n", r.fitted[0].low_open ? "≤ " : "", r.fitted[0].band_low,
+              r.fitted[0].high_open ? "≥ " : "", r.fitted[0].band_high);
+  // Near the truth the objective is as rough as the settle (±0.5 of a unit from one B to the
+  // next, where the images' own raster leaves 0.3 at the truth): B is pinned to a few %, and the
+  // sensitivity band (optimum + 1) holds the truth.
+  EXPECT_NEAR(r.best.values[0] / truth, 1.0, 0.1) << r.stop_reason;
+  EXPECT_TRUE(r.fitted[0].low_open || r.fitted[0].band_low <= truth);
+  EXPECT_TRUE(r.fitted[0].high_open || truth <= r.fitted[0].band_high);
   // The same drape turned and at another scale: within the raster's noise.
   const DrapePhotoComparison& turned = out.drape_check->images[2];
   EXPECT_TRUE(turned.held_out);
