@@ -20,7 +20,7 @@
 //       + w_nodes · (n − mean nᵢ)²
 //
 // Each part is in units of what a top view resolves: 1 mm of outline (two pixels at 0.5 mm per
-// px), 0.01 of DC (the spread of repeated Cusick tests), 1 node. The node count of a simulation
+// px), 0.01 of DC, 1 node; so the default sensitivity band is 1. The node count of a simulation
 // is a whole number, so its part is a step function of the parameters; the outline and DC parts
 // carry the smooth change.
 
