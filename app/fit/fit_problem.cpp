@@ -102,6 +102,12 @@ CantileverShape measure_cantilever(const sim::Simulator& simulator) {
   return shape;
 }
 
+analysis::DrapeShape measure_settled_drape(const Scene& scene, const sim::Simulator& simulator) {
+  const auto support = scene_support(scene, simulator.mesh(), true);
+  return analysis::measure_drape(simulator.mesh(), simulator.mesh().triangles(), simulator.state().x,
+                                 *support);
+}
+
 std::optional<double> column_midline_distance_px(const render::Mask& a, const render::Mask& b) {
   double sum = 0.0;
   long columns = 0;
@@ -175,14 +181,22 @@ std::vector<std::pair<std::string, double>> FitProblem::measure(const Scene& sce
       if (t->drop_m) objective += relative_misfit(c.drop_m, *t->drop_m);
     }
     if (t->drape_coefficient || t->folds) {
-      const auto support = scene_support(scene, s.mesh(), true);
-      const analysis::DrapeShape d =
-          analysis::measure_drape(s.mesh(), s.mesh().triangles(), s.state().x, *support);
+      const analysis::DrapeShape d = measure_settled_drape(scene, s);
       m.emplace_back("drape_coefficient", d.drape_coefficient);
       m.emplace_back("folds", d.folds);
       if (t->drape_coefficient) objective += relative_misfit(d.drape_coefficient, *t->drape_coefficient);
       if (t->folds) objective += relative_misfit(d.folds, *t->folds);
     }
+  } else if (const auto* drape = std::get_if<DrapePhotosTarget>(&m_spec.target)) {
+    const analysis::DrapeShape d = measure_settled_drape(scene, s);
+    const DrapePhotoMisfit f = drape_photo_misfit(*drape, d);
+    m.emplace_back("drape_coefficient", d.drape_coefficient);
+    m.emplace_back("folds", d.folds);
+    m.emplace_back("outline_rms_mm", f.outline_rms_mm);
+    m.emplace_back("outline_part", f.outline_part);
+    m.emplace_back("dc_part", f.drape_coefficient_part);
+    m.emplace_back("nodes_part", f.nodes_part);
+    objective = f.objective;
   } else if (const auto* cloud = std::get_if<PointCloudTarget>(&m_spec.target)) {
     objective = 1e3 * chamfer_3d(cloth_points(s.mesh(), s.state().x), cloud->points).symmetric_m;
     m.emplace_back("chamfer_3d_mm", objective);

@@ -37,6 +37,10 @@ struct CantileverShape {
 // Throws std::invalid_argument when nothing is pinned.
 CantileverShape measure_cantilever(const sim::Simulator& simulator);
 
+// The drape of the simulator's positions over the scene's support, as `weft measure` measures
+// it (analysis::measure_drape). Throws InputError when the scene has no support (scene_support).
+analysis::DrapeShape measure_settled_drape(const Scene& scene, const sim::Simulator& simulator);
+
 // Mean of |row_a − row_b| over the columns where both masks have pixels, the row of a column
 // being the mean row of its pixels (the midline of a strip seen from the side), px; none when
 // no column has both.

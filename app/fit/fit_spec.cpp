@@ -40,12 +40,6 @@ const std::vector<ParameterKind>& parameter_kinds() {
   return kinds;
 }
 
-// A path in the fit file, relative to the fit file's folder.
-fs::path relative_to(const std::string& source, const std::string& file) {
-  const fs::path p(file);
-  return p.is_absolute() ? p : fs::path(source).parent_path() / p;
-}
-
 FitParameter read_parameter(ObjectReader r) {
   const std::string name = r.string("name", required);
   const ParameterKind* kind = nullptr;
@@ -77,7 +71,7 @@ MeasuredTarget read_measured(ObjectReader r) {
   if (r.has("drop")) t.drop_m = r.quantity("drop", Quantity::length, required, Range::gt(0.0));
   if (r.has("drape_coefficient"))
     t.drape_coefficient = r.number("drape_coefficient", required, Range::gt(0.0).le(1.0));
-  if (r.has("folds")) t.folds = static_cast<int>(r.integer("folds", required, Range::ge(1)));
+  if (r.has("folds")) t.folds = r.number("folds", required, Range::ge(1.0));
   if (!t.overhang_m && !t.drop_m && !t.drape_coefficient && !t.folds)
     throw_scene_error(r.file(), r.path(), "expected at least one of 'overhang', 'drop', 'drape_coefficient', 'folds'");
   r.finish();
@@ -86,7 +80,7 @@ MeasuredTarget read_measured(ObjectReader r) {
 
 PointCloudTarget read_point_cloud(ObjectReader r) {
   PointCloudTarget t;
-  t.file = relative_to(r.file(), r.string("file", required));
+  t.file = fit_file_path(r.file(), r.string("file", required));
   r.finish();
   try {
     t.points = read_npy_points(t.file);
@@ -98,8 +92,8 @@ PointCloudTarget read_point_cloud(ObjectReader r) {
 
 PhotoTarget read_photo(ObjectReader r) {
   PhotoTarget t;
-  t.image_path = relative_to(r.file(), r.string("image", required));
-  if (r.has("mask")) t.mask_path = relative_to(r.file(), r.string("mask", required));
+  t.image_path = fit_file_path(r.file(), r.string("image", required));
+  if (r.has("mask")) t.mask_path = fit_file_path(r.file(), r.string("mask", required));
   t.metric = r.enumeration("metric", photo_metric_names, {PhotoMetric::chamfer});
   if (r.has("mm_per_px")) t.mm_per_px = r.number("mm_per_px", required, Range::gt(0.0));
   r.finish();
@@ -114,14 +108,21 @@ PhotoTarget read_photo(ObjectReader r) {
   return t;
 }
 
-FitTarget read_target(ObjectReader r) {
-  const int given = int(r.has("measured")) + int(r.has("point_cloud")) + int(r.has("photo"));
+// `object`: the target's JSON, which `r` reads.
+FitTarget read_target(ObjectReader r, const Json& object) {
+  const int given = int(r.has("measured")) + int(r.has("point_cloud")) + int(r.has("photo")) +
+                    int(r.has("drape_photos"));
   if (given != 1)
-    throw_scene_error(r.file(), r.path(), "expected exactly one of 'measured', 'point_cloud', 'photo', got " + std::to_string(given));
+    throw_scene_error(r.file(), r.path(), "expected exactly one of 'measured', 'point_cloud', 'photo', "
+                                          "'drape_photos', got " + std::to_string(given));
   FitTarget target;
   if (r.has("measured")) target = read_measured(r.required_object("measured"));
   if (r.has("point_cloud")) target = read_point_cloud(r.required_object("point_cloud"));
   if (r.has("photo")) target = read_photo(r.required_object("photo"));
+  if (r.has("drape_photos")) {
+    r.required_object("drape_photos");  // marks it read, an error unless an object
+    target = read_drape_photos(object.at("drape_photos"), r.file(), r.path_of("drape_photos"));
+  }
   r.finish();
   return target;
 }
@@ -170,6 +171,11 @@ std::vector<Setting> read_set(const Json& document, const std::string& source) {
 
 }  // namespace
 
+fs::path fit_file_path(const std::string& fit_file, const std::string& file) {
+  const fs::path p(file);
+  return p.is_absolute() ? p : fs::path(fit_file).parent_path() / p;
+}
+
 const std::vector<std::string>& fit_parameter_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
@@ -182,12 +188,14 @@ const std::vector<std::string>& fit_parameter_names() {
 double default_band(const FitTarget& target) {
   if (std::holds_alternative<MeasuredTarget>(target)) return 1e-4;
   if (std::holds_alternative<PointCloudTarget>(target)) return 0.5;
+  if (std::holds_alternative<DrapePhotosTarget>(target)) return 1.0;
   return std::get<PhotoTarget>(target).metric == PhotoMetric::chamfer ? 0.5 : 0.01;
 }
 
 std::string objective_label(const FitTarget& target) {
   if (std::holds_alternative<MeasuredTarget>(target)) return "Σ relative misfit²";
   if (std::holds_alternative<PointCloudTarget>(target)) return "3D Chamfer [mm]";
+  if (std::holds_alternative<DrapePhotosTarget>(target)) return "drape photos misfit";
   return std::get<PhotoTarget>(target).metric == PhotoMetric::chamfer ? "outline Chamfer [px]"
                                                                        : "1 − IoU";
 }
@@ -199,7 +207,7 @@ FitSpec parse_fit_spec(const std::string& text, const std::string& source) {
   spec.source = source;
   spec.name = fs::path(source).stem().string();
   spec.description = root.string("description", "");
-  const fs::path scene_path = relative_to(source, root.string("scene", required));
+  const fs::path scene_path = fit_file_path(source, root.string("scene", required));
   root.object("set");  // marks it read; its keys are scene keys, checked by the scene reader
   spec.set = read_set(document, source);
   try {
@@ -217,9 +225,11 @@ FitSpec parse_fit_spec(const std::string& text, const std::string& source) {
           if (key == other)
             root.fail("parameters[" + std::to_string(i) + "]",
                       "sets " + key + ", which parameters[" + std::to_string(j) + "] sets too");
-  spec.target = read_target(root.required_object("target"));
+  spec.target = read_target(root.required_object("target"), document.at("target"));
   read_options(root, spec);
   root.finish();
+  if (const auto* drape = std::get_if<DrapePhotosTarget>(&spec.target))
+    check_drape_photos_scene(*drape, spec.base, source);
   if (const auto* photo = std::get_if<PhotoTarget>(&spec.target))
     if (photo->photo.width() != spec.base.render.width || photo->photo.height() != spec.base.render.height)
       root.fail("target", "the photo " + photo->image_path.string() + " is " +
