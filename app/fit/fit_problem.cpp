@@ -152,13 +152,26 @@ Evaluation FitProblem::evaluate(const std::vector<double>& values) {
   const auto start = std::chrono::steady_clock::now();
   Evaluation e;
   e.values = values;
-  const Scene scene = scene_at(values);
+  Scene scene = scene_at(values);
   try {
-    const Settled s = settle_to_rest(scene, m_spec.settle);
-    e.settled = s.converged;
-    e.iterations = s.iterations;
-    e.residual = s.residual;
-    e.measures = measure(scene, *s.simulator, e.objective);
+    // settle.seeds > 1: the mean objective and measures over that many imperfection seeds —
+    // the expected drape over the buckled branches a fabric's specimens take.
+    const int seeds = m_spec.settle.seeds;
+    const unsigned first_seed = scene.sim.statics.seed;
+    e.settled = true;
+    for (int k = 0; k < seeds; ++k) {
+      scene.sim.statics.seed = first_seed + static_cast<unsigned>(k);
+      const Settled s = settle_to_rest(scene, m_spec.settle);
+      double objective = 0.0;
+      const auto measures = measure(scene, *s.simulator, objective);
+      e.settled = e.settled && s.converged;
+      e.iterations += s.iterations;
+      e.residual = std::max(e.residual, s.residual);
+      e.objective += objective / seeds;
+      if (k == 0) e.measures.assign(measures.size(), {});
+      for (std::size_t i = 0; i < measures.size(); ++i)
+        e.measures[i] = {measures[i].first, e.measures[i].second + measures[i].second / seeds};
+    }
   } catch (const sim::DivergenceError& error) {
     e.failure = error.what();
     e.objective = kFailedObjective;

@@ -139,6 +139,9 @@ void read_options(ObjectReader& root, FitSpec& spec) {
       s.fail("method", "the scene cannot be solved statically (" + why +
                            "): give \"method\": \"dynamic_relaxation\"");
   }
+  spec.settle.seeds = static_cast<int>(s.integer("seeds", spec.settle.seeds, Range::closed(1, 100)));
+  if (spec.settle.seeds > 1 && spec.settle.method != SettleMethod::static_solve)
+    s.fail("seeds", "applies to method \"static\" (dynamic relaxation has no imperfection seed)");
   spec.settle.tolerance = s.number("tolerance", spec.settle.tolerance, Range::gt(0.0));
   spec.settle.still_m = s.quantity("still", Quantity::length, spec.settle.still_m, Range::ge(0.0));
   spec.settle.check_every = s.integer("check_every", spec.settle.check_every, Range::ge(1));

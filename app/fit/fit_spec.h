@@ -93,6 +93,9 @@ inline constexpr base::EnumNames<SettleMethod, 2> settle_method_names{
 
 struct SettleSettings {
   SettleMethod method = SettleMethod::static_solve;
+  // static: each evaluation solved from this many imperfection seeds (simulation.static.seed
+  // and the next ones), its objective and measures their means.
+  int seeds = 1;
   double tolerance = 1e-4;
   double still_m = 1e-7;
   long check_every = 100;
