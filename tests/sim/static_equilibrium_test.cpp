@@ -14,6 +14,7 @@
 #include "sim/simulator.h"
 #include "sim/statics/static_equilibrium.h"
 #include "tests/sim/cantilever_support.h"
+#include "tests/sim/test_cloth.h"
 
 namespace weft::sim {
 namespace {
@@ -22,12 +23,7 @@ using namespace cantilever;  // NOLINT: the strip and its helpers (cantilever_su
 
 TEST(StaticEquilibrium, HangingSpringReachesTheStaticExtensionInAFewNewtonSteps) {
   const double m = 0.01, k = 100.0, L = 0.2, g = 9.81;  // kg, N/m, m, m/s²
-  System system;
-  system.terms.push_back(
-      std::make_shared<SpringTerm>(std::vector<Spring>{{0, 1, L, k, SpringKind::warp}}));
-  system.mass_kg = Eigen::Vector2d(m, m);
-  system.inv_mass = Eigen::Vector2d(0.0, 1.0 / m);  // vertex 0 pinned
-  system.gravity_m_s2 = Vec3(0.0, 0.0, -g);
+  const System system = test_cloth::hanging_spring(m, k, L, g);  // vertex 0 pinned
   StaticSettings settings;
   settings.tolerance = 1e-12;
   const StaticEquilibrium statics(system, {}, 0.0, L, L, settings);
