@@ -54,6 +54,10 @@ class ForceTerm {
   // a term that only has an approximation says so in its header and its tests). Terms without
   // stiffness (has_stiffness() false) enter implicit Euler through their forces only.
   virtual bool has_stiffness() const { return true; }
+  // Whether implicit Euler assembles this stiffness into its step's matrix; false: the term's
+  // forces stay explicit there (its right-hand side only), while a static solve still uses
+  // its stiffness (sim/linear/stiffness_assembly.h).
+  virtual bool stiffness_in_time_step() const { return has_stiffness(); }
   virtual void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
                                  bool project_psd) const = 0;
   // bound[i] += an upper bound on Σ_j |K_ij| (3×3 block norms) over vertex i's block row of the

@@ -104,21 +104,27 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
   }
 
   // A bending stencil where both its edges exist, standing for the mean width of the two.
+  std::vector<BendingLaw> laws;
+  const int warp_law = m.bend_law_warp ? (laws.push_back(*m.bend_law_warp), 0) : -1;
+  const int weft_law =
+      m.bend_law_weft ? (laws.push_back(*m.bend_law_weft), static_cast<int>(laws.size()) - 1) : -1;
   if (m.bend_warp_Nm > 0.0) {
     for (Index j = 0; j < nv; ++j)
       for (Index i = 1; i + 1 < nu; ++i)
-        if (mesh.warp_edge_cells(i - 1, j) > 0 && mesh.warp_edge_cells(i, j) > 0)
+        if (mesh.warp_edge_cells(i - 1, j) > 0 && mesh.warp_edge_cells(i, j) > 0) {
+          const double w = 0.5 * (warp_width(i - 1, j) + warp_width(i, j));
           bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
-                             m.bend_warp_Nm * (0.5 * (warp_width(i - 1, j) + warp_width(i, j))) / hu,
-                             hu});
+                           m.bend_warp_Nm * w / hu, hu, w, warp_law});
+        }
   }
   if (m.bend_weft_Nm > 0.0) {
     for (Index j = 1; j + 1 < nv; ++j)
       for (Index i = 0; i < nu; ++i)
-        if (mesh.weft_edge_cells(i, j - 1) > 0 && mesh.weft_edge_cells(i, j) > 0)
+        if (mesh.weft_edge_cells(i, j - 1) > 0 && mesh.weft_edge_cells(i, j) > 0) {
+          const double w = 0.5 * (weft_width(i, j - 1) + weft_width(i, j));
           bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
-                             m.bend_weft_Nm * (0.5 * (weft_width(i, j - 1) + weft_width(i, j))) / hv,
-                             hv});
+                           m.bend_weft_Nm * w / hv, hv, w, weft_law});
+        }
   }
   // Rest angles from the rest shape (zero for a flat grid, kept general).
   for (auto& b : bends) {
@@ -126,7 +132,7 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
     b.rest_angle = turning_angle(x1 - x0, vertex(mesh.rest_positions, b.v2) - x1);
   }
   m_springs = std::make_shared<SpringTerm>(std::move(springs));
-  m_bends = std::make_shared<AngularBendingTerm>(std::move(bends));
+  m_bends = std::make_shared<AngularBendingTerm>(std::move(bends), std::move(laws));
 }
 
 ForceTerms MassSpringModel::terms() const {
@@ -201,31 +207,63 @@ void AngularBendingTerm::stencil(std::size_t e, Index* vertices) const {
   vertices[2] = m_bends[e].v2;
 }
 
+AngularBendingTerm::AngularBendingTerm(std::vector<AngularSpring> bends, std::vector<BendingLaw> laws)
+    : m_bends(std::move(bends)), m_laws(std::move(laws)) {
+  for (const AngularSpring& b : m_bends)
+    WEFT_CHECK(b.law >= -1 && b.law < static_cast<int>(m_laws.size()),
+               "AngularBendingTerm: bending law " + std::to_string(b.law) + " of " +
+                   std::to_string(m_laws.size()));
+}
+
+AngleEnergySlope AngularBendingTerm::slope(const AngularSpring& b, double theta) const {
+  if (b.law < 0) return linear_angle_slope(theta, b.rest_angle, b.k_Nm);
+  const BendingLaw& law = m_laws[static_cast<std::size_t>(b.law)];
+  const double l = b.rest_l_m, kappa = (theta - b.rest_angle) / l;
+  return {b.width_m * law.moment(kappa), b.width_m / l * law.stiffness(kappa),
+          b.width_m / l * law.initial_rigidity()};
+}
+
 double AngularBendingTerm::energy(const Matrix3X& x) const {
   double e = 0.0;
-  for (const AngularSpring& b : m_bends)
-    e += bend_angle_energy(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle, b.k_Nm);
+  for (const AngularSpring& b : m_bends) {
+    if (b.law < 0) {
+      e += bend_angle_energy(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle, b.k_Nm);
+      continue;
+    }
+    const Vec3 x1 = vertex(x, b.v1);
+    const double theta = turning_angle(x1 - vertex(x, b.v0), vertex(x, b.v2) - x1);
+    const double kappa = (theta - b.rest_angle) / b.rest_l_m;
+    e += b.width_m * b.rest_l_m *
+         m_laws[static_cast<std::size_t>(b.law)].energy_density(kappa);
+  }
   return e;
 }
 
 void AngularBendingTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
   for (const AngularSpring& b : m_bends) {
-    const auto g =
-        bend_angle_gradient(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle, b.k_Nm);
+    const auto g = bend_angle_gradient(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2),
+                                       b.rest_angle, [&](double theta) { return slope(b, theta); });
     f.row(b.v0) -= g[0].transpose();
     f.row(b.v1) -= g[1].transpose();
     f.row(b.v2) -= g[2].transpose();
   }
 }
 
-void AngularBendingTerm::element_stiffness(const Matrix3X&, std::size_t, ElementMatrix&,
-                                           bool) const {
-  WEFT_CHECK(false, "AngularBendingTerm: no stiffness (has_stiffness() is false)");
+void AngularBendingTerm::element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
+                                           bool project_psd) const {
+  const AngularSpring& b = m_bends[e];
+  Eigen::Matrix<double, 9, 9> H;
+  bend_angle_hessian(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle,
+                     [&](double theta) { return slope(b, theta); }, project_psd, H);
+  K = H;
 }
 
 void AngularBendingTerm::add_stiffness_row_bound(Eigen::VectorXd& bound) const {
   for (const AngularSpring& b : m_bends) {
-    const double c = b.k_Nm / (b.rest_l_m * b.rest_l_m);
+    const double k = b.law < 0 ? b.k_Nm
+                               : b.width_m / b.rest_l_m *
+                                     m_laws[static_cast<std::size_t>(b.law)].initial_rigidity();
+    const double c = k / (b.rest_l_m * b.rest_l_m);
     bound[b.v0] += 4.0 * c;
     bound[b.v1] += 8.0 * c;
     bound[b.v2] += 4.0 * c;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/bending_law.h"
+#include "sim/energies/bend_angle.h"
 #include "sim/force_term.h"
 #include "sim/grid.h"
 #include "sim/material.h"
@@ -32,8 +34,10 @@ struct Spring {
 struct AngularSpring {  // vertices x0, x1, x2 along a warp or weft line
   Index v0, v1, v2;
   double rest_angle;    // radians (0 on a flat grid)
-  double k_Nm;          // N·m per radian²
-  double rest_l_m;      // mean rest length of the two edges
+  double k_Nm;          // N·m per radian² (the linear law: B w / l̄)
+  double rest_l_m;      // mean rest length of the two edges, l̄
+  double width_m = 0.0; // the width of cloth the line stands for, w
+  int law = -1;         // index of its BendingLaw in the term's laws; −1: linear, k_Nm
 };
 
 // Linear springs (sim/energies/spring.h): ½ k (|x_b − x_a| − l)² each.
@@ -57,20 +61,25 @@ class SpringTerm final : public PairForceTerm {
   std::vector<Spring> m_springs;
 };
 
-// Angular bending springs (sim/energies/bend_angle.h) along warp and weft lines. No stiffness
-// for implicit Euler (has_stiffness() false: their forces enter its right-hand side only; the
-// stiffness is small, docs/models.md); the row bound is the near-flat one.
+// Angular bending springs (sim/energies/bend_angle.h) along warp and weft lines: ½ k (θ − θ0)²
+// each, or with a nonlinear bending law M(κ) (sim/bending_law.h) the stencil's share of
+// ∫ W(κ) dA, w l̄ W((θ − θ0) / l̄), whose slope dE/dθ = w M(κ) is the moment the stencil's
+// width carries. The row bound is the near-flat one, with the law's initial rigidity.
 class AngularBendingTerm final : public ForceTerm {
  public:
-  explicit AngularBendingTerm(std::vector<AngularSpring> bends) : m_bends(std::move(bends)) {}
+  // Each bend's law indexes `laws` (or is −1: linear); a bad index is a bug (WEFT_CHECK).
+  explicit AngularBendingTerm(std::vector<AngularSpring> bends, std::vector<BendingLaw> laws = {});
   std::string describe() const override;  // "7936 bending stencils"
   std::size_t element_count() const override { return m_bends.size(); }
   int stencil_size(std::size_t) const override { return 3; }
   void stencil(std::size_t e, Index* vertices) const override;
   double energy(const Matrix3X& x) const override;
   void add_forces(const Matrix3X& x, Matrix3X& f) const override;
-  bool has_stiffness() const override { return false; }
-  // A call is a bug (base::InternalError): the term has no stiffness.
+  // Left out of implicit Euler's matrix: the bending of the grid's skip-one stencils stays
+  // explicit in a time step (docs/models.md; its forces are small beside the springs'), as
+  // every scene and test was tuned; static solves use the stiffness.
+  bool stiffness_in_time_step() const override { return false; }
+  // The exact 9×9 Hessian of each stencil (bend_angle_hessian).
   void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
                          bool project_psd) const override;
   // Near flat, θ ≈ (δ0 − 2δ1 + δ2)/l across the line: Hessian (k/l²)·[1 −2 1]ᵀ[1 −2 1], whose
@@ -79,7 +88,10 @@ class AngularBendingTerm final : public ForceTerm {
   const std::vector<AngularSpring>& bends() const { return m_bends; }
 
  private:
+  // The stencil's energy slope at turning angle θ.
+  AngleEnergySlope slope(const AngularSpring& b, double theta) const;
   std::vector<AngularSpring> m_bends;
+  std::vector<BendingLaw> m_laws;
 };
 
 // Stiffnesses for a cell of hu × hv metres (derivations in docs/models.md):

@@ -15,6 +15,7 @@
 #include "sim/constraints/projection.h"
 #include "sim/integrators/integrator.h"
 #include "sim/integrators/time_integrator.h"
+#include "sim/statics/static_settings.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/remesh/transfer.h"
 #include "sim/types.h"
@@ -134,6 +135,9 @@ struct SimSettings {
   AeroSettings aero;
   // Adaptive remeshing during the run; off unless enabled.
   RemeshSettings remesh;
+  // How a static solve (weft run --rest, weft measure --static, weft fit) finds the rest shape:
+  // sim/statics/static_equilibrium.h.
+  StaticSettings statics;
 };
 
 }  // namespace weft::sim

@@ -19,6 +19,7 @@
 #include "sim/sim_settings.h"
 #include "sim/state.h"
 #include "sim/state_archive.h"
+#include "sim/statics/static_equilibrium.h"
 #include "sim/system.h"
 
 namespace weft::sim {
@@ -44,6 +45,10 @@ inline constexpr double substep_slack = 1e-5;
 // Why a time of dt_s cannot be taken in steps of step_s ("a time of … needs … steps of … s,
 // more than the limit of 1e+06"), or empty when it can.
 std::string too_many_steps(double dt_s, double step_s);
+
+// Why a scene with these settings cannot be solved statically (constraints instead of stretch
+// springs, moving obstacles, air, remeshing), naming the setting; empty when it can.
+std::string static_solve_refusal(const SimSettings& settings);
 
 // A cloth simulation: the System (masses, gravity, damping, force terms, pins) of a mesh and
 // material, the TimeIntegrator the settings name, and the contacts-and-constraints phase.
@@ -78,6 +83,12 @@ class Simulator {
   // given here, and moving pins' paths are offsets from there. Throws std::invalid_argument
   // after the first step, for a wrong size, or naming a vertex with a non-finite position.
   void set_initial_positions(const Matrix3X& x);
+
+  // Moves the cloth from where it is to its static equilibrium under gravity, its force terms,
+  // its pins and the obstacles where they stand (sim/statics/static_equilibrium.h); velocities
+  // are zeroed, time does not advance. Throws std::invalid_argument when the scene has what a
+  // static solve cannot hold (static_solve_refusal, moving pins).
+  StaticResult solve_static(const StaticSettings& settings);
 
   // Remeshes the cloth now (sim/cloth_remesh.h), relaxes the new vertices (simulation.remesh.relax:
   // the obstacles' push-out, then steps of the elastic terms alone with the kept vertices and

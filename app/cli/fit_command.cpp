@@ -34,12 +34,7 @@ int run_fit_command(const FitOptions& options) {
                spec.parameters.size(), spec.optimizer.max_evaluations);
   const auto on_evaluation = [&](const Evaluation& e, int number, FitPhase phase) {
     log.write(e, number, phase);
-    std::string measures;
-    for (const auto& [name, value] : e.measures) {
-      char text[64];
-      std::snprintf(text, sizeof text, " %s %.4g", name.c_str(), value);
-      measures += text;
-    }
+    const std::string measures = e.measures.empty() ? "" : " " + describe_measures(e);
     std::fprintf(stderr, "fit %s %3d  %s  objective %.6g%s  (%s, %ld iterations%s)%s\n",
                  phase == FitPhase::optimise ? "eval" : "prof", number,
                  describe_values(spec, e.values).c_str(), e.objective, measures.c_str(),
@@ -47,7 +42,7 @@ int run_fit_command(const FitOptions& options) {
                  e.failure.empty() ? "" : (" diverged: " + e.failure).c_str());
   };
   const FitResult result = run_fit(problem, on_evaluation);
-  const fs::path report = write_fit_outputs(dir, problem, result, options.command_line);
+  const FitOutputs outputs = write_fit_outputs(dir, problem, result, options.command_line);
 
   std::printf("weft: fit %s: %s after %zu evaluations (%s)\n", spec.name.c_str(),
               describe_values(spec, result.best.values).c_str(), result.evaluations.size(),
@@ -60,7 +55,11 @@ int run_fit_command(const FitOptions& options) {
   }
   std::printf("  objective (%s) %.6g", objective_label(spec.target).c_str(), result.best.objective);
   for (const auto& [name, value] : result.best.measures) std::printf(", %s %.4g", name.c_str(), value);
-  std::printf("\nweft: wrote %s\n", report.c_str());
+  std::printf("\n");
+  if (outputs.drape_check)
+    for (const DrapePhotoComparison& c : outputs.drape_check->images)
+      std::printf("  %s\n", describe_comparison(c, outputs.drape_check->fitted).c_str());
+  std::printf("weft: wrote %s\n", outputs.report.c_str());
   return exit_ok;
 }
 

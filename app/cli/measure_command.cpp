@@ -157,7 +157,8 @@ void add_photo_options(CLI::App& cmd, MeasurePhotoOptions& p, std::string& cente
       "--photo", p.photo,
       "Top-view photo or silhouette of a Cusick drape to measure instead of a scene "
       "(docs/measure.md); needs --disc-mm, --specimen-mm and --mm-per-px or --disc-px");
-  for (const char* name : {"scene", "--set", "--frames", "--threads", "--drape", "--until-settled"})
+  for (const char* name :
+       {"scene", "--set", "--frames", "--threads", "--drape", "--until-settled", "--static"})
     photo->excludes(cmd.get_option(name));
   const auto needs_photo = [&](CLI::Option* o) { o->needs(photo); };
   needs_photo(cmd.add_option("--mask-photo", p.mask,
@@ -236,9 +237,21 @@ Command register_measure(CLI::App& app, const std::string& command_line) {
       ->excludes(cmd->get_option("--frames"));
   cmd->add_flag("--drape", o->require_drape,
                 "Require the drape measures: an error if no obstacle supports the cloth centre");
+  CLI::Option* statics =
+      cmd->add_flag("--static", o->static_solve,
+                    "Solve the rest shape by the static equilibrium solver instead of "
+                    "simulating the motion (docs/measure.md, \"Static solves\")")
+          ->excludes(cmd->get_option("--until-settled"))
+          ->excludes(cmd->get_option("--frames"));
+  check_range(cmd->add_option("--seeds", o->seeds,
+                              "With --static: solve from this many imperfection seeds (1..N) "
+                              "and report the spread of DC and folds (default 1)"),
+              Range::closed(1, 1000))
+      ->needs(statics);
   add_photo_options(*cmd, *p, *center);
   return {cmd, [o, p, center, cmd] {
-            if (cmd->count("--photo") == 0) return run_measure(*o);
+            if (cmd->count("--photo") == 0)
+              return o->static_solve ? run_measure_static(*o) : run_measure(*o);
             p->out = o->out;
             p->setup.center_px = parse_center(*center);
             return run_measure_photo(*p);

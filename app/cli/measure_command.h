@@ -24,6 +24,10 @@ struct MeasureOptions {
   // --until-settled [MAX]: simulate until settled (settled_for), at most MAX s of simulated
   // time instead of output.frames.
   std::optional<double> until_settled_max_s;
+  // --static: solve the rest shape instead of simulating the motion (app/run/rest_shape.h);
+  // --seeds N: that many imperfection seeds (1…N), their spread reported.
+  bool static_solve = false;
+  int seeds = 1;
   std::string command_line;    // recorded in measure.txt
 };
 
@@ -32,5 +36,8 @@ Command register_measure(CLI::App& app, const std::string& command_line);
 
 // Runs the job; bad input throws InputError before anything is written.
 int run_measure(const MeasureOptions& options);
+// The --static job (measure_static.cpp): static.csv with one row per seed, outline.csv of the
+// first, and the table with each measure's spread over the seeds.
+int run_measure_static(const MeasureOptions& options);
 
 }  // namespace weft::app

@@ -13,6 +13,7 @@
 #include "app/run/measure.h"
 #include "app/run/obstacle_meshes.h"
 #include "app/run/renderer_choice.h"
+#include "app/run/rest_shape.h"
 #include "app/scene/scene_patch.h"
 #include "render/photo_compare/metrics.h"
 
@@ -51,8 +52,16 @@ double relative_misfit(double simulated, double target) {
 }  // namespace
 
 Settled settle_to_rest(Scene scene, const SettleSettings& settings) {
-  scene.sim.integrator = sim::Integrator::dynamic_relaxation;
   Settled s;
+  if (settings.method == SettleMethod::static_solve) {
+    RestShape rest = solve_rest_shape(scene);
+    s.simulator = std::move(rest.simulator);
+    s.converged = rest.solve.converged;
+    s.iterations = rest.solve.iterations;
+    s.residual = rest.solve.residual;
+    return s;
+  }
+  scene.sim.integrator = sim::Integrator::dynamic_relaxation;
   s.simulator = make_simulator(scene);
   sim::Simulator& simulator = *s.simulator;
   const double h = simulator.time_step();
@@ -91,6 +100,12 @@ CantileverShape measure_cantilever(const sim::Simulator& simulator) {
   shape.drop_m = d.dot(down);
   shape.overhang_m = (d - shape.drop_m * down).norm();
   return shape;
+}
+
+analysis::DrapeShape measure_settled_drape(const Scene& scene, const sim::Simulator& simulator) {
+  const auto support = scene_support(scene, simulator.mesh(), true);
+  return analysis::measure_drape(simulator.mesh(), simulator.mesh().triangles(), simulator.state().x,
+                                 *support);
 }
 
 std::optional<double> column_midline_distance_px(const render::Mask& a, const render::Mask& b) {
@@ -137,13 +152,26 @@ Evaluation FitProblem::evaluate(const std::vector<double>& values) {
   const auto start = std::chrono::steady_clock::now();
   Evaluation e;
   e.values = values;
-  const Scene scene = scene_at(values);
+  Scene scene = scene_at(values);
   try {
-    const Settled s = settle_to_rest(scene, m_spec.settle);
-    e.settled = s.converged;
-    e.iterations = s.iterations;
-    e.residual = s.residual;
-    e.measures = measure(scene, *s.simulator, e.objective);
+    // settle.seeds > 1: the mean objective and measures over that many imperfection seeds —
+    // the expected drape over the buckled branches a fabric's specimens take.
+    const int seeds = m_spec.settle.seeds;
+    const unsigned first_seed = scene.sim.statics.seed;
+    e.settled = true;
+    for (int k = 0; k < seeds; ++k) {
+      scene.sim.statics.seed = first_seed + static_cast<unsigned>(k);
+      const Settled s = settle_to_rest(scene, m_spec.settle);
+      double objective = 0.0;
+      const auto measures = measure(scene, *s.simulator, objective);
+      e.settled = e.settled && s.converged;
+      e.iterations += s.iterations;
+      e.residual = std::max(e.residual, s.residual);
+      e.objective += objective / seeds;
+      if (k == 0) e.measures.assign(measures.size(), {});
+      for (std::size_t i = 0; i < measures.size(); ++i)
+        e.measures[i] = {measures[i].first, e.measures[i].second + measures[i].second / seeds};
+    }
   } catch (const sim::DivergenceError& error) {
     e.failure = error.what();
     e.objective = kFailedObjective;
@@ -166,14 +194,22 @@ std::vector<std::pair<std::string, double>> FitProblem::measure(const Scene& sce
       if (t->drop_m) objective += relative_misfit(c.drop_m, *t->drop_m);
     }
     if (t->drape_coefficient || t->folds) {
-      const auto support = scene_support(scene, s.mesh(), true);
-      const analysis::DrapeShape d =
-          analysis::measure_drape(s.mesh(), s.mesh().triangles(), s.state().x, *support);
+      const analysis::DrapeShape d = measure_settled_drape(scene, s);
       m.emplace_back("drape_coefficient", d.drape_coefficient);
       m.emplace_back("folds", d.folds);
       if (t->drape_coefficient) objective += relative_misfit(d.drape_coefficient, *t->drape_coefficient);
       if (t->folds) objective += relative_misfit(d.folds, *t->folds);
     }
+  } else if (const auto* drape = std::get_if<DrapePhotosTarget>(&m_spec.target)) {
+    const analysis::DrapeShape d = measure_settled_drape(scene, s);
+    const DrapePhotoMisfit f = drape_photo_misfit(*drape, d);
+    m.emplace_back("drape_coefficient", d.drape_coefficient);
+    m.emplace_back("folds", d.folds);
+    m.emplace_back("outline_rms_mm", f.outline_rms_mm);
+    m.emplace_back("outline_part", f.outline_part);
+    m.emplace_back("dc_part", f.drape_coefficient_part);
+    m.emplace_back("nodes_part", f.nodes_part);
+    objective = f.objective;
   } else if (const auto* cloud = std::get_if<PointCloudTarget>(&m_spec.target)) {
     objective = 1e3 * chamfer_3d(cloth_points(s.mesh(), s.state().x), cloud->points).symmetric_m;
     m.emplace_back("chamfer_3d_mm", objective);

@@ -18,13 +18,14 @@ namespace weft::app {
 // A cloth settled to rest (SettleSettings): the simulator holds the positions.
 struct Settled {
   std::unique_ptr<sim::Simulator> simulator;
-  bool converged = false;   // residual ≤ tolerance or still; false: max_iterations ran out
-  long iterations = 0;
+  bool converged = false;   // residual ≤ tolerance or still; false: the iterations ran out
+  long iterations = 0;      // Newton iterations, or dynamic relaxation's
   double residual = 0.0;    // ‖R‖/‖Mg‖ at the end
 };
 
-// Simulates `scene` with its integrator replaced by dynamic relaxation until it rests. Throws
-// sim::DivergenceError, InputError as make_simulator.
+// The scene's cloth at rest by the settings' method: a static solve, or dynamic relaxation (the
+// scene's integrator replaced) until it rests. Throws sim::DivergenceError, InputError as
+// make_simulator and solve_rest_shape.
 Settled settle_to_rest(Scene scene, const SettleSettings& settings);
 
 // The cantilever measures of MeasuredTarget: clamp = mean of the pinned vertices, tip = mean of
@@ -35,6 +36,10 @@ struct CantileverShape {
 };
 // Throws std::invalid_argument when nothing is pinned.
 CantileverShape measure_cantilever(const sim::Simulator& simulator);
+
+// The drape of the simulator's positions over the scene's support, as `weft measure` measures
+// it (analysis::measure_drape). Throws InputError when the scene has no support (scene_support).
+analysis::DrapeShape measure_settled_drape(const Scene& scene, const sim::Simulator& simulator);
 
 // Mean of |row_a − row_b| over the columns where both masks have pixels, the row of a column
 // being the mean row of its pixels (the midline of a strip seen from the side), px; none when

@@ -155,7 +155,7 @@ std::string write_photo_images(const fs::path& dir, FitProblem& problem, const F
 }
 
 std::string report_html(const FitSpec& spec, const FitResult& r, const std::string& command_line,
-                        const std::string& photo_section) {
+                        const std::string& target_section) {
   std::string html =
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>weft fit: " +
       base::html_escape(spec.name) +
@@ -184,7 +184,7 @@ std::string report_html(const FitSpec& spec, const FitResult& r, const std::stri
           (r.best.settled ? "" : ", NOT settled") + " at the optimum).</p>\n<table>\n";
   for (const auto& [name, value] : r.best.measures)
     html += "<tr><td>" + base::html_escape(name) + "</td><td>" + g(value) + "</td></tr>\n";
-  html += "</table>\n" + photo_section;
+  html += "</table>\n" + target_section;
   html += "<h2>Convergence and sensitivity</h2>\n<img src=\"convergence.png\" alt=\"convergence\">\n";
   if (!r.profiles.empty()) html += "<img src=\"profile.png\" alt=\"objective profiles\">\n";
   html += "</body></html>\n";
@@ -222,21 +222,33 @@ std::string describe_values(const FitSpec& spec, const std::vector<double>& valu
   return text;
 }
 
-fs::path write_fit_outputs(const fs::path& dir, FitProblem& problem, const FitResult& r,
-                           const std::string& command_line) {
+std::string describe_measures(const Evaluation& e) {
+  std::string text;
+  for (const auto& [name, value] : e.measures) text += (text.empty() ? "" : " ") + name + " " + g(value);
+  return text;
+}
+
+FitOutputs write_fit_outputs(const fs::path& dir, FitProblem& problem, const FitResult& r,
+                             const std::string& command_line) {
   const FitSpec& spec = problem.spec();
-  write_text(dir / "fit_result.json", result_json(spec, r).dump(2) + "\n");
+  FitOutputs outputs;
+  nlohmann::ordered_json result = result_json(spec, r);
+  if (std::holds_alternative<DrapePhotosTarget>(spec.target) && r.best.failure.empty()) {
+    outputs.drape_check = check_fitted_drape(problem, r.best.values);
+    result["drape_photos"] = fitted_drape_json(*outputs.drape_check);
+  }
+  write_text(dir / "fit_result.json", result.dump(2) + "\n");
   write_text(dir / "fitted_scene.json", problem.scene_at(r.best.values).text);
   write_text(dir / "fit.txt", "weft " + std::string(version()) + "\ncommand: " + command_line +
                                   "\nfit: " + spec.source + "\nscene: " + spec.base.source + "\n");
   chart::write_png(convergence_figure(spec, r), dir / "convergence.png");
   if (!r.profiles.empty()) chart::write_png(profile_figure(spec, r), dir / "profile.png");
-  const std::string photo = std::holds_alternative<PhotoTarget>(spec.target)
-                                ? write_photo_images(dir, problem, r)
-                                : std::string();
-  const fs::path report = dir / "report.html";
-  write_text(report, report_html(spec, r, command_line, photo));
-  return report;
+  std::string section;
+  if (std::holds_alternative<PhotoTarget>(spec.target)) section = write_photo_images(dir, problem, r);
+  if (outputs.drape_check) section = write_drape_photo_outputs(dir, spec, r, *outputs.drape_check);
+  outputs.report = dir / "report.html";
+  write_text(outputs.report, report_html(spec, r, command_line, section));
+  return outputs;
 }
 
 }  // namespace weft::app

@@ -9,12 +9,14 @@
 //   photo.png, fitted_render.png, overlay.png, comparison.png   photo targets: the photo, the fitted cloth
 //                      through the scene's camera, both silhouettes' outlines on the photo, and
 //                      the three side by side with the numbers
+//   drape_photos.png, outline_spectra.png   drape_photos targets (app/fit/drape_photos_report.h)
 //   report.html        all of it on one page
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "app/fit/drape_photos_report.h"
 #include "app/fit/fit_optimizer.h"
 
 namespace weft::app {
@@ -33,9 +35,17 @@ class FitLog {
 
 // "bend=0.1234 N*m" for each parameter.
 std::string describe_values(const FitSpec& spec, const std::vector<double>& values);
+// "drape_coefficient 0.4586 folds 8 …": an evaluation's measures, 4 digits each.
+std::string describe_measures(const Evaluation& e);
 
-// Writes everything after fit.csv into `dir` (see above) and returns the report's path.
-std::filesystem::path write_fit_outputs(const std::filesystem::path& dir, FitProblem& problem,
-                                        const FitResult& result, const std::string& command_line);
+struct FitOutputs {
+  std::filesystem::path report;                 // report.html
+  std::optional<FittedDrapeCheck> drape_check;  // drape_photos targets: the fitted drape against
+                                                // every image (none if every evaluation diverged)
+};
+
+// Writes everything after fit.csv into `dir` (see above).
+FitOutputs write_fit_outputs(const std::filesystem::path& dir, FitProblem& problem,
+                             const FitResult& result, const std::string& command_line);
 
 }  // namespace weft::app

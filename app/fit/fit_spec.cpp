@@ -7,6 +7,7 @@
 
 #include "app/scene/json_reader.h"
 #include "app/io/npy_file.h"
+#include "sim/simulator.h"
 
 namespace weft::app {
 namespace {
@@ -29,14 +30,14 @@ const std::vector<ParameterKind>& parameter_kinds() {
       {"shear", {"cloth.material.shear"}, Quantity::force_per_length, "N/m"},
       {"density", {"cloth.material.density"}, Quantity::areal_density, "kg/m^2"},
       {"friction", {"simulation.collision_friction"}, std::nullopt, ""},
+      // The coefficients of cloth.material.bending_law (one law for both directions, whose form
+      // the fit file's "set" gives): sim/bending_law.h.
+      {"bend_law_B", {"cloth.material.bending_law.B"}, Quantity::bending_rigidity, "N*m"},
+      {"bend_law_M0", {"cloth.material.bending_law.M0"}, Quantity::moment_per_width, "N"},
+      {"bend_law_kappa0", {"cloth.material.bending_law.kappa0"}, Quantity::curvature, "1/m"},
+      {"bend_law_C", {"cloth.material.bending_law.C"}, Quantity::cubic_bending, "N*m^3"},
   };
   return kinds;
-}
-
-// A path in the fit file, relative to the fit file's folder.
-fs::path relative_to(const std::string& source, const std::string& file) {
-  const fs::path p(file);
-  return p.is_absolute() ? p : fs::path(source).parent_path() / p;
 }
 
 FitParameter read_parameter(ObjectReader r) {
@@ -70,7 +71,7 @@ MeasuredTarget read_measured(ObjectReader r) {
   if (r.has("drop")) t.drop_m = r.quantity("drop", Quantity::length, required, Range::gt(0.0));
   if (r.has("drape_coefficient"))
     t.drape_coefficient = r.number("drape_coefficient", required, Range::gt(0.0).le(1.0));
-  if (r.has("folds")) t.folds = static_cast<int>(r.integer("folds", required, Range::ge(1)));
+  if (r.has("folds")) t.folds = r.number("folds", required, Range::ge(1.0));
   if (!t.overhang_m && !t.drop_m && !t.drape_coefficient && !t.folds)
     throw_scene_error(r.file(), r.path(), "expected at least one of 'overhang', 'drop', 'drape_coefficient', 'folds'");
   r.finish();
@@ -79,7 +80,7 @@ MeasuredTarget read_measured(ObjectReader r) {
 
 PointCloudTarget read_point_cloud(ObjectReader r) {
   PointCloudTarget t;
-  t.file = relative_to(r.file(), r.string("file", required));
+  t.file = fit_file_path(r.file(), r.string("file", required));
   r.finish();
   try {
     t.points = read_npy_points(t.file);
@@ -91,8 +92,8 @@ PointCloudTarget read_point_cloud(ObjectReader r) {
 
 PhotoTarget read_photo(ObjectReader r) {
   PhotoTarget t;
-  t.image_path = relative_to(r.file(), r.string("image", required));
-  if (r.has("mask")) t.mask_path = relative_to(r.file(), r.string("mask", required));
+  t.image_path = fit_file_path(r.file(), r.string("image", required));
+  if (r.has("mask")) t.mask_path = fit_file_path(r.file(), r.string("mask", required));
   t.metric = r.enumeration("metric", photo_metric_names, {PhotoMetric::chamfer});
   if (r.has("mm_per_px")) t.mm_per_px = r.number("mm_per_px", required, Range::gt(0.0));
   r.finish();
@@ -107,20 +108,40 @@ PhotoTarget read_photo(ObjectReader r) {
   return t;
 }
 
-FitTarget read_target(ObjectReader r) {
-  const int given = int(r.has("measured")) + int(r.has("point_cloud")) + int(r.has("photo"));
+// `object`: the target's JSON, which `r` reads.
+FitTarget read_target(ObjectReader r, const Json& object) {
+  const int given = int(r.has("measured")) + int(r.has("point_cloud")) + int(r.has("photo")) +
+                    int(r.has("drape_photos"));
   if (given != 1)
-    throw_scene_error(r.file(), r.path(), "expected exactly one of 'measured', 'point_cloud', 'photo', got " + std::to_string(given));
+    throw_scene_error(r.file(), r.path(), "expected exactly one of 'measured', 'point_cloud', 'photo', "
+                                          "'drape_photos', got " + std::to_string(given));
   FitTarget target;
   if (r.has("measured")) target = read_measured(r.required_object("measured"));
   if (r.has("point_cloud")) target = read_point_cloud(r.required_object("point_cloud"));
   if (r.has("photo")) target = read_photo(r.required_object("photo"));
+  if (r.has("drape_photos")) {
+    r.required_object("drape_photos");  // marks it read, an error unless an object
+    target = read_drape_photos(object.at("drape_photos"), r.file(), r.path_of("drape_photos"));
+  }
   r.finish();
   return target;
 }
 
 void read_options(ObjectReader& root, FitSpec& spec) {
   ObjectReader s = root.object("settle");
+  spec.settle.method = s.enumeration("method", settle_method_names, {spec.settle.method});
+  if (spec.settle.method == SettleMethod::static_solve) {
+    for (const char* key : {"tolerance", "still", "check_every", "max_iterations"})
+      if (s.has(key))
+        s.fail(key, "applies to method \"dynamic_relaxation\"; a static solve takes the scene's "
+                    "simulation.static settings");
+    if (const std::string why = sim::static_solve_refusal(spec.base.sim); !why.empty())
+      s.fail("method", "the scene cannot be solved statically (" + why +
+                           "): give \"method\": \"dynamic_relaxation\"");
+  }
+  spec.settle.seeds = static_cast<int>(s.integer("seeds", spec.settle.seeds, Range::closed(1, 100)));
+  if (spec.settle.seeds > 1 && spec.settle.method != SettleMethod::static_solve)
+    s.fail("seeds", "applies to method \"static\" (dynamic relaxation has no imperfection seed)");
   spec.settle.tolerance = s.number("tolerance", spec.settle.tolerance, Range::gt(0.0));
   spec.settle.still_m = s.quantity("still", Quantity::length, spec.settle.still_m, Range::ge(0.0));
   spec.settle.check_every = s.integer("check_every", spec.settle.check_every, Range::ge(1));
@@ -153,6 +174,11 @@ std::vector<Setting> read_set(const Json& document, const std::string& source) {
 
 }  // namespace
 
+fs::path fit_file_path(const std::string& fit_file, const std::string& file) {
+  const fs::path p(file);
+  return p.is_absolute() ? p : fs::path(fit_file).parent_path() / p;
+}
+
 const std::vector<std::string>& fit_parameter_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
@@ -165,12 +191,14 @@ const std::vector<std::string>& fit_parameter_names() {
 double default_band(const FitTarget& target) {
   if (std::holds_alternative<MeasuredTarget>(target)) return 1e-4;
   if (std::holds_alternative<PointCloudTarget>(target)) return 0.5;
+  if (std::holds_alternative<DrapePhotosTarget>(target)) return 1.0;
   return std::get<PhotoTarget>(target).metric == PhotoMetric::chamfer ? 0.5 : 0.01;
 }
 
 std::string objective_label(const FitTarget& target) {
   if (std::holds_alternative<MeasuredTarget>(target)) return "Σ relative misfit²";
   if (std::holds_alternative<PointCloudTarget>(target)) return "3D Chamfer [mm]";
+  if (std::holds_alternative<DrapePhotosTarget>(target)) return "drape photos misfit";
   return std::get<PhotoTarget>(target).metric == PhotoMetric::chamfer ? "outline Chamfer [px]"
                                                                        : "1 − IoU";
 }
@@ -182,7 +210,7 @@ FitSpec parse_fit_spec(const std::string& text, const std::string& source) {
   spec.source = source;
   spec.name = fs::path(source).stem().string();
   spec.description = root.string("description", "");
-  const fs::path scene_path = relative_to(source, root.string("scene", required));
+  const fs::path scene_path = fit_file_path(source, root.string("scene", required));
   root.object("set");  // marks it read; its keys are scene keys, checked by the scene reader
   spec.set = read_set(document, source);
   try {
@@ -200,9 +228,11 @@ FitSpec parse_fit_spec(const std::string& text, const std::string& source) {
           if (key == other)
             root.fail("parameters[" + std::to_string(i) + "]",
                       "sets " + key + ", which parameters[" + std::to_string(j) + "] sets too");
-  spec.target = read_target(root.required_object("target"));
+  spec.target = read_target(root.required_object("target"), document.at("target"));
   read_options(root, spec);
   root.finish();
+  if (const auto* drape = std::get_if<DrapePhotosTarget>(&spec.target))
+    check_drape_photos_scene(*drape, spec.base, source);
   if (const auto* photo = std::get_if<PhotoTarget>(&spec.target))
     if (photo->photo.width() != spec.base.render.width || photo->photo.height() != spec.base.render.height)
       root.fail("target", "the photo " + photo->image_path.string() + " is " +

@@ -9,7 +9,9 @@
 //    "parameters": [{"name": "bend", "start": "0.05 N*m", "min": "0.005 N*m", "max": "1 N*m"}],
 //    "target": {"measured": {"overhang": "20 cm", "drop": "9 cm"}}
 //            | {"point_cloud": {"file": "cloud.npy"}}
-//            | {"photo": {"image": "p.png", "mask": "m.png", "metric": "chamfer", "mm_per_px": 0.11}},
+//            | {"photo": {"image": "p.png", "mask": "m.png", "metric": "chamfer", "mm_per_px": 0.11}}
+//            | {"drape_photos": {"images": ["a.png", "b.png"], "mm_per_px": 0.5, "specimen": "30 cm",
+//                                "support": "18 cm"}}       (app/fit/drape_photos_target.h)
 //    "settle": {…}, "optimizer": {…}, "profile": {…}}
 
 #include <Eigen/Core>
@@ -21,6 +23,7 @@
 
 #include "base/enum_names.h"
 #include "app/fit/chamfer_3d.h"
+#include "app/fit/drape_photos_target.h"
 #include "app/scene/scene.h"
 #include "app/scene/scene_patch.h"
 #include "app/scene/units.h"
@@ -49,7 +52,8 @@ struct MeasuredTarget {
   std::optional<double> overhang_m, drop_m;
   // A drape over a support (analysis/measure/drape_measure.h, as `weft measure` measures it).
   std::optional<double> drape_coefficient;
-  std::optional<int> folds;
+  // A real number ≥ 1: the mean node count of several specimens, e.g. 7.5.
+  std::optional<double> folds;
 };
 
 // A point cloud in the scene's frame, metres (.npy, N×3; app/io/npy_file.h). Objective: the
@@ -75,13 +79,23 @@ struct PhotoTarget {
   std::optional<double> mm_per_px;  // the photo's scale, for distances in mm
 };
 
-using FitTarget = std::variant<MeasuredTarget, PointCloudTarget, PhotoTarget>;
+using FitTarget = std::variant<MeasuredTarget, PointCloudTarget, PhotoTarget, DrapePhotosTarget>;
 
-// The settle to rest of each evaluation: dynamic relaxation (the scene's integrator is
+// The settle to rest of each evaluation. static (the default): the static equilibrium solver
+// (app/run/rest_shape.h) with the scene's simulation.static settings — each evaluation a
+// deterministic function of the parameters. dynamic_relaxation (the scene's integrator is
 // replaced) until ‖R‖/‖Mg‖ ≤ tolerance, or no vertex moved more than still_m over the last
 // check_every iterations (a drape on a support keeps a residual: its contact forces are not
-// part of R), or max_iterations.
+// part of R), or max_iterations: for scenes a static solve cannot take (constraints, air).
+enum class SettleMethod { static_solve, dynamic_relaxation };
+inline constexpr base::EnumNames<SettleMethod, 2> settle_method_names{
+    {{SettleMethod::static_solve, "static"}, {SettleMethod::dynamic_relaxation, "dynamic_relaxation"}}};
+
 struct SettleSettings {
+  SettleMethod method = SettleMethod::static_solve;
+  // static: each evaluation solved from this many imperfection seeds (simulation.static.seed
+  // and the next ones), its objective and measures their means.
+  int seeds = 1;
   double tolerance = 1e-4;
   double still_m = 1e-7;
   long check_every = 100;
@@ -123,10 +137,14 @@ struct FitSpec {
 };
 
 // The default sensitivity band of a target: measured 1e-4 (a 1 % rms misfit), point cloud
-// 0.5 mm, photo Chamfer 0.5 px, photo 1 − IoU 0.01.
+// 0.5 mm, photo Chamfer 0.5 px, photo 1 − IoU 0.01, drape photos 1 (one unit of one part).
 double default_band(const FitTarget& target);
-// "outline Chamfer [px]", "1 − IoU", "3D Chamfer [mm]", "Σ relative misfit²".
+// "outline Chamfer [px]", "1 − IoU", "3D Chamfer [mm]", "Σ relative misfit²",
+// "drape photos misfit".
 std::string objective_label(const FitTarget& target);
+
+// A file named in the fit file `fit_file`: relative to the fit file's folder unless absolute.
+std::filesystem::path fit_file_path(const std::string& fit_file, const std::string& file);
 
 FitSpec parse_fit_spec(const std::string& text, const std::string& source);
 FitSpec load_fit_spec(const std::filesystem::path& path);

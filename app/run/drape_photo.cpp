@@ -45,17 +45,16 @@ void check_areas(const DrapePhotoMeasurement& m, const std::string& source) {
                      "; check the scale (--mm-per-px or --disc-px) and --specimen-mm");
 }
 
-render::Image read_input(const fs::path& path, const char* option) {
-  if (!fs::exists(path)) throw InputError(std::string(option) + " " + path.string() + ": no such file");
+render::Image read_input(const fs::path& path, const std::string& name) {
+  if (!fs::exists(path)) throw InputError(name + " " + path.string() + ": no such file");
   try {
     return render::read_image(path);
   } catch (const std::exception& e) {
-    throw InputError(std::string(option) + ": " + e.what());
+    throw InputError(name + ": " + e.what());
   }
 }
 
-void print_table(const MeasurePhotoOptions& o, const render::Silhouette& s,
-                 const DrapePhotoMeasurement& m) {
+void print_table(const MeasurePhotoOptions& o, bool from_mask_image, const DrapePhotoMeasurement& m) {
   const analysis::DrapeShape& d = m.shape;
   std::string crests;
   for (int k : d.crests)
@@ -63,7 +62,7 @@ void print_table(const MeasurePhotoOptions& o, const render::Silhouette& s,
               format("%.0f", std::fmod(std::round(360.0 * (k + 0.5) / static_cast<double>(
                                                       d.radii_m.size())), 360.0));
   std::printf("weft: %s (%dx%d px, silhouette from %s)\n", o.photo.c_str(), m.silhouette.width,
-              m.silhouette.height, s.from_mask_image ? o.mask->c_str() : "segmentation");
+              m.silhouette.height, from_mask_image ? o.mask->c_str() : "segmentation");
   std::printf("  drape coefficient  %.3f\n", d.drape_coefficient);
   std::printf("  folds              %d%s\n", d.folds,
               (crests.empty() ? "" : crests + " deg (counter-clockwise from +x, y up)").c_str());
@@ -175,24 +174,33 @@ render::Image drape_photo_overlay(const render::Image& photo, const DrapePhotoMe
   return canvas.image();
 }
 
-int run_measure_photo(const MeasurePhotoOptions& o) {
-  const render::Image photo = read_input(o.photo, "--photo");
+DrapePhotoReading read_drape_photo(const DrapePhotoFiles& files, const DrapePhotoSetup& setup,
+                                   const analysis::DrapeMeasureSettings& settings) {
+  DrapePhotoReading r;
+  r.photo = read_input(files.photo, files.photo_name);
   std::optional<render::Image> mask;
-  if (o.mask) mask = read_input(*o.mask, "--mask-photo");
-  const std::string source = (o.mask ? *o.mask : o.photo).string();
+  if (files.mask) mask = read_input(*files.mask, files.mask_name);
+  const std::string source = (files.mask ? *files.mask : files.photo).string();
   render::Silhouette s;
   try {
-    s = render::silhouette_of(photo, mask);
+    s = render::silhouette_of(r.photo, mask);
   } catch (const std::invalid_argument& e) {
     throw InputError(source + ": " + e.what());
   }
+  r.from_mask_image = s.from_mask_image;
+  r.measurement = measure_drape_silhouette(s.mask, setup, source, settings);
+  return r;
+}
+
+int run_measure_photo(const MeasurePhotoOptions& o) {
   const analysis::DrapeMeasureSettings settings;
-  const DrapePhotoMeasurement m = measure_drape_silhouette(s.mask, o.setup, source, settings);
+  const DrapePhotoReading r = read_drape_photo({o.photo, o.mask}, o.setup, settings);
+  const DrapePhotoMeasurement& m = r.measurement;
   const fs::path dir = o.out.value_or(fs::path("out") / o.photo.stem());
   start_output(dir, {}, {{"measure.txt", run_record(o.command_line, {{"photo", o.photo.string()}})}});
   write_outline(dir / "outline.csv", m.shape, settings.folds);
-  render::write_png(drape_photo_overlay(photo, m, settings.folds), dir / "overlay.png");
-  print_table(o, s, m);
+  render::write_png(drape_photo_overlay(r.photo, m, settings.folds), dir / "overlay.png");
+  print_table(o, r.from_mask_image, m);
   std::printf("weft: wrote outline.csv and overlay.png to %s\n", dir.c_str());
   return exit_ok;
 }

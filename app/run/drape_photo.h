@@ -67,6 +67,28 @@ DrapePhotoMeasurement measure_drape_silhouette(const render::Mask& silhouette,
 render::Image drape_photo_overlay(const render::Image& photo, const DrapePhotoMeasurement& m,
                                   const analysis::FoldCountSettings& folds);
 
+// A drape photo and how errors name its files: `weft measure --photo` calls them "--photo" and
+// "--mask-photo", a fit file by its keys.
+struct DrapePhotoFiles {
+  std::filesystem::path photo;                // photo or silhouette (PNG/JPG)
+  std::optional<std::filesystem::path> mask;  // white = cloth
+  std::string photo_name = "--photo", mask_name = "--mask-photo";
+};
+
+struct DrapePhotoReading {
+  render::Image photo;
+  bool from_mask_image = false;  // the silhouette is the mask's, not the photo's segmentation
+  DrapePhotoMeasurement measurement;
+};
+
+// Reads a photo (and its mask, if any), takes its silhouette (render/photo_compare's
+// silhouette_of: the mask, else the segmentation) and measures it (measure_drape_silhouette):
+// what `weft measure --photo` and weft fit's drape_photos target both do. Throws InputError for a
+// missing or unreadable file (naming it by photo_name or mask_name), or as
+// measure_drape_silhouette (naming the mask if given, else the photo).
+DrapePhotoReading read_drape_photo(const DrapePhotoFiles& files, const DrapePhotoSetup& setup,
+                                   const analysis::DrapeMeasureSettings& settings = {});
+
 struct MeasurePhotoOptions {
   std::filesystem::path photo;                    // photo or silhouette (PNG/JPG)
   std::optional<std::filesystem::path> mask;      // --mask-photo: white = cloth

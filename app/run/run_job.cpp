@@ -1,5 +1,7 @@
 #include "app/run/run_job.h"
 
+#include "app/run/rest_shape.h"
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -98,7 +100,8 @@ std::string projection_jitter_warning(const Scene& scene, double time_step) {
 }
 
 void print_header(const Scene& scene, const sim::Simulator& simulator,
-                  const render::Renderer& renderer, bool explain) {
+                  const render::Renderer& renderer, const RunOptions& options) {
+  const bool explain = options.explain;
   std::fprintf(
       stderr,
       "weft: %s — %d frame%s at %g fps, %s, time step %.3g ms (critical %.3g ms), "
@@ -121,7 +124,7 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
     std::fprintf(stderr, "weft: initial shape: tension-field folds (seed 001): %s\n",
                  folds.message.c_str());
   }
-  if (!scene.dynamics)
+  if (!scene.dynamics && !options.rest)
     std::fprintf(stderr, "weft: simulation.dynamics is false: every frame shows the initial shape\n");
   if (explain) {
     std::printf("weft: the simulation runs, per step:\n");
@@ -492,6 +495,17 @@ void check_run_input(const Scene& scene, const RunOptions& options,
 }
 
 // The scene's simulator, at the checkpoint's state when resumed.
+// --rest: the scene's simulator holding its rest shape; says how the solve went.
+std::unique_ptr<sim::Simulator> rest_simulator(const Scene& scene, bool& converged) {
+  RestShape rest = solve_rest_shape(scene);
+  converged = rest.solve.converged;
+  std::fprintf(stderr, "weft: rest shape: static solve %s after %d Newton iterations "
+                       "(residual %.2g of the weight, %d vertices on obstacles, %.2f s CPU)\n",
+               converged ? "converged" : ("NOT converged (" + rest.solve.stopped + ")").c_str(),
+               rest.solve.iterations, rest.solve.residual, rest.solve.contacts, rest.cpu_s);
+  return std::move(rest.simulator);
+}
+
 std::unique_ptr<sim::Simulator> simulator_for(const Scene& scene,
                                               const std::optional<RunCheckpoint>& resumed,
                                               const RunOptions& options) {
@@ -546,8 +560,14 @@ int run_scene(const RunOptions& options) {
   const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
   check_run_input(scene, options, resumed, every);
   apply_threads(scene, options.threads);
+  if (options.rest) {  // one frame showing the solved shape, nothing simulated in time
+    scene.frames = 1;
+    scene.dynamics = false;
+  }
   // Everything that can reject the input happens before the output folder is touched.
-  const std::unique_ptr<sim::Simulator> simulator = simulator_for(scene, resumed, options);
+  bool rest_converged = true;
+  const std::unique_ptr<sim::Simulator> simulator =
+      options.rest ? rest_simulator(scene, rest_converged) : simulator_for(scene, resumed, options);
   const std::unique_ptr<render::Renderer> renderer = make_chosen_renderer(scene.render);
   if (!scene.camera_given)
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
@@ -557,7 +577,7 @@ int run_scene(const RunOptions& options) {
                                               ? *options.resume
                                               : options.resume->parent_path())
                                        : options.out.value_or(fs::path("out") / scene.name);
-  print_header(scene, *simulator, *renderer, options.explain);
+  print_header(scene, *simulator, *renderer, options);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
   if (resumed) {
     std::fprintf(stderr, "weft: resuming from the checkpoint of frame %d in %s\n", resumed->frame,
@@ -579,7 +599,7 @@ int run_scene(const RunOptions& options) {
     return report_crossing_stop(*stop, dir);
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
   print_summary(scene, options, dir, *simulator, writer);
-  return exit_ok;
+  return rest_converged ? exit_ok : exit_failure;
 }
 
 }  // namespace weft::app

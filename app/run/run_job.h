@@ -49,6 +49,9 @@ struct RunOptions {
   // --save-states: state_NNNN.npy per simulated frame, kept for weft render. A scene without a
   // camera writes them anyway, to draw its frames when the simulation ends, and then removes them.
   bool save_states = false;
+  // --rest: one frame, the scene's rest shape found by the static equilibrium solver instead of
+  // its motion (app/run/rest_shape.h); stats.csv's row and the summary say how the solve went.
+  bool rest = false;
 };
 
 // Runs the job; bad input throws InputError before anything is written.

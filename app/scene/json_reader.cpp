@@ -486,6 +486,12 @@ std::vector<double> ObjectReader::quantities(const std::string& key, Quantity ki
       [&](const Json& e, const Where& w) { return read_quantity(e, w, kind, range); });
 }
 
+std::size_t ObjectReader::array_length(const std::string& key) {
+  const Json* v = find(key, true, "a non-empty array");
+  if (!v->is_array() || v->size() == 0) fail(key, "expected a non-empty array, got " + describe(*v));
+  return v->size();
+}
+
 Eigen::MatrixXd ObjectReader::matrix(const std::string& key, int rows, int cols) {
   const std::string row = array_of(static_cast<std::size_t>(cols), "numbers");
   const std::string expected =

@@ -110,6 +110,8 @@ class ObjectReader {
   std::vector<double> quantities(const std::string& key, Quantity kind, std::size_t count,
                                  std::optional<std::vector<double>> fallback,
                                  const Range& range = {});
+  // The length of the array at `key` (required; not an array, or empty: an error).
+  std::size_t array_length(const std::string& key);
   Eigen::Vector3d vec3(const std::string& key, std::optional<Eigen::Vector3d> fallback,
                        const Range& range = {});
   Eigen::Vector3d quantity_vec3(const std::string& key, Quantity kind,

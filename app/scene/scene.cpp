@@ -307,6 +307,19 @@ sim::TimeStep read_time_step(ObjectReader& r) {
   return t;
 }
 
+// "simulation.static": how a static solve finds the rest shape (sim::StaticSettings).
+sim::StaticSettings read_static(ObjectReader r) {
+  sim::StaticSettings s;
+  s.tolerance = r.number("tolerance", s.tolerance, Range::gt(0.0).lt(1.0));
+  s.max_iterations = static_cast<int>(r.integer("max_iterations", s.max_iterations, Range::closed(1, 1e6)));
+  s.contact_stiffness = r.number("contact_stiffness", s.contact_stiffness, Range::ge(1.0).le(1e9));
+  s.imperfection = r.number("imperfection", s.imperfection, Range::ge(0.0).le(1.0));
+  s.seed = static_cast<unsigned>(r.integer("seed", s.seed, Range::closed(0, 4294967295.0)));
+  s.max_move = r.number("max_move", s.max_move, Range::gt(0.0).le(100.0));
+  r.finish();
+  return s;
+}
+
 // "simulation": integrator settings (sim::SimSettings).
 void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
                      Scene::CrossingPolicy& crossings) {
@@ -336,6 +349,7 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   if (r.has("self_collision"))
     s.self_collision = read_self_collision(r.object("self_collision"), crossings);
   if (r.has("remesh")) s.remesh = read_remesh(r.object("remesh"));
+  if (r.has("static")) s.statics = read_static(r.object("static"));
   if (s.time_step.is_adaptive() && (s.integrator != sim::Integrator::implicit_euler ||
                                     s.projection.method != sim::ProjectionMethod::fast_projection))
     r.fail("time_step", "\"adaptive\" follows fast projection's iterations: it needs integrator "

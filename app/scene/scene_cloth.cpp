@@ -26,6 +26,60 @@
 namespace weft::app {
 namespace {
 
+// One bending law (sim/bending_law.h): {"form": "frictional", "B": …, "M0": …, "kappa0": …},
+// {"form": "cubic", "B": …, "C": …}, {"form": "linear", "B": …} or {"form": "table",
+// "curvature": [κ…], "moment": [M…]} (the points after (0, 0)).
+sim::BendingLaw read_bending_law(ObjectReader r) {
+  using Form = sim::BendingLaw::Form;
+  const Form form = r.enumeration<Form>("form", sim::BendingLaw::form_names, std::nullopt);
+  const auto B = [&](Range range) { return r.quantity("B", Quantity::bending_rigidity, std::nullopt, range); };
+  const std::string key = form == Form::table ? "moment" : form == Form::linear ? "B" : "form";
+  try {
+    std::optional<sim::BendingLaw> law;
+    if (form == Form::linear) law = sim::BendingLaw::linear(B(Range::gt(0.0)));
+    if (form == Form::frictional)
+      law = sim::BendingLaw::frictional(
+          B(Range::ge(0.0)), r.quantity("M0", Quantity::moment_per_width, std::nullopt, Range::ge(0.0)),
+          r.quantity("kappa0", Quantity::curvature, std::nullopt, Range::gt(0.0)));
+    if (form == Form::cubic)
+      law = sim::BendingLaw::cubic(
+          B(Range::gt(0.0)), r.quantity("C", Quantity::cubic_bending, std::nullopt, Range::ge(0.0)));
+    if (form == Form::table) {
+      const std::size_t n = r.array_length("curvature");
+      const auto kappa = r.quantities("curvature", Quantity::curvature, n, std::nullopt);
+      const auto moment = r.quantities("moment", Quantity::moment_per_width, n, std::nullopt);
+      std::vector<std::pair<double, double>> points;
+      for (std::size_t k = 0; k < n; ++k) points.emplace_back(kappa[k], moment[k]);
+      law = sim::BendingLaw::table(std::move(points));
+    }
+    r.finish();
+    return *law;
+  } catch (const sim::MaterialError& e) {
+    r.fail(key, e.what());
+  }
+}
+
+// "cloth.material.bending_law": one law for both directions, or {"warp": …, "weft": …}. A law
+// sets the direction's bending rigidity (its slope at zero curvature), so bend_warp / bend_weft
+// may not be given beside it.
+void read_bending_laws(ObjectReader& material, sim::Material& m) {
+  if (!material.has("bending_law")) return;
+  ObjectReader laws = material.object("bending_law");
+  if (laws.has("form")) {
+    m.bend_law_warp = m.bend_law_weft = read_bending_law(material.object("bending_law"));
+  } else {
+    if (laws.has("warp")) m.bend_law_warp = read_bending_law(laws.object("warp"));
+    if (laws.has("weft")) m.bend_law_weft = read_bending_law(laws.object("weft"));
+    laws.finish();
+  }
+  for (const auto& [key, law] : {std::pair{"bend_warp", &m.bend_law_warp}, std::pair{"bend_weft", &m.bend_law_weft}})
+    if (*law && material.has(key))
+      material.fail(key, "the bending law sets this direction's bending rigidity (its slope at "
+                         "zero curvature); give it in the law, not here");
+  if (m.bend_law_warp) m.bend_warp_Nm = m.bend_law_warp->initial_rigidity();
+  if (m.bend_law_weft) m.bend_weft_Nm = m.bend_law_weft->initial_rigidity();
+}
+
 // "cloth.material": an optional "preset" (sim/material_presets.h) sets every value; each key
 // given besides it overrides that one value.
 sim::Material read_material(ObjectReader r) {
@@ -46,6 +100,7 @@ sim::Material read_material(ObjectReader r) {
       r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, non_negative);
   m.bend_weft_Nm =
       r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, non_negative);
+  read_bending_laws(r, m);
   r.finish();
   return m;
 }

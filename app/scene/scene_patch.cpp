@@ -120,6 +120,7 @@ Json patch_document(Json document, const std::vector<Setting>& settings) {
   for (const Setting& s : settings) {
     const std::vector<PathPart> parts = split_key(s.key, option_text(s));
     Json* node = &document;
+    Json* parent = nullptr;
     std::string path;
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const PathPart& part = parts[k];
@@ -128,6 +129,7 @@ Json patch_document(Json document, const std::vector<Setting>& settings) {
                                        part.name + "'");
       }
       path += (path.empty() ? "" : ".") + part.name;
+      parent = node;
       node = &(*node)[part.name];  // creates a missing key (null), filled below
       for (std::size_t index : part.indices) {
         if (!node->is_array() || index >= node->size()) {
@@ -139,7 +141,11 @@ Json patch_document(Json document, const std::vector<Setting>& settings) {
       }
       if (k + 1 < parts.size() && node->is_null()) *node = Json::object();
     }
-    *node = setting_json(s.value);
+    Json value = setting_json(s.value);
+    // null removes the key (a scene value is never null): e.g. a material's bend_warp that a
+    // bending law set beside it would contradict.
+    if (value.is_null() && parts.back().indices.empty()) parent->erase(parts.back().name);
+    else *node = std::move(value);
   }
   return document;
 }

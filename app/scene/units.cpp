@@ -216,6 +216,12 @@ Dimension dimension_of(Quantity kind) {
       return none;
     case Quantity::stress:
       return pressure;
+    case Quantity::moment_per_width:
+      return {1, 1, -2};
+    case Quantity::curvature:
+      return {0, -1, 0};
+    case Quantity::cubic_bending:
+      return {1, 4, -2};
   }
   return none;
 }
@@ -242,6 +248,12 @@ std::string quantity_name(Quantity kind) {
       return "an angle";
     case Quantity::stress:
       return "a stress";
+    case Quantity::moment_per_width:
+      return "a moment per width";
+    case Quantity::curvature:
+      return "a curvature";
+    case Quantity::cubic_bending:
+      return "a cubic bending coefficient";
   }
   return "a quantity";
 }
@@ -268,6 +280,12 @@ std::string quantity_description(Quantity kind) {
       return "an angle such as deg or rad";
     case Quantity::stress:
       return "a stress (or modulus) such as Pa, MPa or GPa";
+    case Quantity::moment_per_width:
+      return "a moment per width such as N (= N*m/m) or gf*cm/cm";
+    case Quantity::curvature:
+      return "a curvature such as 1/m or 1/cm";
+    case Quantity::cubic_bending:
+      return "a cubic bending coefficient such as N*m^3";
   }
   return quantity_name(kind);
 }
@@ -294,6 +312,12 @@ std::string si_unit_symbol(Quantity kind) {
       return "rad";
     case Quantity::stress:
       return "Pa";
+    case Quantity::moment_per_width:
+      return "N";
+    case Quantity::curvature:
+      return "1/m";
+    case Quantity::cubic_bending:
+      return "N*m^3";
   }
   return "";
 }

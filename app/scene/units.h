@@ -52,6 +52,9 @@ enum class Quantity {
   inverse_time,      // [1/s]  e.g. mass-proportional damping α
   angle,             // [rad]
   stress,            // [Pa]   e.g. Young's modulus
+  moment_per_width,  // [N]    bending moment per width, N·m/m (a bending law's M)
+  curvature,         // [1/m]
+  cubic_bending,     // [N·m³] the cubic coefficient C of M/w = B κ + C κ³
 };
 
 // Bad quantity text. what() reads "expected <kind> such as …, got '<text>' (<reason>)".

@@ -6,6 +6,9 @@
 #include "sim/linear/cholmod_solver.h"
 
 #include <cholmod.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <Eigen/Core>
 #include <cmath>
@@ -151,9 +154,22 @@ int cholmod_ordering_code(CholmodOrdering ordering) {
   return CHOLMOD_AMD;  // not reached
 }
 
+// CHOLMOD 3 (Debian 12's SuiteSparse 5) runs the scatter and assembly loops of its supernodal
+// factorization on CHOLMOD_OMP_NUM_THREADS = 4 OpenMP threads, fixed when it was built, whatever
+// the machine. Beside the dense BLAS work those loops are short, and their threads waiting on
+// two shared cores doubled a static solve's CPU time (the Cusick drape: 13.3 s against 6.9 s
+// with one thread, weft measure --static). weft has no OpenMP region of its own, so no active
+// level: the loops run on the calling thread; the results do not depend on it.
+void run_openmp_regions_on_one_thread() {
+#ifdef _OPENMP
+  omp_set_max_active_levels(0);
+#endif
+}
+
 class CholmodSolver final : public SparseSpdSolver {
  public:
   explicit CholmodSolver(const CholmodSettings& settings) {
+    if (settings.factorization == CholmodFactorization::supernodal) run_openmp_regions_on_one_thread();
     cholmod_common& c = m_common.settings();
     if (settings.ordering != CholmodOrdering::automatic) {
       c.nmethods = 1;

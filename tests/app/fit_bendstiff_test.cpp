@@ -5,6 +5,8 @@
 // scripts/xlsx_to_csv.py), which gives B = moment / curvature along the strip.
 #include <gtest/gtest.h>
 
+#include "sim/bending_law.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -109,6 +111,31 @@ TEST(Bendstiff, FitFromThePhotoLiesBetweenTheTablesStiffnesses) {
   // A linear-elastic strip cannot bend as sharply at the clamp as the fabric does; what is
   // left is a few millimetres along a 250 mm strip.
   EXPECT_LT(measure(r.best, "midline_mm"), 8.0);
+}
+
+// The same photo with Grosberg's frictional law (assets/fits/bendstiff_nonlinear.json, on the
+// 2× copy, each evaluation a static solve): the midline within a millimetre, and the fitted
+// curve M(κ) beside the authors' table, which it was never shown.
+TEST(Bendstiff, FrictionalBendingLawFollowsThePhotoWithinAMillimetreAndTheTable) {
+  const FitSpec spec = load_fit_spec(std::string(WEFT_SOURCE_DIR) + "/assets/fits/bendstiff_nonlinear.json");
+  FitProblem problem(spec);
+  const FitResult r = run_fit(problem);
+  const sim::BendingLaw law =
+      sim::BendingLaw::frictional(r.best.values[0], r.best.values[1], r.best.values[2]);
+  std::printf("fitted %s after %zu evaluations: outline Chamfer %.2f mm, midline distance %.2f mm\n",
+              law.describe().c_str(), r.evaluations.size(), measure(r.best, "chamfer_mm"),
+              measure(r.best, "midline_mm"));
+  EXPECT_TRUE(r.best.settled);
+  EXPECT_LE(measure(r.best, "midline_mm"), 1.0);
+  double worst_high = 0.0;  // where the strip is bent (κ ≥ 1 /m)
+  for (const TableRow& row : read_table()) {
+    if (!(row.curvature_1_m > 0.0)) continue;
+    const double m = law.moment(row.curvature_1_m);
+    std::printf("table: curvature %8.4f /m  moment %.4f N  fitted law %.4f N\n", row.curvature_1_m,
+                row.moment_N, m);
+    if (row.curvature_1_m >= 1.0) worst_high = std::max(worst_high, std::abs(m / row.moment_N - 1.0));
+  }
+  EXPECT_LT(worst_high, 0.05);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // End to end through the real `weft fit`: a measured-number fit of the bendstiff strip writes
 // its log, plots, fitted scene and report, and the fitted scene runs; bad fit files are errors
-// naming the file and key, with nothing written.
+// naming the file and key, with nothing written; a drape photos fit reports every image.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -123,6 +123,37 @@ TEST_F(FitCli, ThreadsChangeNoBitOfTheFit) {
       run_weft("fit " + fit.string() + " --threads -1 --out " + (m_dir / "bad").string());
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
   EXPECT_CONTAINS(bad.output, "--threads");
+  EXPECT_FALSE(fs::exists(m_dir / "bad"));
+}
+
+// A drape photos fit through the command, two evaluations (static solves): its progress lines
+// carry the objective's parts, its last lines compare the fitted drape with every image (the
+// held-out ones marked), and it writes the drape pictures; a mistake names its key.
+TEST_F(FitCli, DrapePhotosFitComparesEveryImageAndWritesItsPictures) {
+  const std::string data = std::string(WEFT_SOURCE_DIR) + "/tests/data/photos/cusick_synthetic/";
+  const auto fit_with = [&](const std::string& images) {
+    return write_scene("fit.json", R"({"scene": ")" + std::string(WEFT_SOURCE_DIR) +
+                                       R"(/assets/scenes/cusick_drape.json",
+        "set": {"cloth.resolution": [25, 25], "cloth.pins": [{"grid": [12, 12]}]},
+        "parameters": [{"name": "bend", "start": "1.2e-5 N*m"}],
+        "target": {"drape_photos": {)" + images + R"(, "mm_per_px": 0.5, "specimen": "30 cm", "support": "18 cm"}},
+        "profile": {"points": 0}})");
+  };
+  const fs::path fit = fit_with(R"("images": [")" + data + R"(drape_0deg.png"], "check_images": [")" + data +
+                                R"(check_27x27.png"])");
+  const CommandResult r = run_weft("fit " + fit.string() + " --max-evaluations 2 --out " + (m_dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* part : {"outline_part", "dc_part", "nodes_part"}) EXPECT_CONTAINS(r.output, part);
+  EXPECT_CONTAINS(r.output, "  drape_0deg.png: DC 0.558 (fitted ");
+  EXPECT_CONTAINS(r.output, "  held out check_27x27.png: DC 0.570 (fitted ");
+  for (const char* file : {"drape_photos.png", "outline_spectra.png", "report.html", "fit_result.json"})
+    EXPECT_TRUE(fs::exists(m_dir / "out" / file)) << file;
+
+  const CommandResult bad = run_weft("fit " + fit_with(R"("images": [")" + data + R"(nowhere.png"])").string() +
+                                     " --out " + (m_dir / "bad").string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_CONTAINS(bad.output, "fit.json: target.drape_photos.images[0]: image ");
+  EXPECT_CONTAINS(bad.output, "nowhere.png: no such file");
   EXPECT_FALSE(fs::exists(m_dir / "bad"));
 }
 

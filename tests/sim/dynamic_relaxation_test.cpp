@@ -36,12 +36,7 @@ double static_residual(const Simulator& sim, const Vec3& gravity_m_s2) {
 // (1) A mass m hanging from a pinned point on a spring k relaxes to the static extension m g / k.
 TEST(DynamicRelaxation, HangingSpringReachesTheStaticExtension) {
   const double m = 0.01, k = 100.0, L = 0.2, g = 9.81;  // kg, N/m, m, m/s²
-  System system;
-  system.terms.push_back(
-      std::make_shared<SpringTerm>(std::vector<Spring>{{0, 1, L, k, SpringKind::warp}}));
-  system.mass_kg = Eigen::Vector2d(m, m);
-  system.inv_mass = Eigen::Vector2d(0.0, 1.0 / m);  // vertex 0 pinned
-  system.gravity_m_s2 = Vec3(0.0, 0.0, -g);
+  const System system = test_cloth::hanging_spring(m, k, L, g);  // vertex 0 pinned
   // Row bound of the rest stiffness: |K_11| + |K_10| = 2k at both vertices.
   EXPECT_EQ(system.stiffness_row_bound(), Eigen::Vector2d(2.0 * k, 2.0 * k));
   const double h = 1.0;  // one pseudo-second: only h²/m̃ matters

@@ -2,10 +2,27 @@
 // Cloths shared by the simulation tests: a generic fabric scaled by its tensile rigidity, and a
 // flat horizontal square grid.
 
+#include <memory>
+#include <vector>
+
 #include "sim/grid.h"
+#include "sim/mass_spring.h"
 #include "sim/material.h"
+#include "sim/system.h"
 
 namespace weft::sim::test_cloth {
+
+// Two vertices of mass m, kg, joined by a spring k, N/m, of rest length L, m: vertex 0 pinned,
+// gravity g, m/s², along −z. Its static extension is m g / k.
+inline System hanging_spring(double m, double k, double L, double g) {
+  System system;
+  system.terms.push_back(
+      std::make_shared<SpringTerm>(std::vector<Spring>{{0, 1, L, k, SpringKind::warp}}));
+  system.mass_kg = Eigen::Vector2d(m, m);
+  system.inv_mass = Eigen::Vector2d(0.0, 1.0 / m);
+  system.gravity_m_s2 = Vec3(0.0, 0.0, -g);
+  return system;
+}
 
 // Tensile rigidity stretch_N_m along warp, 0.7× along weft, shear 5 % of it, 0.2 kg/m².
 inline Material fabric(double stretch_N_m) {
