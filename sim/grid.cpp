@@ -102,7 +102,8 @@ ClothMesh grid_of(const GridSpec& spec, const std::vector<bool>& keep) {
 ClothMesh make_grid(const GridSpec& spec) {
   if (spec.disc_edge == DiscEdge::smooth) {
     if (spec.shape != SpecimenShape::disc)
-      throw std::invalid_argument("a smooth edge applies to a disc; a rectangle's edges are grid lines");
+      throw std::invalid_argument(
+          "a smooth edge applies to a disc; a rectangle's edges are grid lines");
     return make_round_specimen(spec);
   }
   return grid_of(spec, {});
