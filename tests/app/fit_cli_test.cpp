@@ -134,8 +134,7 @@ TEST_F(FitCli, DrapePhotosFitComparesEveryImageAndWritesItsPictures) {
   const auto fit_with = [&](const std::string& images) {
     return write_scene("fit.json", R"({"scene": ")" + std::string(WEFT_SOURCE_DIR) +
                                        R"(/assets/scenes/cusick_drape.json",
-        "set": {"cloth.resolution": [25, 25], "cloth.pins": [{"grid": [12, 12]}],
-                "cloth.edge": "staircase", "simulation.model": "mass_spring"},
+        "set": {"cloth.resolution": [25, 25], "cloth.pins": [{"grid": [12, 12]}]},
         "parameters": [{"name": "bend", "start": "1.2e-5 N*m"}],
         "target": {"drape_photos": {)" + images + R"(, "mm_per_px": 0.5, "specimen": "30 cm", "support": "18 cm"}},
         "profile": {"points": 0}})");

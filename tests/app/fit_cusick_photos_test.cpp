@@ -1,7 +1,6 @@
 // weft fit's drape_photos target end to end, on silhouettes made by weft with a known bending
 // rigidity: the Cusick scene (assets/scenes/cusick_drape.json at 25 × 25 vertices, so that an
-// evaluation takes seconds, as the grid's staircase disc on the mass-spring model that made
-// tests/data/photos/cusick_synthetic) settled by settle_to_rest at B, its top view drawn as silhouette PNGs
+// evaluation takes seconds) settled by settle_to_rest at B, its top view drawn as silhouette PNGs
 // (drape_top_view: turned, one mirrored, one at another scale), then fitted from 2× B. The
 // silhouettes are read back as `weft measure --photo` reads a photo.
 //
@@ -32,13 +31,12 @@ namespace fs = std::filesystem;
 
 const std::string kCusick = std::string(WEFT_SOURCE_DIR) + "/assets/scenes/cusick_drape.json";
 
-// The fit file of the 25 × 25 Cusick scene (its centre pin moved along; the staircase grid on
-// mass-spring, as the silhouettes were made), fitting bend from `start` to `target`.
+// The fit file of the 25 × 25 Cusick scene (its centre pin moved along), fitting bend from
+// `start` to `target`.
 std::string cusick_fit(const std::string& start, const std::string& target, int resolution = 25) {
   const std::string n = std::to_string(resolution), centre = std::to_string(resolution / 2);
   return R"({"scene": ")" + kCusick + R"(", "set": {"cloth.resolution": [)" + n + ", " + n +
-         R"(], "cloth.pins": [{"grid": [)" + centre + ", " + centre + R"(]}],
-    "cloth.edge": "staircase", "simulation.model": "mass_spring"},
+         R"(], "cloth.pins": [{"grid": [)" + centre + ", " + centre + R"(]}]},
     "parameters": [{"name": "bend", "start": ")" + start + R"(", "min": "3e-6 N*m", "max": "6e-5 N*m"}],
     "target": )" + target + R"(, "settle": {"seeds": 2}, "optimizer": {"initial_step": 0.25},
     "profile": {"points": 1, "span": 0.1}})";
