@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/round_specimen.h"
+
 namespace weft::sim {
 
 std::vector<std::array<Index, 3>> ClothMesh::triangles() const {
@@ -97,7 +99,14 @@ ClothMesh grid_of(const GridSpec& spec, const std::vector<bool>& keep) {
 
 }  // namespace
 
-ClothMesh make_grid(const GridSpec& spec) { return grid_of(spec, {}); }
+ClothMesh make_grid(const GridSpec& spec) {
+  if (spec.disc_edge == DiscEdge::smooth) {
+    if (spec.shape != SpecimenShape::disc)
+      throw std::invalid_argument("a smooth edge applies to a disc; a rectangle's edges are grid lines");
+    return make_round_specimen(spec);
+  }
+  return grid_of(spec, {});
+}
 
 ClothMesh make_grid_cells(const GridSpec& spec, const std::vector<bool>& cells) {
   if (static_cast<Index>(cells.size()) != std::max<Index>(0, (spec.nu - 1) * (spec.nv - 1)))

@@ -1,8 +1,9 @@
 #pragma once
 // The cloth's rest shape and topology (ClothMesh): either a warp/weft quad grid — rectangular,
 // or a specimen of another shape (a Cusick drape disc) that keeps only the grid cells inside
-// it (make_grid) — or a general triangle mesh, such as one read from a file (no grid;
-// sim/triangle_cloth.h, docs/meshes.md).
+// it (make_grid) — or a general triangle mesh, such as one read from a file or a disc meshed
+// in rings for a smooth edge (no grid; sim/triangle_cloth.h, sim/round_specimen.h,
+// docs/meshes.md).
 
 #include <array>
 #include <string>
@@ -27,10 +28,20 @@ enum class SpecimenShape { rectangle, disc };
 inline constexpr base::EnumNames<SpecimenShape, 2> specimen_shape_names{
     {{SpecimenShape::rectangle, "rectangle"}, {SpecimenShape::disc, "disc"}}};
 
+// The edge of a disc. staircase: the grid's cells inside the ellipse, above (a warp/weft grid).
+// smooth: the ellipse meshed in concentric rings of triangles whose outer ring lies on it
+// (make_round_specimen, sim/round_specimen.h): a triangle mesh without a grid.
+enum class DiscEdge { staircase, smooth };
+
+inline constexpr base::EnumNames<DiscEdge, 2> disc_edge_names{
+    {{DiscEdge::staircase, "staircase"}, {DiscEdge::smooth, "smooth"}}};
+
 struct GridSpec {
   double size_u_m = 1.0, size_v_m = 1.0;  // extent along warp (u) and weft (v); the disc's diameters
   SpecimenShape shape = SpecimenShape::rectangle;
-  Index nu = 32, nv = 32;                 // vertices along warp and weft, each ≥ 2
+  DiscEdge disc_edge = DiscEdge::staircase;  // a disc's edge; a rectangle's must be staircase
+  Index nu = 32, nv = 32;                 // vertices along warp and weft, each ≥ 2; a smooth
+                                          // disc takes its ring count from them (round_specimen_rings)
   Vec3 origin{0.0, 0.0, 1.0};             // world position of material point (0, 0)
   Vec3 warp_axis{1.0, 0.0, 0.0};          // unit world direction of +u
   Vec3 weft_axis{0.0, 1.0, 0.0};          // unit world direction of +v, orthogonal to warp_axis
@@ -86,6 +97,9 @@ struct ClothMesh {
   const Matrix3X& start() const { return start_positions.rows() ? start_positions : rest_positions; }
 };
 
+// The cloth spec describes: the grid keeping the cells of spec.shape, or for a disc with a
+// smooth edge its ring mesh (make_round_specimen; no grid). Throws std::invalid_argument for a
+// resolution below 2 × 2, a size that is not positive and finite, or a smooth rectangle.
 ClothMesh make_grid(const GridSpec& spec);
 // The grid of spec's size, resolution and placement keeping the cells flagged in `cells`
 // (#(nu−1)(nv−1), cell (i, j) at j·(nu−1) + i) whatever spec.shape says: a grid recognised in

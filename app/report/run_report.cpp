@@ -146,9 +146,10 @@ fs::path write_run_report(const fs::path& dir, const Scene& scene, const std::st
           fixed(scene.fps, 3 * (scene.fps != std::floor(scene.fps))) + " fps (" +
           fixed(rows.back().diagnostics.time_s, 3) + " s simulated)</td></tr>\n";
   html += "<tr><td>cloth</td><td>" +
-          (scene.mesh ? cloth_size_text(scene)
-                      : std::to_string(scene.grid.nu) + " × " + std::to_string(scene.grid.nv) +
-                            " vertices") +
+          (scene.mesh || scene.grid.disc_edge == sim::DiscEdge::smooth
+               ? cloth_size_text(scene)
+               : std::to_string(scene.grid.nu) + " × " + std::to_string(scene.grid.nv) +
+                     " vertices") +
           "</td></tr>\n";
   html += "<tr><td>largest strain</td><td>" + fixed(100.0 * max_strain, 3) + " %</td></tr>\n";
   html += "<tr><td>steps that missed the projection tolerance</td><td>" +

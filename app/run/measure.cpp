@@ -125,6 +125,7 @@ bool hangs_as_curtain(const Scene& scene) {
     return false;
   if (scene.mesh && !scene.mesh->has_grid()) return false;  // its folds are counted on the grid
   const sim::ClothMesh mesh = cloth_mesh(scene);
+  if (!mesh.has_grid()) return false;  // a disc with a smooth edge
   const std::vector<sim::Index> pinned = sim::resolve_pins(scene.pins, mesh);
   const auto is_pinned = [&](sim::Index v) {
     return std::binary_search(pinned.begin(), pinned.end(), v);

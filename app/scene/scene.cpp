@@ -21,6 +21,7 @@
 #include "app/scene/scene_cloth.h"
 #include "app/scene/units.h"
 #include "base/constants.h"
+#include "sim/round_specimen.h"
 
 // Defined in the .cpp that app/scene/embed_default_scene.cmake generates from
 // assets/scenes/default.json.
@@ -626,6 +627,9 @@ sim::ClothMesh cloth_mesh(const Scene& scene) {
 std::string cloth_size_text(const Scene& scene) {
   if (scene.mesh)
     return std::to_string(scene.mesh->used_vertex_count()) + " vertices (" + scene.mesh->source + ")";
+  if (scene.grid.disc_edge == sim::DiscEdge::smooth)
+    return std::to_string(cloth_mesh(scene).vertex_count()) + " vertices (a disc in " +
+           std::to_string(sim::round_specimen_rings(scene.grid)) + " rings)";
   return std::to_string(scene.grid.nu) + "x" + std::to_string(scene.grid.nv) + " vertices";
 }
 

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "app/io/cloth_mesh_file.h"
@@ -248,7 +249,7 @@ void check_pins(const std::vector<sim::PinSpec>& pins, const sim::ClothMesh& mes
 // "mesh": the cloth from a mesh file (app/io/cloth_mesh_file.h), its path relative to the scene
 // file; its placement from "origin", "warp_axis", "weft_axis" (default: as the file gives it).
 void read_cloth_mesh(ObjectReader& r, Scene& scene, MeshColours& colours) {
-  for (const char* key : {"size", "resolution", "shape"})
+  for (const char* key : {"size", "resolution", "shape", "edge"})
     if (r.has(key))
       r.fail(key, "the cloth comes from the mesh file in cloth.mesh; a grid key does not apply");
   ClothMeshFileSpec spec;
@@ -288,6 +289,10 @@ void read_cloth_grid(ObjectReader& r, Scene& scene) {
   g.nu = static_cast<sim::Index>(n[0]);
   g.nv = static_cast<sim::Index>(n[1]);
   g.shape = r.enumeration("shape", sim::specimen_shape_names, {g.shape});
+  if (r.has("edge") && g.shape != sim::SpecimenShape::disc)
+    r.fail("edge", "applies to a disc (\"shape\": \"disc\"); a rectangle's edges are straight "
+                   "grid lines");
+  g.disc_edge = r.enumeration("edge", sim::disc_edge_names, {g.disc_edge});
   g.origin = r.quantity_vec3("origin", Quantity::length, g.origin);
   g.warp_axis = r.unit_vec3("warp_axis", g.warp_axis);
   g.weft_axis = r.unit_vec3("weft_axis", g.weft_axis);
@@ -301,6 +306,23 @@ void read_cloth_grid(ObjectReader& r, Scene& scene) {
     ObjectReader shape = r.object("initial_shape");
     scene.tension_field = read_tension_field_shape(shape.required_object("tension_field"));
     shape.finish();
+  }
+}
+
+// A disc with a smooth edge is a ring mesh without a grid (sim/round_specimen.h): a pin by grid
+// vertex or corner is an error naming the pin and the ways to pin it instead.
+void check_round_specimen_pins(const std::vector<sim::PinSpec>& pins, const ObjectReader& r) {
+  for (std::size_t k = 0; k < pins.size(); ++k) {
+    const char* by = std::holds_alternative<sim::PinGrid>(pins[k])     ? "grid vertex"
+                     : std::holds_alternative<sim::PinCorner>(pins[k]) ? "corner"
+                                                                       : nullptr;
+    if (by)
+      throw_scene_error(r.file(), r.path_of("pins") + "[" + std::to_string(k) + "]",
+                        std::string("a pin by ") + by + " needs the warp/weft grid, and a disc "
+                        "with \"edge\": \"smooth\" is meshed in rings of triangles without one: "
+                        "pin by \"vertex\" (0 is the centre), \"region\" (fractions of the "
+                        "disc's box: {\"u\": [0.5, 0.5], \"v\": [0.5, 0.5]} is the centre) or "
+                        "\"box\"");
   }
 }
 
@@ -320,6 +342,8 @@ void read_cloth(ObjectReader r, Scene& scene) {
     scene.pin_paths.push_back(std::move(path));
   }
   r.finish();
+  if (!scene.mesh && scene.grid.disc_edge == sim::DiscEdge::smooth)
+    check_round_specimen_pins(scene.pins, r);
   if (!scene.pins.empty())
     check_pins(scene.pins, cloth_mesh(scene), r.file(), r.path_of("pins"), scene.warnings);
 }

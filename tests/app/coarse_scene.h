@@ -1,7 +1,7 @@
 #pragma once
 // A scene file of assets/scenes on a coarser grid, for tests that must run in seconds: the
-// grid gets n × n vertices and a grid-vertex pin (the Cusick specimen's centre) moves to the
-// same place on it.
+// grid gets n × n vertices (a disc with a smooth edge ⌊n/2⌋ rings) and a grid-vertex pin moves
+// to the same place on it.
 
 #include <cmath>
 #include <filesystem>

@@ -1,5 +1,6 @@
 // "cloth.shape": disc specimens in scene files (the Cusick drape test), pins on them, and what
-// is drawn of them (app/run/frame_mesh.h): the used vertices only.
+// is drawn of them (app/run/frame_mesh.h): the used vertices only; "cloth.edge": the staircase
+// of grid cells or the smooth edge of a disc meshed in rings.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -126,17 +127,100 @@ TEST(DiscScene, WireframeEdgesAreTheKeptCellsWarpAndWeftSides) {
   EXPECT_LT(drawn.edges.size(), 3 * drawn.triangles.size() / 2);  // fewer than all sides
 }
 
-// The Cusick drape scene: a Ø30 cm wool disc centred over a Ø18 cm support disc.
+// "cloth.edge": a disc's edge, the grid's staircase or smooth (sim/round_specimen.h).
+TEST(DiscScene, EdgeIsReadAndDefaultsToStaircase) {
+  EXPECT_EQ(test::parse_json_scene(disc_scene()).grid.disc_edge, sim::DiscEdge::staircase);
+  Json j = disc_scene();
+  j["cloth"]["edge"] = "smooth";
+  EXPECT_EQ(test::parse_json_scene(j).grid.disc_edge, sim::DiscEdge::smooth);
+  j["cloth"]["edge"] = "staircase";
+  EXPECT_EQ(test::parse_json_scene(j).grid.disc_edge, sim::DiscEdge::staircase);
+}
+
+TEST(DiscScene, EdgeErrorsNameTheKey) {
+  Json j = disc_scene();
+  j["cloth"]["edge"] = "round";
+  EXPECT_CONTAINS(test::scene_error_of(j),
+                  "scene.json: cloth.edge: expected one of 'staircase', 'smooth', got the string "
+                  "'round'");
+  j["cloth"]["edge"] = "smooth";
+  j["cloth"]["shape"] = "rectangle";
+  EXPECT_EQ(test::scene_error_of(j),
+            "scene.json: cloth.edge: applies to a disc (\"shape\": \"disc\"); a rectangle's "
+            "edges are straight grid lines");
+  j["cloth"].erase("shape");
+  EXPECT_CONTAINS(test::scene_error_of(j), "scene.json: cloth.edge: applies to a disc");
+  // With a mesh file, checked before the file is read.
+  j = disc_scene();
+  for (const char* key : {"size", "resolution", "shape"}) j["cloth"].erase(key);
+  j["cloth"]["mesh"] = "no_such_file.obj";
+  j["cloth"]["edge"] = "smooth";
+  EXPECT_EQ(test::scene_error_of(j),
+            "scene.json: cloth.edge: the cloth comes from the mesh file in cloth.mesh; a grid key "
+            "does not apply");
+}
+
+// A smooth disc is its ring mesh: no grid, 1 + 3N(N + 1) vertices for N = ⌈(n − 1)/2⌉ rings,
+// named so in what weft prints; it falls like the staircase disc.
+TEST(DiscScene, ASmoothDiscIsItsRingMesh) {
+  Json j = disc_scene();
+  j["cloth"]["edge"] = "smooth";
+  const Scene scene = test::parse_json_scene(j);
+  const sim::ClothMesh mesh = cloth_mesh(scene);
+  EXPECT_FALSE(mesh.has_grid());
+  EXPECT_EQ(mesh.vertex_count(), 1 + 3 * 7 * 8);  // resolution 15: 7 rings
+  EXPECT_EQ(cloth_size_text(scene), "169 vertices (a disc in 7 rings)");
+  const auto sim = make_simulator(scene);
+  sim->advance(0.1);
+  for (sim::Index v = 0; v < mesh.vertex_count(); ++v)
+    EXPECT_NEAR(sim->state().x(v, 2), 0.5 - 0.5 * 9.81 * 0.01, 0.002) << v;
+  const render::RenderMesh drawn = to_render_mesh(sim->mesh(), sim->state().x);
+  EXPECT_EQ(static_cast<sim::Index>(drawn.positions.size()), mesh.vertex_count());
+  EXPECT_EQ(drawn.triangles.size(), mesh.faces.size());
+}
+
+// A smooth disc has no grid vertices or corners to pin: the error names the pin and the ways
+// that work instead.
+TEST(DiscScene, GridAndCornerPinsOnASmoothDiscAreErrorsNamingThePin) {
+  Json j = disc_scene();
+  j["cloth"]["edge"] = "smooth";
+  j["cloth"]["pins"] = Json::parse(R"([{"vertex": 0}, {"grid": [7, 7]}])");
+  EXPECT_EQ(test::scene_error_of(j),
+            "scene.json: cloth.pins[1]: a pin by grid vertex needs the warp/weft grid, and a disc "
+            "with \"edge\": \"smooth\" is meshed in rings of triangles without one: pin by "
+            "\"vertex\" (0 is the centre), \"region\" (fractions of the disc's box: {\"u\": "
+            "[0.5, 0.5], \"v\": [0.5, 0.5]} is the centre) or \"box\"");
+  j["cloth"]["pins"] = Json::parse(R"([{"corner": "u0v0"}])");
+  EXPECT_CONTAINS(test::scene_error_of(j), "scene.json: cloth.pins[0]: a pin by corner needs");
+}
+
+// The region at the middle of the box pins the centre alone, on either edge: the grid's centre
+// vertex, or the rings' vertex 0.
+TEST(DiscScene, TheMiddleRegionPinsTheCentreOfEitherDisc) {
+  Json j = disc_scene();
+  j["cloth"]["pins"] = Json::parse(R"([{"region": {"u": [0.5, 0.5], "v": [0.5, 0.5]}}])");
+  const Scene staircase = test::parse_json_scene(j);
+  const sim::ClothMesh grid = cloth_mesh(staircase);
+  EXPECT_EQ(sim::resolve_pins(staircase.pins, grid), std::vector<sim::Index>{grid.index(7, 7)});
+  j["cloth"]["edge"] = "smooth";
+  const Scene smooth = test::parse_json_scene(j);
+  EXPECT_EQ(sim::resolve_pins(smooth.pins, cloth_mesh(smooth)), std::vector<sim::Index>{0});
+}
+
+// The Cusick drape scene: a Ø30 cm wool disc with a smooth edge centred over a Ø18 cm support
+// disc.
 TEST(DiscScene, CusickDrapeSceneIsTheStandardGeometry) {
   const Scene s = load_scene(std::filesystem::path(WEFT_SOURCE_DIR) / "assets" / "scenes" /
                              "cusick_drape.json");
   EXPECT_EQ(s.grid.shape, sim::SpecimenShape::disc);
+  EXPECT_EQ(s.grid.disc_edge, sim::DiscEdge::smooth);
   EXPECT_NEAR(s.grid.size_u_m, 0.30, 1e-12);
   EXPECT_NEAR(s.grid.size_v_m, 0.30, 1e-12);
   // Held at its centre only, in place of the standard's upper clamping disc.
-  const sim::ClothMesh mesh = sim::make_grid(s.grid);
-  EXPECT_EQ(sim::resolve_pins(s.pins, mesh),
-            std::vector<sim::Index>{mesh.index((mesh.nu - 1) / 2, (mesh.nv - 1) / 2)});
+  const sim::ClothMesh mesh = cloth_mesh(s);
+  EXPECT_EQ(sim::resolve_pins(s.pins, mesh), std::vector<sim::Index>{0});
+  EXPECT_TRUE(sim::Vec3(mesh.rest_positions.row(0).transpose())
+                  .isApprox(s.grid.origin + 0.15 * s.grid.warp_axis + 0.15 * s.grid.weft_axis));
   EXPECT_EQ(s.material.density_kg_m2, sim::material_preset("wool_kang_yu").material.density_kg_m2);
   const sim::Vec3 centre = s.grid.origin + 0.15 * s.grid.warp_axis + 0.15 * s.grid.weft_axis;
   bool support = false;
