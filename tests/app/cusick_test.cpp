@@ -1,4 +1,4 @@
-// The Cusick drape test (assets/scenes/cusick_drape.json: a Ø30 cm specimen on a Ø18 cm
+// The Cusick drape test (assets/scenes/cusick_drape_round.json: a Ø30 cm specimen on a Ø18 cm
 // support), measured as `weft measure` does: the drape coefficient of the wool preset lies in
 // the 0.3–0.9 range the issue asks of it, and grows with bending rigidity — a stiffer fabric
 // stands out further. Three fabrics that differ only in bending (the wool's B/4, B, 4B), so
@@ -25,7 +25,7 @@ namespace {
 double cusick_drape_coefficient(double bending_scale, sim::Index n,
                                 const std::string& preset = "wool_kang_yu",
                                 std::optional<sim::ClothModel> model = std::nullopt) {
-  Scene scene = test::coarse_scene("cusick_drape.json", n);
+  Scene scene = test::coarse_scene("cusick_drape_round.json", n);
   scene.frames = 48;  // 2 s
   scene.material = sim::material_preset(preset).material;
   if (model) scene.sim.model = *model;
