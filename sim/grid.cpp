@@ -50,12 +50,7 @@ bool keeps_cell(const GridSpec& spec, double u_m, double v_m) {
 // make_grid with the cells `keep` selects (its size is #(nu−1)(nv−1), cell (i, j) at
 // j·(nu−1) + i), or by the spec's shape when it is empty.
 ClothMesh grid_of(const GridSpec& spec, const std::vector<bool>& keep) {
-  if (spec.nu < 2 || spec.nv < 2)
-    throw std::invalid_argument("grid resolution must be at least 2×2 vertices, got " +
-                                std::to_string(spec.nu) + "×" + std::to_string(spec.nv));
-  if (!(spec.size_u_m > 0.0) || !(spec.size_v_m > 0.0) || !std::isfinite(spec.size_u_m) ||
-      !std::isfinite(spec.size_v_m))
-    throw std::invalid_argument("grid size must be positive and finite");
+  check_grid_spec(spec);
 
   ClothMesh mesh;
   mesh.nu = spec.nu;
@@ -98,6 +93,15 @@ ClothMesh grid_of(const GridSpec& spec, const std::vector<bool>& keep) {
 }
 
 }  // namespace
+
+void check_grid_spec(const GridSpec& spec) {
+  if (spec.nu < 2 || spec.nv < 2)
+    throw std::invalid_argument("grid resolution must be at least 2×2 vertices, got " +
+                                std::to_string(spec.nu) + "×" + std::to_string(spec.nv));
+  if (!(spec.size_u_m > 0.0) || !(spec.size_v_m > 0.0) || !std::isfinite(spec.size_u_m) ||
+      !std::isfinite(spec.size_v_m))
+    throw std::invalid_argument("grid size must be positive and finite");
+}
 
 ClothMesh make_grid(const GridSpec& spec) {
   if (spec.disc_edge == DiscEdge::smooth) {

@@ -100,6 +100,9 @@ struct ClothMesh {
 // The cloth spec describes: the grid keeping the cells of spec.shape, or for a disc with a
 // smooth edge its ring mesh (make_round_specimen; no grid). Throws std::invalid_argument for a
 // resolution below 2 × 2, a size that is not positive and finite, or a smooth rectangle.
+// Throws std::invalid_argument unless the resolution is at least 2 × 2 and the size positive
+// and finite (make_grid and make_round_specimen check it first).
+void check_grid_spec(const GridSpec& spec);
 ClothMesh make_grid(const GridSpec& spec);
 // The grid of spec's size, resolution and placement keeping the cells flagged in `cells`
 // (#(nu−1)(nv−1), cell (i, j) at j·(nu−1) + i) whatever spec.shape says: a grid recognised in

@@ -56,12 +56,7 @@ Index round_specimen_rings(const GridSpec& spec) {
 }
 
 ClothMesh make_round_specimen(const GridSpec& spec) {
-  if (spec.nu < 2 || spec.nv < 2)
-    throw std::invalid_argument("grid resolution must be at least 2×2 vertices, got " +
-                                std::to_string(spec.nu) + "×" + std::to_string(spec.nv));
-  if (!(spec.size_u_m > 0.0) || !(spec.size_v_m > 0.0) || !std::isfinite(spec.size_u_m) ||
-      !std::isfinite(spec.size_v_m))
-    throw std::invalid_argument("grid size must be positive and finite");
+  check_grid_spec(spec);
   const Index rings = round_specimen_rings(spec);
   const double a = 0.5 * spec.size_u_m, b = 0.5 * spec.size_v_m;
   ClothPattern pattern;

@@ -9,6 +9,21 @@
 
 namespace weft::app {
 
+namespace {
+
+// --rest: one frame, the static solve's rest shape; not with the options about frames in time.
+void add_rest_option(CLI::App& cmd, RunOptions& o) {
+  CLI::Option* rest = cmd.add_flag(
+      "--rest", o.rest,
+      "Write one frame: the cloth's rest shape, found by the static equilibrium solver instead of "
+      "simulating its motion (simulation.static, docs/measure.md \"Static solves\")");
+  for (const char* name : {"--resume", "--checkpoint-every", "--frames", "--start", "--end", "--every",
+                           "--last", "--save-states"})
+    rest->excludes(cmd.get_option(name));
+}
+
+}  // namespace
+
 Command register_run(CLI::App& app, const std::string& command_line) {
   const auto o = std::make_shared<RunOptions>();
   o->command_line = command_line;
@@ -75,13 +90,7 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_flag("--save-states", o->save_states,
                 "Also write every frame's cloth positions as state_0001.npy, ... (and frame 0's), "
                 "from which weft render draws frames without simulating (docs/checkpoints.md)");
-  CLI::Option* rest = cmd->add_flag(
-      "--rest", o->rest,
-      "Write one frame: the cloth's rest shape, found by the static equilibrium solver instead of "
-      "simulating its motion (simulation.static, docs/measure.md \"Static solves\")");
-  for (const char* name : {"--resume", "--checkpoint-every", "--frames", "--start", "--end", "--every",
-                           "--last", "--save-states"})
-    rest->excludes(cmd->get_option(name));
+  add_rest_option(*cmd, *o);
   cmd->add_flag("--explain", o->explain,
                 "Print the terms and phases the simulation runs, and each phase's share of its time");
   cmd->add_flag("--report", o->report,
