@@ -199,3 +199,36 @@ TEST_F(MeasureCli, UntilSettledStopsOnceSettled) {
   EXPECT_EQ(zero.exit_code, 1) << zero.output;
   EXPECT_CONTAINS(zero.output, "--until-settled: expected a time in (0, 600] s");
 }
+
+namespace {
+
+// weft measure --static over seeds and weft run --rest, through the command, on the bendstiff
+// strip (a static solve of 0.01 s): one converged row per seed, the rest frame alone, and the
+// options about time refused beside --rest.
+TEST_F(MeasureCli, StaticSolvesOverSeedsAndTheRestFrame) {
+  const std::string strip = std::string(WEFT_SOURCE_DIR) + "/assets/scenes/bendstiff_strip.json";
+  const CommandResult m =
+      run_weft("measure " + strip + " --static --seeds 2 --out " + (m_dir / "m").string());
+  ASSERT_EQ(m.exit_code, 0) << m.output;
+  EXPECT_NE(m.output.find("converged                    2 of 2"), std::string::npos) << m.output;
+  const auto rows = read_csv(m_dir / "m" / "static.csv");
+  ASSERT_EQ(rows.size(), 3u);  // the header and two seeds
+  EXPECT_EQ(rows[1][0], "1");
+  EXPECT_EQ(rows[2][0], "2");
+  EXPECT_EQ(rows[1][1], "1");  // converged
+  EXPECT_LE(std::stod(rows[1][4]), 1e-6);
+
+  const CommandResult r =
+      run_weft("run " + strip + " --rest --size 110x65 --out " + (m_dir / "r").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("rest shape: static solve converged"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(m_dir / "r" / "frame_0001.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "r" / "frame_0002.png"));
+
+  const CommandResult bad = run_weft("run " + strip + " --rest --frames 3 --out " + (m_dir / "b").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--rest"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(m_dir / "b"));
+}
+
+}  // namespace
