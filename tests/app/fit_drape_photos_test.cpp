@@ -112,7 +112,9 @@ TEST(OutlineSpectrum, MeasuredSilhouettesTurnedByAnyAngleAndMirroredStayClose) {
 class FitDrapePhotos : public ::testing::Test {
  protected:
   void SetUp() override {
-    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "fit_drape_photos";
+    // One folder per test: ctest runs this fixture's tests in parallel, and each writes its images.
+    m_dir = fs::path(WEFT_BINARY_DIR) / "test_output" / "fit_drape_photos" /
+            ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::create_directories(m_dir);
     // 8 and 7 nodes: a mean of 7.5.
     render::write_png(silhouette_of_outline([](double t) { return 125.0 + 12.0 * std::cos(8.0 * t); }),
