@@ -8,6 +8,7 @@
 #include <random>
 
 #include "base/check.h"
+#include "base/format.h"
 #include "sim/linear/cholmod_solver.h"
 #include "sim/linear/stiffness_assembly.h"
 
@@ -17,7 +18,7 @@ namespace {
 constexpr double kArmijo = 1e-4;
 constexpr double kSmallestStep = 1e-10;  // line-search α below which the shift μ is raised
 constexpr int kMaxShiftRaises = 40;
-constexpr double kExactBelow = 1e-2;  // residual below which the exact Hessian is tried
+constexpr double kExactBelow = 1.0;  // residual below which the exact Hessian is tried
 constexpr int kExactPause = 10;       // iterations without it after it failed
 
 // The Levenberg–Marquardt shift μ, 1/s² (μ M is N/m): never below `floor` (which keeps the
@@ -29,12 +30,6 @@ struct Shift {
   void raise() { value = std::max(10.0 * value, floor); }
   void relax() { value = std::max(value / 3.0, floor); }
 };
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
-}
 
 double squared_free_norm(const Matrix3X& g, const Eigen::VectorXd& inv_mass) {
   double sum = 0.0;
@@ -155,7 +150,7 @@ struct StaticEquilibrium::Newton {
   StiffnessAssembly assembly;
   std::unique_ptr<SparseSpdSolver> solver;
   Shift shift;
-  double radius_m;  // the most a vertex moves in one step: doubled after a step taken whole
+  double radius_m;  // the most a vertex moves in one step
   double energy_J = 0.0;
   Matrix3X g;
   int exact_blocked = 0;  // iterations left before the exact Hessian is tried again
@@ -218,9 +213,16 @@ struct StaticEquilibrium::Newton {
     return alpha;
   }
 
+  // What a line search took: whether at its first (capped) length, whether the cap shortened
+  // the Newton step, and the most a vertex moved, m.
+  struct StepTaken {
+    bool whole = false, capped = false;
+    double moved_m = 0.0;
+  };
+
   // Backtracking from the step capped to the trust radius; moves x and returns true when a step
-  // was taken (first_trial: at the capped length).
-  bool line_search(Matrix3X& x, const Eigen::VectorXd& p, bool& first_trial) {
+  // was taken.
+  bool line_search(Matrix3X& x, const Eigen::VectorXd& p, StepTaken& taken) {
     const Eigen::VectorXd& inv_mass = statics.m_system.inv_mass;
     const Eigen::Map<const Matrix3X> step(p.data(), x.rows(), 3);
     const double first_alpha = longest_step(x, step);
@@ -241,7 +243,7 @@ struct StaticEquilibrium::Newton {
       x = std::move(trial);
       energy_J = e;
       g = g_trial.size() ? std::move(g_trial) : statics.gradient(x);
-      first_trial = alpha == first_alpha;
+      taken = {alpha == first_alpha, first_alpha < 1.0, alpha * step.rowwise().norm().maxCoeff()};
       return true;
     }
     return false;
@@ -255,13 +257,15 @@ struct StaticEquilibrium::Newton {
       // beyond its rest, converges linearly.
       const bool exact = exact_blocked == 0 && result.residual < kExactBelow;
       Eigen::VectorXd p;
-      bool first_trial = false;
-      if (direction(x, exact, p, result) && line_search(x, p, first_trial)) {
-        if (first_trial) {
+      StepTaken taken;
+      if (direction(x, exact, p, result) && line_search(x, p, taken)) {
+        // The radius grows only while it binds, and shrinks to what a backtracked step moved:
+        // it stays within twice the longest step taken.
+        if (taken.whole) {
           shift.relax();
-          radius_m *= 2.0;
+          if (taken.capped) radius_m *= 2.0;
         } else {
-          radius_m *= 0.5;
+          radius_m = taken.moved_m;
         }
         exact_blocked = std::max(0, exact_blocked - 1);
         return true;
@@ -299,11 +303,11 @@ StaticResult StaticEquilibrium::solve(Matrix3X& x) const {
     }
     if (result.iterations == m_settings.max_iterations) {
       result.stopped = "not converged in " + std::to_string(m_settings.max_iterations) +
-                       " iterations (residual " + number(result.residual) + ")";
+                       " iterations (residual " + base::format("%.3g", result.residual) + ")";
       break;
     }
     if (!newton.iterate(x, result)) {
-      result.stopped = "no descent step found (residual " + number(result.residual) + ")";
+      result.stopped = "no descent step found (residual " + base::format("%.3g", result.residual) + ")";
       break;
     }
   }

