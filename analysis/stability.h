@@ -25,7 +25,7 @@
 #include "sim/integrators/integrator.h"
 #include "sim/integrators/time_integrator.h"
 #include "sim/mass_spring.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/types.h"
 
 namespace weft::analysis {

@@ -40,7 +40,8 @@ std::optional<analysis::DrapeShape> drape_of(const app::Scene& scene, const sim:
 }
 
 Row static_row(const app::Scene& scene) {
-  Row r{"static (Newton)"};
+  Row r;
+  r.method = "static (Newton)";
   const double start = cpu_now();
   const app::RestShape rest = app::solve_rest_shape(scene);
   r.cpu_s = cpu_now() - start;
@@ -52,7 +53,8 @@ Row static_row(const app::Scene& scene) {
 }
 
 Row relaxation_row(const app::Scene& scene) {
-  Row r{"dynamic relaxation"};
+  Row r;
+  r.method = "dynamic relaxation";
   app::SettleSettings settings;
   settings.method = app::SettleMethod::dynamic_relaxation;
   const double start = cpu_now();
@@ -68,7 +70,8 @@ Row relaxation_row(const app::Scene& scene) {
 // The scene's integrator and damping, frame by frame until the fastest vertex has stayed below
 // 1 mm/s for 1 s of simulated time (at most max_s).
 Row dynamics_row(const app::Scene& scene, double max_s) {
-  Row r{"damped dynamics"};
+  Row r;
+  r.method = "damped dynamics";
   const double start = cpu_now();
   const auto simulator = app::make_simulator(scene);
   const double frame_s = 1.0 / scene.fps;

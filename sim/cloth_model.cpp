@@ -12,12 +12,18 @@ namespace weft::sim {
 
 ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
                             bool with_stretch) {
-  if ((material.bend_law_warp || material.bend_law_weft) &&
-      (model != ClothModel::mass_spring || !mesh.has_grid()))
+  const bool grid_springs = model == ClothModel::mass_spring && mesh.has_grid();
+  if ((material.bend_law_warp || material.bend_law_weft) && !grid_springs)
     throw MaterialError(std::string("a nonlinear bending law needs cloth.model mass_spring on a "
                                     "warp/weft grid (its angular bending along the lines); "
                                     "cloth.model is ") +
                         cloth_model_name(model) + (mesh.has_grid() ? "" : " on a mesh"));
+  if ((material.stretch_law_warp || material.stretch_law_weft) && !(grid_springs && with_stretch))
+    throw MaterialError(std::string("a nonlinear stretch law needs cloth.model mass_spring on a "
+                                    "warp/weft grid with its structural springs (not "
+                                    "inextensibility constraints); cloth.model is ") +
+                        cloth_model_name(model) + (mesh.has_grid() ? "" : " on a mesh") +
+                        (with_stretch ? "" : " with stretch left to constraints"));
   if (model == ClothModel::mass_spring) return MassSpringModel(mesh, material, with_stretch).terms();
   ForceTerms terms;
   const bool bends = material.bend_warp_Nm > 0.0 || material.bend_weft_Nm > 0.0;

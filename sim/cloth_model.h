@@ -8,7 +8,7 @@
 #include "base/enum_names.h"
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::sim {
 

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -54,46 +55,64 @@ std::vector<Spring> triangle_edge_springs(const ClothMesh& mesh, const Material&
 
 }  // namespace
 
-MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs) {
-  if (!mesh.has_grid()) {
-    std::vector<Spring> springs;
-    if (structural_springs) springs = triangle_edge_springs(mesh, m);
-    m_springs = std::make_shared<SpringTerm>(std::move(springs));
-    // Bending across each edge: the dihedral hinges of the continuum model (hinge_bending.h).
-    if (m.bend_warp_Nm > 0.0 || m.bend_weft_Nm > 0.0) m_hinges = std::make_shared<HingeBending>(mesh, m);
-    return;
+namespace {
+
+// A warp/weft grid's cell sizes and the width of cloth each of its edges stands for.
+struct GridCells {
+  const ClothMesh& mesh;
+  double hu, hv;
+  explicit GridCells(const ClothMesh& m)
+      : mesh(m),
+        hu(rest_length(m, m.index(0, 0), m.index(1, 0))),
+        hv(rest_length(m, m.index(0, 0), m.index(0, 1))) {}
+  // An edge exists when a kept cell has it as a side (ClothMesh); its tributary width comes
+  // from the kept cells beside it.
+  double warp_width(Index i, Index j) const { return tributary_width(mesh.warp_edge_cells(i, j), hv); }
+  double weft_width(Index i, Index j) const { return tributary_width(mesh.weft_edge_cells(i, j), hu); }
+};
+
+// The springs of one direction's edges: rigidity y (N/m, the part the shear diagonals do not
+// carry), or `law` less the diagonals' linear part `diagonal_N_m` when the direction has one.
+// `edge(i, j)` gives an edge's end vertices, rest length and width, or none.
+template <class Edges>
+void add_direction_springs(const Edges& edges, double y, const std::optional<StretchLaw>& law,
+                           double diagonal_N_m, SpringKind kind, std::vector<Spring>& springs,
+                           std::vector<StretchLaw>& laws) {
+  int index = -1;
+  if (law) {
+    laws.push_back(law->minus_linear(diagonal_N_m));
+    index = static_cast<int>(laws.size()) - 1;
   }
-  std::vector<Spring> springs;
-  std::vector<AngularSpring> bends;
-  const Index nu = mesh.nu, nv = mesh.nv;
-  const double hu = rest_length(mesh, mesh.index(0, 0), mesh.index(1, 0));
-  const double hv = rest_length(mesh, mesh.index(0, 0), mesh.index(0, 1));
-  const double G = m.shear_N_m;
+  edges([&](Index a, Index b, double l, double w) {
+    springs.push_back({a, b, l, y * w / l, kind, index, index < 0 ? 0.0 : w});
+  });
+}
+
+// Structural springs on the grid's warp and weft edges, then shear springs on both diagonals.
+std::shared_ptr<SpringTerm> grid_springs(const GridCells& g, const Material& m, bool structural) {
+  const ClothMesh& mesh = g.mesh;
+  const double hu = g.hu, hv = g.hv, G = m.shear_N_m;
   // Part of the stretch rigidity carried by the shear diagonals, taken off the edges.
-  const double yu = m.stretch_warp_N_m - G * (hu * hu) / (hv * hv);
-  const double yv = m.stretch_weft_N_m - G * (hv * hv) / (hu * hu);
-  if (structural_springs && (yu <= 0.0 || yv <= 0.0))
+  const double du = G * (hu * hu) / (hv * hv), dv = G * (hv * hv) / (hu * hu);
+  const double yu = m.stretch_warp_N_m - du, yv = m.stretch_weft_N_m - dv;
+  if (structural && (yu <= 0.0 || yv <= 0.0))
     throw MaterialError(
         "shear rigidity " + std::to_string(G) + " N/m is too large for the stretch rigidities at "
         "this cell aspect ratio (the shear springs alone would exceed the stretch stiffness)");
-
-  // An edge exists when a kept cell has it as a side (ClothMesh); its tributary width comes from
-  // the kept cells beside it.
-  const auto warp_width = [&](Index i, Index j) { return tributary_width(mesh.warp_edge_cells(i, j), hv); };
-  const auto weft_width = [&](Index i, Index j) { return tributary_width(mesh.weft_edge_cells(i, j), hu); };
-  if (structural_springs) {
-    for (Index j = 0; j < nv; ++j)
-      for (Index i = 0; i + 1 < nu; ++i)
-        if (mesh.warp_edge_cells(i, j) > 0)
-          springs.push_back({mesh.index(i, j), mesh.index(i + 1, j), hu,
-                               yu * warp_width(i, j) / hu, SpringKind::warp});
-    for (Index j = 0; j + 1 < nv; ++j)
-      for (Index i = 0; i < nu; ++i)
-        if (mesh.weft_edge_cells(i, j) > 0)
-          springs.push_back({mesh.index(i, j), mesh.index(i, j + 1), hv,
-                               yv * weft_width(i, j) / hv, SpringKind::weft});
+  std::vector<Spring> springs;
+  std::vector<StretchLaw> laws;
+  if (structural) {
+    add_direction_springs([&](auto add) {
+      for (Index j = 0; j < mesh.nv; ++j)
+        for (Index i = 0; i + 1 < mesh.nu; ++i)
+          if (mesh.warp_edge_cells(i, j) > 0) add(mesh.index(i, j), mesh.index(i + 1, j), hu, g.warp_width(i, j));
+    }, yu, m.stretch_law_warp, du, SpringKind::warp, springs, laws);
+    add_direction_springs([&](auto add) {
+      for (Index j = 0; j + 1 < mesh.nv; ++j)
+        for (Index i = 0; i < mesh.nu; ++i)
+          if (mesh.weft_edge_cells(i, j) > 0) add(mesh.index(i, j), mesh.index(i, j + 1), hv, g.weft_width(i, j));
+    }, yv, m.stretch_law_weft, dv, SpringKind::weft, springs, laws);
   }
-
   const double d = std::hypot(hu, hv);
   const double k_shear = G * d * d / (2.0 * hu * hv);
   if (k_shear > 0.0) {
@@ -102,26 +121,33 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
       springs.push_back({q[1], q[3], d, k_shear, SpringKind::shear});
     }
   }
+  return std::make_shared<SpringTerm>(std::move(springs), std::move(laws));
+}
 
-  // A bending stencil where both its edges exist, standing for the mean width of the two.
+// Angular bending stencils along warp and weft lines, where both of a stencil's edges exist,
+// each standing for the mean width of the two.
+std::shared_ptr<AngularBendingTerm> grid_bends(const GridCells& g, const Material& m) {
+  const ClothMesh& mesh = g.mesh;
+  const double hu = g.hu, hv = g.hv;
+  std::vector<AngularSpring> bends;
   std::vector<BendingLaw> laws;
   const int warp_law = m.bend_law_warp ? (laws.push_back(*m.bend_law_warp), 0) : -1;
   const int weft_law =
       m.bend_law_weft ? (laws.push_back(*m.bend_law_weft), static_cast<int>(laws.size()) - 1) : -1;
   if (m.bend_warp_Nm > 0.0) {
-    for (Index j = 0; j < nv; ++j)
-      for (Index i = 1; i + 1 < nu; ++i)
+    for (Index j = 0; j < mesh.nv; ++j)
+      for (Index i = 1; i + 1 < mesh.nu; ++i)
         if (mesh.warp_edge_cells(i - 1, j) > 0 && mesh.warp_edge_cells(i, j) > 0) {
-          const double w = 0.5 * (warp_width(i - 1, j) + warp_width(i, j));
+          const double w = 0.5 * (g.warp_width(i - 1, j) + g.warp_width(i, j));
           bends.push_back({mesh.index(i - 1, j), mesh.index(i, j), mesh.index(i + 1, j), 0.0,
                            m.bend_warp_Nm * w / hu, hu, w, warp_law});
         }
   }
   if (m.bend_weft_Nm > 0.0) {
-    for (Index j = 1; j + 1 < nv; ++j)
-      for (Index i = 0; i < nu; ++i)
+    for (Index j = 1; j + 1 < mesh.nv; ++j)
+      for (Index i = 0; i < mesh.nu; ++i)
         if (mesh.weft_edge_cells(i, j - 1) > 0 && mesh.weft_edge_cells(i, j) > 0) {
-          const double w = 0.5 * (weft_width(i, j - 1) + weft_width(i, j));
+          const double w = 0.5 * (g.weft_width(i, j - 1) + g.weft_width(i, j));
           bends.push_back({mesh.index(i, j - 1), mesh.index(i, j), mesh.index(i, j + 1), 0.0,
                            m.bend_weft_Nm * w / hv, hv, w, weft_law});
         }
@@ -131,8 +157,23 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
     const Vec3 x0 = vertex(mesh.rest_positions, b.v0), x1 = vertex(mesh.rest_positions, b.v1);
     b.rest_angle = turning_angle(x1 - x0, vertex(mesh.rest_positions, b.v2) - x1);
   }
-  m_springs = std::make_shared<SpringTerm>(std::move(springs));
-  m_bends = std::make_shared<AngularBendingTerm>(std::move(bends), std::move(laws));
+  return std::make_shared<AngularBendingTerm>(std::move(bends), std::move(laws));
+}
+
+}  // namespace
+
+MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs) {
+  if (!mesh.has_grid()) {
+    std::vector<Spring> springs;
+    if (structural_springs) springs = triangle_edge_springs(mesh, m);
+    m_springs = std::make_shared<SpringTerm>(std::move(springs));
+    // Bending across each edge: the dihedral hinges of the continuum model (hinge_bending.h).
+    if (m.bend_warp_Nm > 0.0 || m.bend_weft_Nm > 0.0) m_hinges = std::make_shared<HingeBending>(mesh, m);
+    return;
+  }
+  const GridCells cells(mesh);
+  m_springs = grid_springs(cells, m, structural_springs);
+  m_bends = grid_bends(cells, m);
 }
 
 ForceTerms MassSpringModel::terms() const {
@@ -170,21 +211,48 @@ std::string SpringTerm::describe() const {
   return out;
 }
 
+SpringTerm::SpringTerm(std::vector<Spring> springs, std::vector<StretchLaw> laws)
+    : m_springs(std::move(springs)), m_laws(std::move(laws)) {
+  for (const Spring& s : m_springs)
+    WEFT_CHECK(s.law >= -1 && s.law < static_cast<int>(m_laws.size()),
+               "SpringTerm: stretch law " + std::to_string(s.law) + " of " +
+                   std::to_string(m_laws.size()));
+}
+
+std::pair<double, double> SpringTerm::law_force(const Matrix3X& x, const Spring& s) const {
+  const StretchLaw& law = m_laws[static_cast<std::size_t>(s.law)];
+  const double strain = (vertex(x, s.b) - vertex(x, s.a)).norm() / s.rest_m - 1.0;
+  return {s.width_m * law.tension(strain), s.width_m / s.rest_m * law.stiffness(strain)};
+}
+
 Mat3 SpringTerm::pair_stiffness(const Matrix3X& x, std::size_t e, bool project_psd) const {
   const Spring& s = m_springs[e];
+  if (s.law >= 0) {
+    const auto [force, axial] = law_force(x, s);
+    return spring_hessian_b_from_force(vertex(x, s.a), vertex(x, s.b), force, axial, project_psd);
+  }
   return project_psd ? spring_hessian_b_projected(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m)
                      : spring_hessian_b(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
 }
 
 double SpringTerm::energy(const Matrix3X& x) const {
   double e = 0.0;
-  for (const Spring& s : m_springs) e += spring_energy(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
+  for (const Spring& s : m_springs) {
+    if (s.law < 0) {
+      e += spring_energy(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
+      continue;
+    }
+    const double strain = (vertex(x, s.b) - vertex(x, s.a)).norm() / s.rest_m - 1.0;
+    e += s.width_m * s.rest_m * m_laws[static_cast<std::size_t>(s.law)].energy_density(strain);
+  }
   return e;
 }
 
 void SpringTerm::add_forces(const Matrix3X& x, Matrix3X& f) const {
   for (const Spring& s : m_springs) {
-    const Vec3 g = spring_gradient_b(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m);
+    const Vec3 g = s.law < 0 ? spring_gradient_b(vertex(x, s.a), vertex(x, s.b), s.rest_m, s.k_N_m)
+                             : spring_gradient_b_from_force(vertex(x, s.a), vertex(x, s.b),
+                                                            law_force(x, s).first);
     f.row(s.a) += g.transpose();
     f.row(s.b) -= g.transpose();
   }

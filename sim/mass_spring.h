@@ -13,11 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "sim/bending_law.h"
+#include "sim/material/bending_law.h"
 #include "sim/energies/bend_angle.h"
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
+#include "sim/material/stretch_law.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -27,8 +28,10 @@ enum class SpringKind { warp, weft, shear };
 struct Spring {
   Index a, b;
   double rest_m;
-  double k_N_m;
+  double k_N_m;          // N/m: the linear law's stiffness, or a stretch law's at rest (w/l T'(0))
   SpringKind kind;
+  int law = -1;          // index of its StretchLaw in the term's laws; −1: linear, k_N_m
+  double width_m = 0.0;  // with a law: the width of cloth the edge stands for, w
 };
 
 struct AngularSpring {  // vertices x0, x1, x2 along a warp or weft line
@@ -40,10 +43,14 @@ struct AngularSpring {  // vertices x0, x1, x2 along a warp or weft line
   int law = -1;         // index of its BendingLaw in the term's laws; −1: linear, k_Nm
 };
 
-// Linear springs (sim/energies/spring.h): ½ k (|x_b − x_a| − l)² each.
+// Linear springs (sim/energies/spring.h): ½ k (|x_b − x_a| − l)² each, or with a nonlinear
+// stretch law T(ε) (sim/material/stretch_law.h) the edge's share of ∫ W(ε) dA, w l W(ε) for
+// ε = |x_b − x_a|/l − 1, whose force along the edge is w T(ε). The row bound is the one at rest,
+// with the law's initial stiffness: a stiffening law is stiffer when stretched.
 class SpringTerm final : public PairForceTerm {
  public:
-  explicit SpringTerm(std::vector<Spring> springs) : m_springs(std::move(springs)) {}
+  // Each spring's law indexes `laws` (or is −1: linear); a bad index is a bug (WEFT_CHECK).
+  explicit SpringTerm(std::vector<Spring> springs, std::vector<StretchLaw> laws = {});
   // "144 warp/weft springs, 128 shear springs" (the kinds present).
   std::string describe() const override;
   std::size_t element_count() const override { return m_springs.size(); }
@@ -58,11 +65,14 @@ class SpringTerm final : public PairForceTerm {
   const std::vector<Spring>& springs() const { return m_springs; }
 
  private:
+  // A law spring's force along it f = dE/d|d| (N) and axial stiffness d²E/d|d|² (N/m) at x.
+  std::pair<double, double> law_force(const Matrix3X& x, const Spring& s) const;
   std::vector<Spring> m_springs;
+  std::vector<StretchLaw> m_laws;
 };
 
 // Angular bending springs (sim/energies/bend_angle.h) along warp and weft lines: ½ k (θ − θ0)²
-// each, or with a nonlinear bending law M(κ) (sim/bending_law.h) the stencil's share of
+// each, or with a nonlinear bending law M(κ) (sim/material/bending_law.h) the stencil's share of
 // ∫ W(κ) dA, w l̄ W((θ − θ0) / l̄), whose slope dE/dθ = w M(κ) is the moment the stencil's
 // width carries. The row bound is the near-flat one, with the law's initial rigidity.
 class AngularBendingTerm final : public ForceTerm {

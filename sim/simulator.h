@@ -14,7 +14,7 @@
 #include "sim/grid.h"
 #include "sim/integrators/dynamic_relaxation.h"
 #include "sim/integrators/time_integrator.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/pin_motion.h"
 #include "sim/sim_settings.h"
 #include "sim/state.h"

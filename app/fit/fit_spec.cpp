@@ -31,7 +31,7 @@ const std::vector<ParameterKind>& parameter_kinds() {
       {"density", {"cloth.material.density"}, Quantity::areal_density, "kg/m^2"},
       {"friction", {"simulation.collision_friction"}, std::nullopt, ""},
       // The coefficients of cloth.material.bending_law (one law for both directions, whose form
-      // the fit file's "set" gives): sim/bending_law.h.
+      // the fit file's "set" gives): sim/material/bending_law.h.
       {"bend_law_B", {"cloth.material.bending_law.B"}, Quantity::bending_rigidity, "N*m"},
       {"bend_law_M0", {"cloth.material.bending_law.M0"}, Quantity::moment_per_width, "N"},
       {"bend_law_kappa0", {"cloth.material.bending_law.kappa0"}, Quantity::curvature, "1/m"},

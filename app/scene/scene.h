@@ -13,7 +13,7 @@
 #include "app/scene/tension_field_scene.h"
 #include "render/render_settings.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/pin_motion.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"

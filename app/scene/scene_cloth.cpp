@@ -3,6 +3,8 @@
 
 #include "app/scene/scene_cloth.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,12 +23,12 @@
 #include "app/scene/units.h"
 #include "base/constants.h"
 #include "base/enum_names.h"
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 
 namespace weft::app {
 namespace {
 
-// One bending law (sim/bending_law.h): {"form": "frictional", "B": …, "M0": …, "kappa0": …},
+// One bending law (sim/material/bending_law.h): {"form": "frictional", "B": …, "M0": …, "kappa0": …},
 // {"form": "cubic", "B": …, "C": …}, {"form": "linear", "B": …} or {"form": "table",
 // "curvature": [κ…], "moment": [M…]} (the points after (0, 0)).
 sim::BendingLaw read_bending_law(ObjectReader r) {
@@ -59,28 +61,72 @@ sim::BendingLaw read_bending_law(ObjectReader r) {
   }
 }
 
-// "cloth.material.bending_law": one law for both directions, or {"warp": …, "weft": …}. A law
-// sets the direction's bending rigidity (its slope at zero curvature), so bend_warp / bend_weft
-// may not be given beside it.
-void read_bending_laws(ObjectReader& material, sim::Material& m) {
-  if (!material.has("bending_law")) return;
-  ObjectReader laws = material.object("bending_law");
-  if (laws.has("form")) {
-    m.bend_law_warp = m.bend_law_weft = read_bending_law(material.object("bending_law"));
-  } else {
-    if (laws.has("warp")) m.bend_law_warp = read_bending_law(laws.object("warp"));
-    if (laws.has("weft")) m.bend_law_weft = read_bending_law(laws.object("weft"));
-    laws.finish();
+// One stretch law (sim/material/stretch_law.h): {"form": "linear", "Y": …} or {"form": "table",
+// "strain": [ε…], "tension": [T…]} (the points after (0, 0)).
+sim::StretchLaw read_stretch_law(ObjectReader r) {
+  using Form = sim::StretchLaw::Form;
+  const Form form = r.enumeration<Form>("form", sim::StretchLaw::form_names, std::nullopt);
+  try {
+    std::optional<sim::StretchLaw> law;
+    if (form == Form::linear)
+      law = sim::StretchLaw::linear(r.quantity("Y", Quantity::force_per_length, std::nullopt, Range::gt(0.0)));
+    if (form == Form::table) {
+      const std::size_t n = r.array_length("strain");
+      const auto strain = r.numbers("strain", n, std::nullopt);
+      const auto tension = r.quantities("tension", Quantity::force_per_length, n, std::nullopt);
+      std::vector<std::pair<double, double>> points;
+      for (std::size_t k = 0; k < n; ++k) points.emplace_back(strain[k], tension[k]);
+      law = sim::StretchLaw::table(std::move(points));
+    }
+    r.finish();
+    return *law;
+  } catch (const sim::MaterialError& e) {
+    r.fail(form == Form::table ? "tension" : "Y", e.what());
   }
-  for (const auto& [key, law] : {std::pair{"bend_warp", &m.bend_law_warp}, std::pair{"bend_weft", &m.bend_law_weft}})
-    if (*law && material.has(key))
-      material.fail(key, "the bending law sets this direction's bending rigidity (its slope at "
-                         "zero curvature); give it in the law, not here");
-  if (m.bend_law_warp) m.bend_warp_Nm = m.bend_law_warp->initial_rigidity();
-  if (m.bend_law_weft) m.bend_weft_Nm = m.bend_law_weft->initial_rigidity();
 }
 
-// "cloth.material": an optional "preset" (sim/material_presets.h) sets every value; each key
+// A material law per direction, "cloth.material.<key>": one law for both directions, or
+// {"warp": …, "weft": …}; a preset's laws stay unless replaced. A law sets its direction's
+// rigidity (its slope at zero), so that rigidity's key may not be given beside it.
+template <class Law, class ReadOne>
+void read_laws(ObjectReader& material, const std::string& key,
+               const std::array<std::string, 2>& rigidity_keys,
+               const std::array<std::optional<Law>*, 2>& laws, ReadOne read_one) {
+  if (material.has(key)) {
+    ObjectReader given = material.object(key);
+    if (given.has("form")) {
+      *laws[0] = *laws[1] = read_one(material.object(key));
+    } else {
+      if (given.has("warp")) *laws[0] = read_one(given.object("warp"));
+      if (given.has("weft")) *laws[1] = read_one(given.object("weft"));
+      given.finish();
+    }
+  }
+  std::string name = key;  // "bending law"
+  std::replace(name.begin(), name.end(), '_', ' ');
+  const std::string what = name.substr(0, name.find(' '));  // "bending"
+  for (std::size_t d = 0; d < 2; ++d)
+    if (*laws[d] && material.has(rigidity_keys[d]))
+      material.fail(rigidity_keys[d],
+                    (material.has(key) ? "the " + name : "the preset's measured " + name) +
+                        " sets this direction's " + what + " rigidity (its slope at zero); " +
+                        (material.has(key) ? "give it in the law, not here"
+                                           : "replace the law with " + key +
+                                                 ", or choose the preset without \"_curves\""));
+}
+
+void read_material_laws(ObjectReader& material, sim::Material& m) {
+  read_laws<sim::BendingLaw>(material, "bending_law", {"bend_warp", "bend_weft"},
+                             {&m.bend_law_warp, &m.bend_law_weft}, read_bending_law);
+  read_laws<sim::StretchLaw>(material, "stretch_law", {"stretch_warp", "stretch_weft"},
+                             {&m.stretch_law_warp, &m.stretch_law_weft}, read_stretch_law);
+  if (m.bend_law_warp) m.bend_warp_Nm = m.bend_law_warp->initial_rigidity();
+  if (m.bend_law_weft) m.bend_weft_Nm = m.bend_law_weft->initial_rigidity();
+  if (m.stretch_law_warp) m.stretch_warp_N_m = m.stretch_law_warp->initial_stiffness();
+  if (m.stretch_law_weft) m.stretch_weft_N_m = m.stretch_law_weft->initial_stiffness();
+}
+
+// "cloth.material": an optional "preset" (sim/material/material_presets.h) sets every value; each key
 // given besides it overrides that one value.
 sim::Material read_material(ObjectReader r) {
   std::vector<std::pair<std::string, sim::Material>> presets;
@@ -100,7 +146,7 @@ sim::Material read_material(ObjectReader r) {
       r.quantity("bend_warp", Quantity::bending_rigidity, m.bend_warp_Nm, non_negative);
   m.bend_weft_Nm =
       r.quantity("bend_weft", Quantity::bending_rigidity, m.bend_weft_Nm, non_negative);
-  read_bending_laws(r, m);
+  read_material_laws(r, m);
   r.finish();
   return m;
 }

@@ -16,7 +16,7 @@
 #include "sim/folds/fold_geometry.h"
 #include "sim/folds/tension_field.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::app {
 

@@ -8,7 +8,7 @@
 #include "sim/continuum/bw_membrane_kernel.h"
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::sim {
 

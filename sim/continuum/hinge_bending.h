@@ -14,7 +14,7 @@
 #include "sim/continuum/hinge_kernel.h"
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::sim {
 

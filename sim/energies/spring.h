@@ -22,4 +22,13 @@ inline Vec3 spring_gradient_b(const Vec3& xa, const Vec3& xb, double rest_m, dou
   return (k_N_m * (len - rest_m) / len) * d;
 }
 
+// A spring whose energy depends on its length alone, E(|d|) (a nonlinear stretch law): the
+// gradient with respect to xb is f d̂ for the force along it f = dE/d|d| (N, > 0 stretched).
+inline Vec3 spring_gradient_b_from_force(const Vec3& xa, const Vec3& xb, double force_N) {
+  const Vec3 d = xb - xa;
+  const double len = d.norm();
+  if (len == 0.0) return Vec3::Zero();
+  return (force_N / len) * d;
+}
+
 }  // namespace weft::sim

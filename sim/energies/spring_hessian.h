@@ -49,4 +49,20 @@ inline Mat3 spring_hessian_b_projected(const Vec3& xa, const Vec3& xb, double re
   return detail::spring_hessian_from_factor(d, len, k_N_m, std::max(0.0, 1.0 - rest_m / len));
 }
 
+// ∂²E/∂xb² of a spring whose energy depends on its length alone, E(|d|), with the force along it
+// f = dE/d|d| (N) and the axial stiffness a = d²E/d|d|² (N/m): a d̂d̂ᵀ + (f/|d|)(I − d̂d̂ᵀ). For
+// E = ½ k (|d| − l)² this is spring_hessian_b. Projected onto the PSD cone, both factors are
+// clamped at 0. Zero for a zero-length spring, like the gradient.
+inline Mat3 spring_hessian_b_from_force(const Vec3& xa, const Vec3& xb, double force_N,
+                                        double axial_N_m, bool project_psd) {
+  const Vec3 d = xb - xa;
+  const double len = d.norm();
+  if (len == 0.0) return Mat3::Zero();
+  const Vec3 u = d / len;
+  const Mat3 uut = u * u.transpose();
+  const double a = project_psd ? std::max(0.0, axial_N_m) : axial_N_m;
+  const double t = project_psd ? std::max(0.0, force_N / len) : force_N / len;
+  return a * uut + t * (Mat3::Identity() - uut);
+}
+
 }  // namespace weft::sim

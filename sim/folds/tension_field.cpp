@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "base/check.h"
+#include "base/format.h"
 #include "base/constants.h"
 
 namespace weft::sim {
@@ -18,18 +19,12 @@ namespace {
 // a0 = 1.01 h: the paper's first approximation of the lowest wrinkle line's amplitude (§5.2).
 constexpr double kLowestAmplitudeFactor = 1.01;
 
-std::string number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
-
 // unit: the SI unit the value is in, "" for a pure number.
 void require(bool ok, const char* field, const std::string& expected, double value,
              const char* unit = "") {
   if (!ok)
     throw TensionFieldInputError(field, std::string(field) + ": expected " + expected + ", got " +
-                                            number(value) + (*unit ? " " : "") + unit);
+                                            base::format("%.6g", value) + (*unit ? " " : "") + unit);
 }
 
 void require_positive(const char* field, const char* what, double value, const char* unit) {
@@ -58,7 +53,7 @@ void validate(const TensionFieldInputs& in) {
   require(std::isfinite(in.support_shift_m) && in.support_shift_m >= 0.0, "d",
           "the support displacement as a finite number >= 0", in.support_shift_m, "m");
   require(in.support_shift_m < in.width_m, "d",
-          "a support displacement smaller than the width L = " + number(in.width_m) +
+          "a support displacement smaller than the width L = " + base::format("%.6g", in.width_m) +
               " m (the span l = L - d must be > 0)",
           in.support_shift_m, "m");
   require_positive("t", "thickness", in.thickness_m, "m");
@@ -151,8 +146,8 @@ TensionFieldResult solve_tension_field(const TensionFieldInputs& in) {
   if (!ratio) {
     r.status = TensionFieldStatus::no_wrinkling;
     r.message = "no wrinkling: the compressive stress w h (Q-1)^2/(t Q (Q+1)) < w h / t = " +
-                number(in.weight_N_m2 * in.height_m / in.thickness_m) +
-                " Pa stays below the critical stress " + number(r.critical_stress_Pa) +
+                base::format("%.6g", in.weight_N_m2 * in.height_m / in.thickness_m) +
+                " Pa stays below the critical stress " + base::format("%.6g", r.critical_stress_Pa) +
                 " Pa of eq. (7) for every Q";
     return r;
   }
@@ -203,11 +198,11 @@ TensionFieldResult solve_tension_field(const TensionFieldInputs& in) {
   std::snprintf(percent, sizeof percent, "%+.2f %%", 100.0 * r.relative_error);
   const std::string miss = std::string(percent) + " from L";
   if (met)
-    r.message = "converged: L' is " + miss + " (tolerance " + number(100.0 * in.tolerance) + " %)";
+    r.message = "converged: L' is " + miss + " (tolerance " + base::format("%.6g", 100.0 * in.tolerance) + " %)";
   else
     r.message = "tolerance not met: the closest n = " + std::to_string(n) + " (of 1.." +
                 std::to_string(n_max) + ") gives L' " + miss + ", more than the tolerance " +
-                number(100.0 * in.tolerance) + " %";
+                base::format("%.6g", 100.0 * in.tolerance) + " %";
   return r;
 }
 

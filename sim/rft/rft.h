@@ -10,7 +10,7 @@
 
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::sim {
 

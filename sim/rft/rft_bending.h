@@ -8,7 +8,7 @@
 
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/rft/rft_bending_kernel.h"
 #include "sim/rft/rft_patch.h"
 

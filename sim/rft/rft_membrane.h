@@ -7,7 +7,7 @@
 
 #include "sim/force_term.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/rft/rft.h"
 #include "sim/rft/rft_membrane_kernel.h"
 #include "sim/rft/rft_patch.h"

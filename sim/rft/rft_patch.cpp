@@ -6,7 +6,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::sim {
 

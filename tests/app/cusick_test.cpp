@@ -16,7 +16,7 @@
 #include "app/run/measure.h"
 #include "app/scene/scene.h"
 #include "coarse_scene.h"
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 
 namespace weft::app {
 namespace {
@@ -49,7 +49,7 @@ TEST(Cusick, WoolDrapeCoefficientIsInRangeAndGrowsWithBendingRigidity) {
 }
 
 // The presets in the Cusick test. None of their sources publishes a drape coefficient
-// (sim/material_presets.cpp), so this cannot hold the simulation against published DCs; it holds
+// (sim/material/material_presets.cpp), so this cannot hold the simulation against published DCs; it holds
 // it to the finding that DC rises with the cantilever bending length (Cusick, G. E. (1965), "The
 // dependence of fabric drape on bending and shear stiffness", J. Textile Inst. 56)
 // c = (B/w)^(1/3), on the library's extremes (Wang et al. 2011): the t-shirt interlock, the

@@ -5,7 +5,7 @@
 // scripts/xlsx_to_csv.py), which gives B = moment / curvature along the strip.
 #include <gtest/gtest.h>
 
-#include "sim/bending_law.h"
+#include "sim/material/bending_law.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 
 #include "app/scene/json_reader.h"
 #include "app/scene/scene.h"
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {

@@ -1,4 +1,4 @@
-// Nonlinear bending laws (sim/bending_law.h) and the angular bending term that bends by them:
+// Nonlinear bending laws (sim/material/bending_law.h) and the angular bending term that bends by them:
 // each law's moment is the derivative of its energy and its stiffness the derivative of its
 // moment (central differences), the table passes through its points, bad laws are refused;
 // the angular term's forces and exact Hessian against finite differences, linear and nonlinear,
@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "sim/bending_law.h"
+#include "sim/material/bending_law.h"
 #include "sim/cloth_model.h"
 #include "sim/mass_spring.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "tests/sim/force_term_fd.h"
 
 namespace weft::sim {
@@ -25,7 +25,6 @@ std::vector<BendingLaw> every_form() {
 
 TEST(BendingLaw, MomentIsTheEnergySlopeAndStiffnessTheMomentSlope) {
   for (const BendingLaw& law : every_form()) {
-    // Inside the table's segments (the kinks are where its stiffness jumps).
     for (const double kappa : {-15.0, -1.1, -0.1, 0.05, 0.3, 1.0, 7.0, 16.0, 30.0}) {
       const double h = 1e-6 * std::max(1.0, std::abs(kappa));
       const double dW = (law.energy_density(kappa + h) - law.energy_density(kappa - h)) / (2 * h);
@@ -52,10 +51,26 @@ TEST(BendingLaw, TablePassesThroughItsPointsAndExtendsItsLastSlope) {
   const BendingLaw law = BendingLaw::table({{1.0, 0.5}, {3.0, 0.7}});
   EXPECT_DOUBLE_EQ(law.moment(1.0), 0.5);
   EXPECT_DOUBLE_EQ(law.moment(3.0), 0.7);
-  EXPECT_DOUBLE_EQ(law.moment(0.5), 0.25);
-  EXPECT_DOUBLE_EQ(law.moment(5.0), 0.9);
-  EXPECT_DOUBLE_EQ(law.initial_rigidity(), 0.5);
-  EXPECT_DOUBLE_EQ(law.energy_density(3.0), 0.5 * 0.5 * 1.0 + 0.5 * (0.5 + 0.7) * 2.0);
+  EXPECT_DOUBLE_EQ(law.moment(5.0), 0.9);                       // the last segment's mean slope
+  EXPECT_DOUBLE_EQ(law.initial_rigidity(), 0.5);                // the first segment's
+  // The interior point's slope is the weighted harmonic mean of its segments' (h = 1, 2):
+  // (w1 + w2) / (w1/0.5 + w2/0.1) with w1 = 2·2 + 1, w2 = 2 + 2·1.
+  const double d1_first = 9.0 / (5.0 / 0.5 + 4.0 / 0.1);
+  EXPECT_NEAR(law.stiffness(1.0), d1_first, 1e-15);
+  // Concave data (mean slopes 0.5, then 0.1) give a curve above the chord in the first segment,
+  // and the energy is its integral: the trapezoid rule plus h² (d0 − d1)/12 for a Hermite cubic.
+  EXPECT_NEAR(law.moment(0.5), 0.5 * 0.125 + 0.5 * 0.5 - d1_first * 0.125, 1e-15);
+  EXPECT_NEAR(law.energy_density(1.0), 0.5 * 0.5 + (0.5 - d1_first) / 12.0, 1e-15);
+}
+
+TEST(BendingLaw, TableStiffnessIsContinuousAndPositive) {
+  const BendingLaw law = BendingLaw::table({{0.4, 0.19}, {2.0, 0.26}, {12.0, 0.34}, {20.0, 0.39}});
+  for (const double kappa : {0.0, 0.4, 2.0, 12.0, 20.0}) {
+    const double h = 1e-9;
+    EXPECT_NEAR(law.stiffness(kappa + h), law.stiffness(std::max(0.0, kappa - h)), 1e-6 * law.stiffness(kappa))
+        << "at " << kappa;
+  }
+  for (double kappa = 0.0; kappa < 25.0; kappa += 0.01) EXPECT_GT(law.stiffness(kappa), 0.0);
 }
 
 TEST(BendingLaw, RefusesLawsWithoutAStableShape) {

@@ -11,7 +11,7 @@
 #include "sim/cloth_model.h"
 #include "sim/grid.h"
 #include "sim/mass_spring.h"
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
 

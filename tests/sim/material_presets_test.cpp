@@ -1,7 +1,7 @@
 // Material presets: the lookup, its error, Kang & Yu's wool as sim::Material's default, the
 // conversion of Wang et al.'s ARCSim material files (by hand, and against ARCSim's own energies),
 // every preset's provenance and plausibility, and the models each preset builds.
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 
 #include <gtest/gtest.h>
 
@@ -103,7 +103,7 @@ ArcsimFabric arcsim_denim() {
           {64.196457e-6, 73.384567e-6, 96.951576e-6}};
 }
 
-// The conversion by hand (sim/material_presets.cpp derives it from ARCSim's code): tensile
+// The conversion by hand (sim/material/material_presets.cpp derives it from ARCSim's code): tensile
 // rigidity = 2 × the strain-0 sample (dde.cpp doubles every sample; physics.cpp's energy is
 // ½k ε²), shear = the c33 sample (k3 ε01² = ½(k3/2)γ² with k3 = 2·sample), bending = ke/4 (ARCSim's
 // hinge ke·l²/(2(A0+A1))·θ²/4 is weft's ½·B·l²/(A0+A1)·θ²), warp from the edges along v (row 2).
@@ -243,6 +243,7 @@ double mean_bending_length_cm(const std::string& name) {
 TEST(MaterialPresets, BendingLengthsSpanGarmentFabricsInThePublishedOrder) {
   std::string softest, stiffest;
   for (const MaterialPreset& p : material_presets()) {
+    if (p.material.bend_law_warp) continue;  // the "_curves" presets: MaterialPresets.CurvesPresets…
     const Material& m = p.material;
     for (double B : {m.bend_warp_Nm, m.bend_weft_Nm}) {
       EXPECT_GT(bending_length_cm(B, m.density_kg_m2), 1.0) << p.name;
@@ -294,7 +295,10 @@ TEST(MaterialPresets, SoftestAndStiffestCantileversOrderAsTheirBendingLengths) {
 // stretch, so on square cells it needs shear < both stretch rigidities (MassSpringModel); two knits
 // measure a shear rigidity above a stretch one (interlock 36.9 > 33.2 N/m warp; sweater 17.6 >
 // 6.5 N/m weft) and it refuses them with a MaterialError, as it should. The continuum models build
-// every preset, and so does the mass-spring model with stretch left to constraints.
+// every linear preset, and so does the mass-spring model with stretch left to constraints. The
+// "_curves" presets only build the mass-spring model with its springs (their laws need it); their
+// rigidity at rest is the curves' slope at zero (their first mean slope, to 1e-4 strain), near
+// the linear presets' (twice row 0), so the same two knits are refused.
 TEST(MaterialPresets, EveryPresetBuildsTheContinuumModelsAndTheMassSpringWhereItCan) {
   GridSpec spec;
   spec.nu = spec.nv = 5;
@@ -302,19 +306,52 @@ TEST(MaterialPresets, EveryPresetBuildsTheContinuumModelsAndTheMassSpringWhereIt
   std::set<std::string> refused;
   for (const MaterialPreset& p : material_presets()) {
     const Material& m = p.material;
-    for (ClothModel model : {ClothModel::baraff_witkin, ClothModel::rft3})
-      EXPECT_NO_THROW((void)make_force_terms(mesh, m, model, true)) << p.name;
+    const bool curves = m.stretch_law_warp.has_value();
+    for (ClothModel model : {ClothModel::baraff_witkin, ClothModel::rft3}) {
+      if (curves) {
+        EXPECT_THROW((void)make_force_terms(mesh, m, model, true), MaterialError) << p.name;
+      } else {
+        EXPECT_NO_THROW((void)make_force_terms(mesh, m, model, true)) << p.name;
+      }
+    }
     if (m.shear_N_m < std::min(m.stretch_warp_N_m, m.stretch_weft_N_m)) {
       const MassSpringModel model(mesh, m);
       for (const Spring& s : model.springs()) EXPECT_GT(s.k_N_m, 0.0) << p.name;
       for (const AngularSpring& b : model.bends()) EXPECT_GT(b.k_Nm, 0.0) << p.name;
     } else {
       EXPECT_THROW(MassSpringModel(mesh, m), MaterialError) << p.name;
-      EXPECT_NO_THROW(MassSpringModel(mesh, m, false)) << p.name;
+      if (!curves) {
+        EXPECT_NO_THROW(MassSpringModel(mesh, m, false)) << p.name;
+      }
       refused.insert(p.name);
     }
   }
-  EXPECT_EQ(refused, (std::set<std::string>{"wang2011_gray_interlock", "wang2011_navy_sparkle_sweat"}));
+  EXPECT_EQ(refused, (std::set<std::string>{"wang2011_gray_interlock", "wang2011_navy_sparkle_sweat",
+                                            "wang2011_gray_interlock_curves",
+                                            "wang2011_navy_sparkle_sweat_curves"}));
+}
+
+// Each of the ten fabrics has a "_curves" preset: the linear one's density and shear, with both
+// directions' tension–strain and moment–curvature laws, whose slopes at zero are its rigidities.
+TEST(MaterialPresets, CurvesPresetsCarryBothLawsOfEachWangFabric) {
+  int curves = 0;
+  for (const MaterialPreset& p : material_presets()) {
+    const Material& m = p.material;
+    if (!m.stretch_law_warp) continue;
+    ++curves;
+    const std::string linear = p.name.substr(0, p.name.size() - std::string("_curves").size());
+    ASSERT_EQ(p.name, linear + "_curves");
+    const Material& base = material_preset(linear).material;
+    EXPECT_EQ(m.density_kg_m2, base.density_kg_m2);
+    EXPECT_EQ(m.shear_N_m, base.shear_N_m);
+    ASSERT_TRUE(m.stretch_law_weft && m.bend_law_warp && m.bend_law_weft) << p.name;
+    EXPECT_EQ(m.stretch_warp_N_m, m.stretch_law_warp->initial_stiffness());
+    EXPECT_EQ(m.stretch_weft_N_m, m.stretch_law_weft->initial_stiffness());
+    EXPECT_EQ(m.bend_warp_Nm, m.bend_law_warp->initial_rigidity());
+    EXPECT_EQ(m.bend_weft_Nm, m.bend_law_weft->initial_rigidity());
+    EXPECT_NE(p.source.find("tension against strain"), std::string::npos) << p.source;
+  }
+  EXPECT_EQ(curves, 10);
 }
 
 }  // namespace

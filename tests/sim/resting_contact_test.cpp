@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
 #include "test_cloth.h"

@@ -14,7 +14,7 @@
 
 #include "base/constants.h"
 #include "sim/grid.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/rft/rft_bending.h"
 #include "sim/rft/rft_membrane.h"
 #include "tests/sim/force_term_fd.h"

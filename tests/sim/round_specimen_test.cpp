@@ -19,7 +19,7 @@
 #include "base/constants.h"
 #include "sim/cloth_model.h"
 #include "sim/mass_spring.h"
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 #include "sim/simulator.h"
 
 namespace weft::sim {

@@ -7,7 +7,7 @@
 
 #include "sim/grid.h"
 #include "sim/mass_spring.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/system.h"
 
 namespace weft::sim::test_cloth {

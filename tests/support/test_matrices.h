@@ -22,7 +22,7 @@
 #include "sim/grid.h"
 #include "sim/linear/sparse_spd_solver.h"
 #include "sim/mass_spring.h"
-#include "sim/material.h"
+#include "sim/material/material.h"
 #include "sim/pins.h"
 
 namespace weft::sim::test_matrices {

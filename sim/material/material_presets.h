@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/material.h"
+#include "sim/material/material.h"
 
 namespace weft::sim {
 

@@ -1,11 +1,12 @@
 #pragma once
 // Fabric parameters in SI units, per unit width/area so that they do not depend on the mesh.
-// Named fabrics (presets) with their sources: sim/material_presets.h.
+// Named fabrics (presets) with their sources: sim/material/material_presets.h.
 
 #include <optional>
 #include <stdexcept>
 
-#include "sim/bending_law.h"
+#include "sim/material/bending_law.h"
+#include "sim/material/stretch_law.h"
 
 namespace weft::sim {
 
@@ -47,10 +48,14 @@ struct Material {
   // Bending rigidity, curvature along warp: moment per width per curvature. 8.14e-6 N·m.
   double bend_warp_Nm = textile::gf_cm(0.083);
   double bend_weft_Nm = textile::gf_cm(0.063);  // along weft: 6.18e-6 N·m
-  // Nonlinear bending (sim/bending_law.h), per direction; none: linear, M = B κ. When set,
+  // Nonlinear bending (sim/material/bending_law.h), per direction; none: linear, M = B κ. When set,
   // bend_warp_Nm / bend_weft_Nm are its initial rigidity (the slope at κ = 0), which sets the
   // time step and the stability bounds. Only the mass-spring model on a grid bends by a law.
   std::optional<BendingLaw> bend_law_warp, bend_law_weft;
+  // Nonlinear stretch (sim/material/stretch_law.h), per direction; none: linear, T = Y ε. When
+  // set, stretch_warp_N_m / stretch_weft_N_m are its initial stiffness (the slope at ε = 0). Only
+  // the mass-spring model's structural springs on a grid stretch by a law.
+  std::optional<StretchLaw> stretch_law_warp, stretch_law_weft;
 };
 
 }  // namespace weft::sim

@@ -11,16 +11,19 @@
 //               elastic slope B, smoothed over the curvature κ₀ (slope at 0: B + M₀/κ₀)
 //   cubic       M = B κ + C κ³                              (C ≥ 0: stiffening; the low-order
 //               polynomial of drape-tester and cantilever fits)
-//   table       M piecewise linear through measured (κᵢ, Mᵢ), 0 < κ₁ < κ₂ < …, from (0, 0),
-//               extended beyond the last point with the last segment's slope
+//   table       M through measured (κᵢ, Mᵢ), 0 < κ₁ < κ₂ < …, from (0, 0): a monotone cubic
+//               with a continuous slope (sim/material/rising_table.h), extended beyond the last
+//               point with the last segment's mean slope
 // The energy per area is W(κ) = ∫₀^κ M, J/m². Every form is odd in κ (W even) and has
 // dM/dκ > 0 everywhere (checked), so W is convex: the bending energy keeps one minimum.
 
 #include <string>
 
-#include "base/enum_names.h"
 #include <utility>
 #include <vector>
+
+#include "base/enum_names.h"
+#include "sim/material/rising_table.h"
 
 namespace weft::sim {
 
@@ -28,7 +31,7 @@ class BendingLaw {
  public:
   enum class Form { linear, frictional, cubic, table };
 
-  // Each throws MaterialError (sim/material.h) naming the bad value: B ≤ 0 (linear), B < 0,
+  // Each throws MaterialError (sim/material/material.h) naming the bad value: B ≤ 0 (linear), B < 0,
   // M₀ < 0 or κ₀ ≤ 0 or B + M₀/κ₀ ≤ 0 (frictional), B ≤ 0 or C < 0 (cubic); a table with fewer
   // than one point, a curvature not increasing from > 0, a moment not increasing from > 0, or
   // any value not finite.
@@ -59,16 +62,14 @@ class BendingLaw {
   double M0() const { return m_M0; }
   double kappa0() const { return m_kappa0; }
   double C() const { return m_C; }
-  const std::vector<std::pair<double, double>>& points() const { return m_points; }
+  // Table: its points (κ, M) after (0, 0).
+  std::vector<std::pair<double, double>> points() const { return m_table.points(); }
 
  private:
   BendingLaw() = default;
-  // Table: the segment containing |κ| (its index, the last one beyond the table).
-  std::size_t segment(double kappa) const;
   Form m_form = Form::linear;
   double m_B = 0.0, m_M0 = 0.0, m_kappa0 = 1.0, m_C = 0.0;
-  std::vector<std::pair<double, double>> m_points;  // table, with (0, 0) first
-  std::vector<double> m_energy_at;                  // table: W at each point
+  RisingTable m_table;  // table: M(|κ|)
 };
 
 }  // namespace weft::sim

@@ -1,7 +1,9 @@
-#include "sim/material_presets.h"
+#include "sim/material/material_presets.h"
 
 #include <cmath>
 #include <stdexcept>
+
+#include "sim/material/wang2011_fabrics.h"
 
 namespace weft::sim {
 namespace {
@@ -31,8 +33,7 @@ Material textile_material(double weight, double stretch_warp, double stretch_wef
 // They measured ten fabrics (stretch, shear and bending tests) and fitted a piecewise-linear
 // model to each; ARCSim (Narain, Samii and O'Brien 2012) distributes the fitted models as its
 // material files materials/<fabric>.json, with each fabric's use and fibre content in
-// materials/README. The numbers below are typed from those files (as stored in
-// github.com/wxhaooo/lyra, materials/, an ARCSim derivative; one stored version). Their meaning is
+// materials/README. Their numbers are in sim/material/wang2011_fabrics.cpp. Their meaning is
 // fixed by the ARCSim code that reads them (ARCSim 0.2.1/0.3 src/conf.cpp, src/dde.cpp,
 // src/physics.cpp, src/mesh.cpp; read in copies on GitHub, nothing of it is used here):
 //
@@ -50,14 +51,16 @@ Material textile_material(double weight, double stretch_warp, double stretch_wef
 // A shear angle γ has ε01 = γ/2 and costs k3 γ²/4 = ½(k3/2) γ²: shear (per radian) = k3/2 =
 // row0[3]. k1 (Poisson coupling, often negative and then clamped to 0) has no weft field. Knits
 // are soft here (tens of N/m) and stiffen fast: their 1/6-stretch rows are several times row 0
-// (the sweater's c22 some 90×), which a linear Material cannot follow.
+// (the sweater's c22 some 90×), which a linear Material cannot follow: the "_curves" presets
+// carry the whole tension–strain curve (wang2011_stretch_law).
 //
 // bending (3 rows × 5): dde.cpp bending_stiffness picks the row by the direction of the hinge
 // edge in material space (row 0 along u, 1 at 45°, 2 along v) and the column by
 // curv = θ·l/(A0 + A1), the dihedral angle over the mean height of the two triangles, which for a
 // cylinder of curvature κ across the edge is κ: column j is read at curv/2 = 5j m⁻¹ ("samples are
 // per 0.05 cm^-1 = 5 m^-1"), κ = 0, 10, 20, 30, 40 m⁻¹. Column 0 is the zero-curvature value,
-// weft's linear B (the others differ by up to ×2.5 on some fabrics: not representable here).
+// the linear presets' B; the others differ by up to ×2.5 on some fabrics, which the "_curves"
+// presets carry as a moment–curvature law (wang2011_bending_law).
 // physics.cpp bending_force applies, per interior edge of length l between triangles of rest
 // areas A0, A1, the gradient of ke·shape·(θ − θ0)²/4 with shape = l²/(2(A0 + A1)), i.e.
 //   E = ½ (ke/4) l²/(A0 + A1) (θ − θ0)²,
@@ -90,22 +93,55 @@ Material material_from_arcsim(const ArcsimFabric& fabric) {
 
 namespace {
 
-// A Wang et al. fabric: its ARCSim file name, its use and fibre content (materials/README), and
-// the values of the file used (ArcsimFabric).
-MaterialPreset wang2011(const std::string& name, const std::string& file, const std::string& what,
-                        const ArcsimFabric& fabric) {
-  return {name, material_from_arcsim(fabric),
-          "Wang, Ramamoorthi & O'Brien 2011, 'Data-Driven Elastic Models for Cloth: Modeling and "
-          "Measurement', ACM Trans. Graph. 30(4) 71, fabric '" + file + "' (" + what +
-              "), as ARCSim's materials/" + file +
-              ".json: density; stretch = 2 x strain-0 c11, c22 sample, shear = its c33; bending "
-              "= zero-curvature hinge ke / 4, warp from edges along v, weft along u (ARCSim's u/v "
-              "as warp/weft; sim/material_presets.cpp); no drape coefficient given",
+std::string wang2011_source(const Wang2011Fabric& f) {
+  return "Wang, Ramamoorthi & O'Brien 2011, 'Data-Driven Elastic Models for Cloth: Modeling and "
+         "Measurement', ACM Trans. Graph. 30(4) 71, fabric '" + f.file + "' (" + f.what +
+         "), as ARCSim's materials/" + f.file + ".json";
+}
+
+// A Wang et al. fabric's zero samples: density, row 0 of stretching, column 0 of bending.
+ArcsimFabric zero_samples(const Wang2011Fabric& f) {
+  ArcsimFabric a;
+  a.density_kg_m2 = f.density_kg_m2;
+  for (int c = 0; c < 4; ++c) a.stretching[c] = f.stretching[0][c];
+  for (int r = 0; r < 3; ++r) a.bending[r] = f.bending[r][0];
+  return a;
+}
+
+// The linear preset of a Wang et al. fabric: its zero-strain, zero-curvature samples.
+MaterialPreset wang2011_linear(const Wang2011Fabric& f) {
+  return {f.preset, material_from_arcsim(zero_samples(f)),
+          wang2011_source(f) + ": density; stretch = 2 x strain-0 c11, c22 sample, shear = its "
+                               "c33; bending = zero-curvature hinge ke / 4, warp from edges along "
+                               "v, weft along u (ARCSim's u/v as warp/weft; "
+                               "sim/material/material_presets.cpp); no drape coefficient given",
+          "", std::nullopt};
+}
+
+// The measured-curves preset "<preset>_curves": the linear one with the tension–strain and
+// moment–curvature curves of both directions (sim/material/wang2011_fabrics.h); its stretch and
+// bending rigidities become the curves' slopes at zero.
+MaterialPreset wang2011_curves(const Wang2011Fabric& f) {
+  Material m = material_from_arcsim(zero_samples(f));
+  m.stretch_law_warp = wang2011_stretch_law(f, FabricAxis::u);
+  m.stretch_law_weft = wang2011_stretch_law(f, FabricAxis::v);
+  m.bend_law_warp = wang2011_bending_law(f, FabricAxis::u);
+  m.bend_law_weft = wang2011_bending_law(f, FabricAxis::v);
+  m.stretch_warp_N_m = m.stretch_law_warp->initial_stiffness();
+  m.stretch_weft_N_m = m.stretch_law_weft->initial_stiffness();
+  m.bend_warp_Nm = m.bend_law_warp->initial_rigidity();
+  m.bend_weft_Nm = m.bend_law_weft->initial_rigidity();
+  return {f.preset + "_curves", m,
+          wang2011_source(f) + ": density, shear = strain-0 c33; tension against strain along "
+                               "u, v from the c11, c22 samples at no stretch and at 7/6 stretch; "
+                               "bending moment against curvature to 30 1/m from the hinge ke / 4 "
+                               "of edges along v (warp) and u (weft) (ARCSim's u/v as warp/weft; "
+                               "sim/material/wang2011_fabrics.h); no drape coefficient given",
           "", std::nullopt};
 }
 
 std::vector<MaterialPreset> make_presets() {
-  return {
+  std::vector<MaterialPreset> presets{
       // Exact published values: Kang, T. J. and Yu, W. R. (1995), "Drape simulation of woven
       // fabric by using the finite-element method", Journal of the Textile Institute; as quoted in
       // seed 002 (Zhou & Sze), §4: tensile 1118.2 / 759.5 gf/cm, shear 41.8 gf/cm, bending
@@ -117,42 +153,11 @@ std::vector<MaterialPreset> make_presets() {
        "Kang & Yu 1995, J. Textile Inst., 'Drape simulation of woven fabric by using the "
        "finite-element method', as quoted in seed 002 (Zhou & Sze) section 4 (table number "
        "not checked); no drape coefficient given",
-       "", std::nullopt},
-      // Wang et al. 2011 as ARCSim's files give them: {density}, {stretching row 0}, {bending
-      // column 0 of rows 0, 1, 2}.
-      wang2011("wang2011_11oz_black_denim", "11oz-black-denim", "jeans, 99% cotton 1% spandex",
-               {0.324, {205.352005, 10.234077, 1013.88629, 53.387184},
-                {64.196457e-6, 73.384567e-6, 96.951576e-6}}),
-      wang2011("wang2011_camel_ponte_roma", "camel-ponte-roma",
-               "jacket, 60% polyester 40% rayon",
-               {0.284, {31.146198, -12.802702, 44.028667, 31.896357},
-                {36.348366e-6, 33.013252e-6, 37.157593e-6}}),
-      wang2011("wang2011_gray_interlock", "gray-interlock", "t-shirt, 60% cotton 40% polyester",
-               {0.187, {16.593832, -14.695990, 34.477123, 36.860302},
-                {23.191698e-6, 24.749964e-6, 14.267624e-6}}),
-      wang2011("wang2011_ivory_rib_knit", "ivory-rib-knit", "underwear, 95% cotton 5% spandex",
-               {0.276, {42.871021, -0.234556, 65.166023, 83.175644},
-                {46.237591e-6, 30.015930e-6, 32.243889e-6}}),
-      wang2011("wang2011_navy_sparkle_sweat", "navy-sparkle-sweat",
-               "sweater, 96% polyester 4% spandex",
-               {0.224, {12.486332, -19.875324, 3.272434, 17.616289},
-                {59.469658e-6, 40.072277e-6, 45.625023e-6}}),
-      wang2011("wang2011_pink_ribbon_brown", "pink-ribbon-brown", "blanket, 100% polyester",
-               {0.228, {151.503906, 106.028160, 244.830673, 30.250183},
-                {117.070122e-6, 87.509773e-6, 59.774277e-6}}),
-      wang2011("wang2011_royal_target", "royal-target", "pants, 65% cotton 35% polyester",
-               {0.220, {2016.55456, 9.170511, 2034.97644, 104.759674},
-                {125.409805e-6, 107.997696e-6, 125.409805e-6}}),
-      wang2011("wang2011_tango_red_jet_set", "tango-red-jet-set", "jacket, 100% polyester",
-               {0.113, {43.067627, 54.373299, 171.424835, 14.314700},
-                {14.293814e-6, 21.951700e-6, 20.345654e-6}}),
-      wang2011("wang2011_white_dots_on_blk", "white-dots-on-blk", "tablecloth, 100% polyester",
-               {0.128, {2002.08618, 0.345588, 2027.48559, 19.189022},
-                {51.713814e-6, 40.659470e-6, 31.282822e-6}}),
-      wang2011("wang2011_white_swim_solid", "white-swim-solid", "swimsuit, 87% nylon 13% spandex",
-               {0.204, {47.971176, 6.834521, 104.615456, 60.773663},
-                {60.237942e-6, 58.803211e-6, 51.018833e-6}}),
-  };
+       "", std::nullopt}};
+  // Wang et al. 2011: the linear presets, then the measured curves.
+  for (const Wang2011Fabric& f : wang2011_fabrics()) presets.push_back(wang2011_linear(f));
+  for (const Wang2011Fabric& f : wang2011_fabrics()) presets.push_back(wang2011_curves(f));
+  return presets;
 }
 
 }  // namespace
