@@ -75,7 +75,7 @@ TEST(CusickPhotoFit, RecoversBendingFromSyntheticSilhouettesStarting2xOff) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   // tests/data/photos/cusick_synthetic holds copies of these four (assets/fits/cusick_photos_synthetic.json).
-  // Three specimens of the fabric (seeds 11, 12, 13), seen turned, mirrored, at another scale.
+  // Three specimens of the fabric (seeds 1, 2, 3), seen turned, mirrored, at another scale.
   write_silhouettes(dir, truth, 1, {{"drape_0deg.png", 0.5, 0.0, false}});
   write_silhouettes(dir, truth, 2, {{"drape_40deg_mirrored.png", 0.5, base::deg_to_rad(40.0), true}});
   write_silhouettes(dir, truth, 3, {{"check_115deg_0.6mm.png", 0.6, base::deg_to_rad(115.0), false}});
@@ -108,10 +108,12 @@ TEST(CusickPhotoFit, RecoversBendingFromSyntheticSilhouettesStarting2xOff) {
   EXPECT_NEAR(r.best.values[0] / truth, 1.0, 0.05) << r.stop_reason;
   EXPECT_TRUE(r.fitted[0].low_open || r.fitted[0].band_low <= truth);
   EXPECT_TRUE(r.fitted[0].high_open || truth <= r.fitted[0].band_high);
-  // A held-out specimen (seed 13, turned, at another scale): its DC predicted by the fit.
+  // A held-out specimen (seed 3, turned, at another scale): its DC predicted by the fit within
+  // twice the spread between specimens, the model's own sd over seeds 1–10 at the truth on this
+  // grid (0.588 ± 0.019, 0.552–0.615: weft measure --static --seeds 10, docs/photos.md).
   const DrapePhotoComparison& held_out = out.drape_check->images[2];
   EXPECT_TRUE(held_out.held_out);
-  EXPECT_NEAR(held_out.image_drape_coefficient, out.drape_check->fitted.drape_coefficient, 0.03);
+  EXPECT_NEAR(held_out.image_drape_coefficient, out.drape_check->fitted.drape_coefficient, 2 * 0.019);
   for (const char* file : {"drape_photos.png", "outline_spectra.png", "report.html", "fit_result.json"})
     EXPECT_TRUE(fs::exists(dir / file)) << file;
 }
