@@ -39,6 +39,13 @@ struct HermiteSegment {
   }
 };
 
+// The Hermite cubic of segment k of a table's points and slopes.
+HermiteSegment hermite(const std::vector<std::pair<double, double>>& points,
+                       const std::vector<double>& slopes, std::size_t k) {
+  return {points[k + 1].first - points[k].first, points[k].second, points[k + 1].second,
+          slopes[k], slopes[k + 1]};
+}
+
 }  // namespace
 
 RisingTable::RisingTable(std::vector<std::pair<double, double>> points, const Names& names) {
@@ -79,8 +86,7 @@ RisingTable::RisingTable(std::vector<std::pair<double, double>> points, const Na
   m_integral_at.assign(1, 0.0);
   m_least_slope = m_slope_at.back();
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    const HermiteSegment s{h[k], m_points[k].second, m_points[k + 1].second, m_slope_at[k],
-                           m_slope_at[k + 1]};
+    const HermiteSegment s = hermite(m_points, m_slope_at, k);
     m_least_slope = std::min(m_least_slope, s.least_slope());
     require(s.least_slope() > 0.0, where(k + 1) + ": the curve through the points flattens");
     m_integral_at.push_back(m_integral_at.back() + s.integral(1.0));
@@ -99,19 +105,15 @@ double RisingTable::value(double x) const {
   if (x >= m_points.back().first)
     return m_points.back().second + m_slope_at.back() * (x - m_points.back().first);
   const std::size_t k = segment(x);
-  const double h = m_points[k + 1].first - m_points[k].first;
-  return HermiteSegment{h, m_points[k].second, m_points[k + 1].second, m_slope_at[k],
-                        m_slope_at[k + 1]}
-      .value((x - m_points[k].first) / h);
+  const HermiteSegment s = hermite(m_points, m_slope_at, k);
+  return s.value((x - m_points[k].first) / s.h);
 }
 
 double RisingTable::slope(double x) const {
   if (x >= m_points.back().first) return m_slope_at.back();
   const std::size_t k = segment(x);
-  const double h = m_points[k + 1].first - m_points[k].first;
-  return HermiteSegment{h, m_points[k].second, m_points[k + 1].second, m_slope_at[k],
-                        m_slope_at[k + 1]}
-      .slope((x - m_points[k].first) / h);
+  const HermiteSegment s = hermite(m_points, m_slope_at, k);
+  return s.slope((x - m_points[k].first) / s.h);
 }
 
 double RisingTable::integral(double x) const {
@@ -121,10 +123,8 @@ double RisingTable::integral(double x) const {
     return m_integral_at.back() + yn * d + 0.5 * m_slope_at.back() * d * d;
   }
   const std::size_t k = segment(x);
-  const double h = m_points[k + 1].first - m_points[k].first;
-  return m_integral_at[k] + HermiteSegment{h, m_points[k].second, m_points[k + 1].second,
-                                           m_slope_at[k], m_slope_at[k + 1]}
-                                .integral((x - m_points[k].first) / h);
+  const HermiteSegment s = hermite(m_points, m_slope_at, k);
+  return m_integral_at[k] + s.integral((x - m_points[k].first) / s.h);
 }
 
 std::vector<std::pair<double, double>> RisingTable::points() const {
