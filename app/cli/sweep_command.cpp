@@ -92,6 +92,7 @@ int submit_sweep(const SweepOptions& options, const std::vector<SweepRun>& runs,
   collect.resources = estimate_resources({merge_work}, 1);
   // An earlier submission's results must not be merged as this one's.
   fs::remove_all(dir / "points");
+  check_slurm_scripts(array, collect);
   record_submission(dir, options.command_line);
   submit_array_and_collect(array, slurm_dir / "sweep.sbatch", collect,
                            slurm_dir / "collect.sbatch", options.dry_run);
