@@ -20,6 +20,9 @@
 #include <stb_image_write.h>
 #include <png.h>
 
+#include "base/atomic_file.h"
+#include "base/file_read.h"
+
 namespace weft::render {
 
 namespace {
@@ -36,43 +39,10 @@ void check_inside(const Image& image, int x, int y) {
   }
 }
 
-// Owns a FILE*; closing is explicit (close()) where its result matters.
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
 // stbi_write_png_to_func callback: appends the encoded bytes to a std::string.
 void append_bytes(void* context, void* data, int size) {
   static_cast<std::string*>(context)->append(static_cast<const char*>(data),
                                              static_cast<std::size_t>(size));
-}
-
-// Writes bytes to path, atomically: to PATH.partial first, renamed over PATH once complete,
-// so that an interrupted run never leaves a truncated PNG. Throws naming the path and the
-// system's reason.
-void write_file(const std::filesystem::path& final_path, const std::string& bytes) {
-  const std::filesystem::path path = final_path.string() + ".partial";
-  errno = 0;
-  FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) {
-    throw std::runtime_error("write_png: cannot open " + quoted(path) +
-                             " for writing: " + std::strerror(errno));
-  }
-  const std::size_t written = std::fwrite(bytes.data(), 1, bytes.size(), file.get());
-  const int saved_errno = errno;
-  if (written != bytes.size()) {
-    throw std::runtime_error("write_png: cannot write " + quoted(path) + ": " +
-                             std::strerror(saved_errno));
-  }
-  if (std::fclose(file.release()) != 0) {
-    throw std::runtime_error("write_png: cannot close " + quoted(path) + ": " +
-                             std::strerror(errno));
-  }
-  if (std::rename(path.c_str(), final_path.c_str()) != 0) {
-    throw std::runtime_error("write_png: cannot rename " + quoted(path) + " to " +
-                             quoted(final_path) + ": " + std::strerror(errno));
-  }
 }
 
 }  // namespace
@@ -110,25 +80,14 @@ void Image::set(int x, int y, Rgb8 c) {
 
 namespace {
 
-// Writes encoded image bytes beside the target and renames them over it, so an interrupted run
-// never leaves a half image.
+// Writes encoded image bytes to PATH.partial, created exclusively, and renames them over
+// PATH, so an interrupted run never leaves a half image and a link planted at the partial
+// name cannot redirect the write; a failed write (a full disk) leaves no partial file.
 void write_encoded(const std::string& encoded, const std::filesystem::path& path) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
   try {
-    write_file(tmp, encoded);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("write_png: cannot rename " + quoted(tmp) + " to " + quoted(path) +
-                             ": " + ec.message());
+    base::write_file_atomically(path, encoded);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("write_png: ") + e.what());
   }
 }
 

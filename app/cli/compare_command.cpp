@@ -17,6 +17,7 @@
 #include "base/html_escape.h"
 #include "app/scene/json_reader.h"
 #include "app/cli/options.h"
+#include "app/io/output_files.h"
 #include "base/constants.h"
 #include "render/photo_compare/photo_compare.h"
 
@@ -161,8 +162,7 @@ std::string warnings_html(const nlohmann::json& warnings) {
 }
 
 void write_report(const fs::path& path, const nlohmann::json& j) {
-  std::ofstream html(path);
-  if (!html) throw std::runtime_error("cannot write " + path.string());
+  std::ostringstream html;
   const auto row = [&](const std::string& name, const std::string& value, const std::string& note) {
     html << "<tr><td>" << name << "</td><td>" << value << "</td><td>" << note << "</td></tr>\n";
   };
@@ -212,6 +212,7 @@ void write_report(const fs::path& path, const nlohmann::json& j) {
           "left the photo, right the render; grey: compared, unlabelled.</p>\n<a "
           "href=\"folds.png\"><img src=\"folds.png\" alt=\"fold labels\" style=\"max-width:97%\">"
           "</a>\n</body></html>\n";
+  write_text(path, html.str());
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "app/io/output_files.h"
-#include "app/io/output_files.h"
+#include "base/atomic_file.h"
 #include "app/io/input_error.h"
 #include "sim/cloth_mesh_archive.h"
 
@@ -28,12 +28,7 @@ void write_cloth_mesh_state(const fs::path& dir, int frame, const sim::ClothMesh
   sim::StateWriter out;
   sim::save_cloth_mesh(out, mesh);
   const std::string bytes = std::string(kClothMeshMagic) + out.bytes();
-  write_atomically(cloth_mesh_state_path(dir, frame), [&](const fs::path& path) {
-    std::ofstream file(path, std::ios::binary);
-    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    file.close();
-    if (!file) throw std::runtime_error(path.string() + ": cannot write the cloth's mesh");
-  });
+  base::write_file_atomically(cloth_mesh_state_path(dir, frame), bytes);
 }
 
 ClothMeshStates::ClothMeshStates(fs::path dir, const sim::ClothMesh& scene_mesh)

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/atomic_file.h"
+
 namespace weft::app {
 namespace {
 
@@ -158,22 +160,21 @@ void write_npy_points(const fs::path& path,
                        std::to_string(points.rows()) + ", 3), }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out.write("\x93NUMPY\x01\x00", 8);
+  std::string out("\x93NUMPY\x01\x00", 8);
   const auto n = static_cast<std::uint16_t>(header.size());
-  const char length[2] = {static_cast<char>(n & 0xff), static_cast<char>(n >> 8)};
-  out.write(length, 2);
-  out << header;
+  out += static_cast<char>(n & 0xff);
+  out += static_cast<char>(n >> 8);
+  out += header;
+  out.reserve(out.size() + 24 * static_cast<std::size_t>(points.rows()));
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     for (int c = 0; c < 3; ++c) {
       const double v = points(i, c);
-      unsigned char raw[8];
+      char raw[8];
       std::memcpy(raw, &v, 8);
       if (native_big_endian()) std::reverse(raw, raw + 8);
-      out.write(reinterpret_cast<const char*>(raw), 8);
+      out.append(raw, 8);
     }
-  if (!out) throw std::runtime_error(path.string() + ": write failed");
+  base::write_file_atomically(path, out);
 }
 
 }  // namespace weft::app

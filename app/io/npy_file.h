@@ -36,7 +36,8 @@ Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> read_npy_points(
     const std::filesystem::path& path);
 
 // Writes rows×3 float64 values as a version 1.0 .npy file (little-endian, C order), e.g. a
-// synthetic point cloud. Throws std::runtime_error naming the path when it cannot.
+// synthetic point cloud, atomically and exclusively (base::write_file_atomically). Throws
+// std::runtime_error naming the path when it cannot.
 void write_npy_points(const std::filesystem::path& path,
                       const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points);
 

@@ -2,39 +2,46 @@
 
 #include "app/io/output_files.h"
 
-#include <cstdio>
-#include <fstream>
+#include <sys/stat.h>
+
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <regex>
 #include <stdexcept>
 
 #include "app/io/version.h"
+#include "base/atomic_file.h"
 
 namespace weft::app {
 
 namespace fs = std::filesystem;
 
-void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-  const fs::path partial = path.string() + ".partial";
+void write_through_folder(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  const fs::path folder = base::partial_path(path);
+  std::error_code ignored;
+  fs::remove_all(folder, ignored);  // a killed run's; a link there is removed, not followed
+  if (::mkdir(folder.c_str(), 0700) != 0)
+    throw std::runtime_error(folder.string() + ": cannot create (" + std::strerror(errno) + ")");
   try {
-    write(partial);
+    write(folder / path.filename());
+    for (const auto& entry : fs::directory_iterator(folder))
+      if (entry.path().filename() != path.filename())
+        fs::rename(entry.path(), path.parent_path() / entry.path().filename());
+    fs::rename(folder / path.filename(), path);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(folder, ignored);
+    throw std::runtime_error(path.string() + ": cannot write (" + e.code().message() + ")");
   } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(partial, ignored);
+    fs::remove_all(folder, ignored);
     throw;
   }
-  std::error_code error;
-  fs::rename(partial, path, error);
-  if (error) throw std::runtime_error(path.string() + ": cannot write (" + error.message() + ")");
+  fs::remove(folder, ignored);
 }
 
 void write_text(const fs::path& path, const std::string& text) {
-  write_atomically(path, [&](const fs::path& partial) {
-    std::ofstream out(partial);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  });
+  base::write_file_atomically(path, text);
 }
 
 bool same_file(const fs::path& a, const fs::path& b) {

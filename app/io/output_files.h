@@ -13,16 +13,20 @@
 
 namespace weft::app {
 
-// Writes `text` to `path` atomically (to PATH.partial, then renamed: a reader sees the old file
-// or the whole new one, never a part); throws std::runtime_error naming the path when it
-// cannot. render::write_png does the same for images.
+// Writes `text` to `path` atomically (base::write_file_atomically: to PATH.partial, created
+// exclusively, then renamed: a reader sees the old file or the whole new one, never a part, and
+// a link planted at the partial name is not followed); throws std::runtime_error naming the
+// path when it cannot, leaving no partial file. render::write_png does the same for images.
 void write_text(const std::filesystem::path& path, const std::string& text);
 
-// Writes `path` atomically: `write` makes the file at the path it is given (PATH.partial),
-// which is then renamed over `path`; a throwing `write` leaves `path` as it was and removes the
-// partial file. Throws std::runtime_error naming `path` when the rename fails.
-void write_atomically(const std::filesystem::path& path,
-                      const std::function<void(const std::filesystem::path&)>& write);
+// Writes `path` atomically for a writer that opens files itself (ffmpeg, assimp): a fresh
+// folder PATH.partial/ is made (mkdir, so by this process alone, mode 0700: nobody else can
+// place a link in it), `write` makes the file PATH.partial/NAME (NAME: path's file name) and
+// any companions beside it (an OBJ's .mtl, a glTF's .bin), which are then moved beside `path`,
+// companions first, NAME last; the folder is removed. A throwing `write` leaves `path` as it
+// was and removes the folder. Throws std::runtime_error naming the path when a move fails.
+void write_through_folder(const std::filesystem::path& path,
+                          const std::function<void(const std::filesystem::path&)>& write);
 
 // Numbered files of one kind, e.g. {"frame", "png"} for frame_0001.png (remove_numbered_files).
 struct NumberedFiles {

@@ -20,6 +20,7 @@
 
 #include "app/io/output_files.h"
 #include "app/io/input_error.h"
+#include "base/atomic_file.h"
 #include "sim/state_archive.h"
 
 namespace weft::app {
@@ -113,12 +114,7 @@ void write_checkpoint(const fs::path& dir, const RunCheckpoint& c) {
   const std::uint64_t hashes[2] = {build_hash(), fnv1a_64(c.scene_text)};
   bytes.append(reinterpret_cast<const char*>(hashes), sizeof hashes);
   bytes += out.bytes();
-  write_atomically(dir / checkpoint_file_name, [&](const fs::path& path) {
-    std::ofstream file(path, std::ios::binary);
-    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    file.close();
-    if (!file) throw std::runtime_error(path.string() + ": cannot write the checkpoint");
-  });
+  base::write_file_atomically(dir / checkpoint_file_name, bytes);
 }
 
 RunCheckpoint read_checkpoint(const fs::path& dir) {
