@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/run/drape_photo.h"
 #include "app/run/frame_stream.h"
 #include "app/scene/json_reader.h"
@@ -103,6 +105,8 @@ int run_measure(const MeasureOptions& options) {
 
   // The output folder is touched when the first frame is measured (start_output).
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  refuse_overwriting_inputs(dir, {{"measure.csv", "measure.txt", "outline.csv"}, {}},
+                            scene_files(scene));
   MeasureCsv csv(dir / "measure.csv");
   std::fprintf(stderr,
                "weft: measuring %s — %d frames at %g fps, %s, time step %.3g ms, %s\n",
@@ -113,12 +117,13 @@ int run_measure(const MeasureOptions& options) {
   Progress progress(stderr, scene.frames, "frame");
   SceneMeasurement m;
   int measured = 0;  // the last frame in measure.csv
+  std::optional<OutputFolderLock> lock;  // from the first frame on
   try {
     m = measure_scene(scene, *simulator, options.require_drape, [&](const MeasureRow& row) {
       csv.add(row);
       if (row.frame == 0) return;
       if (row.frame == 1)
-        start_output(dir, {}, {{"measure.txt", run_record(options.command_line,
+        start_output(lock, dir, {}, {{"measure.txt", run_record(options.command_line,
                                                           {{"scene", scene.source}})}});
       csv.save();
       measured = row.frame;

@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/scene/scene.h"
 #include "app/scene/scene_patch.h"
 #include "app/cluster/slurm_job.h"
@@ -90,9 +92,9 @@ int submit_sweep(const SweepOptions& options, const std::vector<SweepRun>& runs,
   TaskWork merge_work;  // every point's last frame and mesh at once
   merge_work.vertices = vertices;
   collect.resources = estimate_resources({merge_work}, 1);
+  check_slurm_scripts(array, collect);
   // An earlier submission's results must not be merged as this one's.
   fs::remove_all(dir / "points");
-  check_slurm_scripts(array, collect);
   record_submission(dir, options.command_line);
   submit_array_and_collect(array, slurm_dir / "sweep.sbatch", collect,
                            slurm_dir / "collect.sbatch", options.dry_run);
@@ -126,6 +128,8 @@ int run_sweep(const SweepOptions& options) {
     throw InputError("--point: expected a run number in 1.." + std::to_string(n) + ", got " +
                      std::to_string(*options.point));
   const fs::path dir = output_dir(options, base);
+  refuse_overwriting_inputs(dir, {{"sweep.csv", "sweep.png", "scene.json", "run.txt"}, {}},
+                            scene_files(base));
   if (options.slurm) return submit_sweep(options, runs, dir);
 
   SweepMerge merge{&base, values, options.reference, options.command_line, dir};

@@ -65,9 +65,10 @@ int remove_numbered_files(const fs::path& dir, const std::string& prefix,
   return removed;
 }
 
-void start_output(const fs::path& dir, const std::vector<NumberedFiles>& earlier,
+void start_output(std::optional<OutputFolderLock>& lock, const fs::path& dir,
+                  const std::vector<NumberedFiles>& earlier,
                   const std::vector<std::pair<std::string, std::string>>& files) {
-  fs::create_directories(dir);
+  if (!lock) lock.emplace(dir);  // creates the folder
   int removed = 0;
   for (const NumberedFiles& kind : earlier)
     removed += remove_numbered_files(dir, kind.prefix, kind.extension);

@@ -7,9 +7,12 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "app/io/output_lock.h"
 
 namespace weft::app {
 
@@ -35,10 +38,13 @@ struct NumberedFiles {
 };
 
 // What a command writes first into its output folder, when its first output is ready: creates
-// `dir`, removes the numbered files of an earlier run (saying on stderr how many), so that the
-// folder holds one run, and writes each {name, text} of `files` (the run's record: run.txt,
-// scene.json, …). Until then the command leaves the folder alone.
-void start_output(const std::filesystem::path& dir, const std::vector<NumberedFiles>& earlier,
+// `dir`, locks it (into `lock`, unless it holds the lock already; the command keeps it to its
+// end: another command writing there is refused, app/io/output_lock.h), removes the numbered
+// files of an earlier run (saying on stderr how many), so that the folder holds one run, and
+// writes each {name, text} of `files` (the run's record: run.txt, scene.json, …). Until then
+// the command leaves the folder alone.
+void start_output(std::optional<OutputFolderLock>& lock, const std::filesystem::path& dir,
+                  const std::vector<NumberedFiles>& earlier,
                   const std::vector<std::pair<std::string, std::string>>& files);
 
 // The record of how an output folder was made (run.txt, turntable.txt, measure.txt, …):

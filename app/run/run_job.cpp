@@ -21,12 +21,14 @@
 #include "app/run/measure.h"
 #include "app/run/obstacle_meshes.h"
 #include "app/io/output_files.h"
+#include "app/io/input_guard.h"
 #include "app/io/progress.h"
 #include "app/io/run_checkpoint.h"
 #include "app/report/run_report.h"
 #include "app/run/renderer_choice.h"
 #include "app/run/saved_states.h"
 #include "app/scene/scene.h"
+#include "app/scene/scene_inputs.h"
 #include "app/io/stats_csv.h"
 #include "base/check.h"
 #include "sim/collision/self_intersection.h"
@@ -61,12 +63,26 @@ std::string mesh_name(int frame, MeshFormat format) {
 }
 
 // Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
+// What weft run writes into its folder: the numbered files of each frame (an earlier run's are
+// removed) and the files by name (the point cache's cloth.* among them).
+OutputNames run_output_names() {
+  return {{"scene.json", "run.txt", "stats.csv", "report.html", checkpoint_file_name,
+           texture_file_name, "cloth.obj", "cloth.pc2", "cloth.mdd", "cloth.gltf", "cloth.bin"},
+          {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
+           {"state", "npy"}, {cloth_mesh_state_prefix, cloth_mesh_state_extension}}};
+}
+
+// Refuses an output folder where the run would replace or remove one of its inputs: the scene
+// file (the run writes its copy as scene.json) or a file the scene reads.
+void refuse_overwriting_scene_inputs(const fs::path& dir, const Scene& scene) {
+  refuse_overwriting_inputs(dir, run_output_names(), scene_files(scene));
+}
+
 // folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
 // first frame is ready: a run that fails before it leaves an earlier run's files as they were.
-void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
-  start_output(dir,
-               {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
-                {"state", "npy"}, {cloth_mesh_state_prefix, cloth_mesh_state_extension}},
+void prepare_output(std::optional<OutputFolderLock>& lock, const fs::path& dir, const Scene& scene,
+                    const RunOptions& options) {
+  start_output(lock, dir, run_output_names().numbered,
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
   std::filesystem::remove(dir / texture_file_name);
@@ -200,7 +216,7 @@ class FrameWriter {
   StreamControl write(const Frame& frame) {
     const bool remeshed_states = m_initial_mesh != nullptr;  // kept states of a remeshed run
     if (m_rows.empty()) {
-      prepare_output(m_dir, m_scene, m_options);
+      prepare_output(m_lock, m_dir, m_scene, m_options);
       if (m_keep_states)
         write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
       if (remeshed_states) write_cloth_mesh_state(m_dir, 0, *m_initial_mesh);
@@ -263,6 +279,7 @@ class FrameWriter {
   // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
   void resume(const RunCheckpoint& checkpoint) {
     m_resumed_mesh_unsaved = true;
+    m_lock.emplace(m_dir);
     m_rows = checkpoint.rows;
     m_crossing_frames = checkpoint.crossing_frames;
     m_stats.restore(m_rows);
@@ -373,6 +390,7 @@ class FrameWriter {
   StatsCsv m_stats;
   bool m_draw_later;   // no camera: the frames are drawn when the simulation ends
   bool m_keep_states;  // state_NNNN.npy (and remeshed meshes): --save-states, or to draw later
+  std::optional<OutputFolderLock> m_lock;  // taken at the first frame, or on resuming
   // Draws the simulator's mesh as it is at each frame (a writer that draws as it simulates).
   std::optional<FramePainter> m_painter;
   Eigen::AlignedBox3d m_cloth_box;  // the cloth over frames 0..k so far (drawing later)
@@ -598,6 +616,7 @@ int run_scene(const RunOptions& options) {
   if (const std::optional<CrossingStop>& stop = writer.crossing_stop())
     return report_crossing_stop(*stop, dir);
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
+  refuse_overwriting_scene_inputs(dir, scene);
   print_summary(scene, options, dir, *simulator, writer);
   return rest_converged ? exit_ok : exit_failure;
 }

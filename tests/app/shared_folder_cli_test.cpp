@@ -1,6 +1,11 @@
-// Output folders others can write into, through the real `weft`: a symbolic link planted at a
-// temporary name (NAME.partial) is never written through, and a full disk leaves no partial file.
+// Output folders others can write into, and outputs that must never replace inputs, through
+// the real `weft`: a symbolic link planted at a temporary name (NAME.partial) is never written
+// through, a full disk leaves no partial file, two runs into one folder are refused, and no
+// command deletes or overwrites a file it reads.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -78,6 +83,102 @@ TEST_F(SharedFolder, AFullDiskLeavesNoPartialFile) {
   EXPECT_CONTAINS(r.output, "File too large");
   ASSERT_TRUE(fs::exists(out)) << r.output;
   EXPECT_TRUE(partial_names(out).empty());
+}
+
+// --- two commands into one folder -------------------------------------------------------------
+
+// The lock another weft command would hold: flock on OUT/.weft-lock, taken here.
+class HeldLock {
+ public:
+  explicit HeldLock(const fs::path& dir) {
+    fs::create_directories(dir);
+    m_fd = ::open((dir / ".weft-lock").c_str(), O_RDWR | O_CREAT, 0666);
+    EXPECT_EQ(::flock(m_fd, LOCK_EX | LOCK_NB), 0);
+  }
+  ~HeldLock() { ::close(m_fd); }
+
+ private:
+  int m_fd = -1;
+};
+
+TEST_F(SharedFolder, ACommandIntoAFolderAnotherIsWritingIsRefusedAndRemovesNothing) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(run_weft("run " + good_scene().string() + " --out " + out.string()).exit_code, 0);
+  const std::string frame = file_bytes(out / "frame_0004.png");
+  {
+    const HeldLock other(out);
+    for (const std::string& command :
+         {"run " + good_scene().string() + " --frames 2", "measure " + good_scene().string(),
+          "turntable " + good_scene().string() + " --frames 2"}) {
+      const CommandResult r = run_weft(command + " --out " + out.string());
+      EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.output;
+      EXPECT_CONTAINS(r.output, out.string() + ": another weft command is writing into this folder");
+      EXPECT_EQ(file_bytes(out / "frame_0004.png"), frame) << command;
+    }
+  }
+  const CommandResult after = run_weft("run " + good_scene().string() + " --frames 2 --out " + out.string());
+  EXPECT_EQ(after.exit_code, 0) << after.output;  // the lock ends with its holder
+  EXPECT_FALSE(fs::exists(out / "frame_0004.png"));
+}
+
+TEST_F(SharedFolder, AResumeIntoAFolderAnotherIsWritingIsRefused) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(run_weft("run " + good_scene().string() + " --checkpoint-every 2 --out " + out.string()).exit_code, 0);
+  const HeldLock other(out);
+  const CommandResult r = run_weft("run --resume " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "another weft command is writing into this folder");
+}
+
+// --- no output replaces an input ---------------------------------------------------------------
+
+TEST_F(SharedFolder, ARunRefusesToOverwriteItsSceneFile) {
+  const fs::path scene = write_scene("scene.json", tiny_scene());
+  const std::string before = file_bytes(scene);
+  // The folder as given, and another path to it.
+  for (const fs::path& out : {m_dir, m_dir / "." / ""}) {
+    const CommandResult r = run_weft("run " + scene.string() + " --frames 2 --out " + out.string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_CONTAINS(r.output, scene.string() + ": an input of this command, but the output folder");
+    EXPECT_CONTAINS(r.output, "is where it writes (or removes an earlier run's) scene.json");
+    EXPECT_EQ(file_bytes(scene), before);
+    EXPECT_FALSE(fs::exists(m_dir / "frame_0001.png"));
+  }
+  // Another name in the folder is no output: the run goes on.
+  fs::rename(scene, m_dir / "tiny.json");
+  EXPECT_EQ(run_weft("run " + (m_dir / "tiny.json").string() + " --frames 1 --out " + m_dir.string())
+                .exit_code, 0);
+  EXPECT_EQ(file_bytes(m_dir / "tiny.json"), before);
+}
+
+TEST_F(SharedFolder, AnObstacleMeshNamedLikeAnOutputFrameIsNotDeleted) {
+  const fs::path out = m_dir / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "mesh_0001.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 0 -1\n"
+                                          "f 1 2 3\nf 1 3 4\nf 1 5 2\nf 2 5 3\nf 3 5 4\nf 4 5 1\n";
+  const std::string mesh = file_bytes(out / "mesh_0001.obj");
+  const fs::path scene = write_scene(
+      "obstacle.json",
+      tiny_scene("", ",\n  \"obstacles\": [{\"mesh\": {\"file\": \"out/mesh_0001.obj\", "
+                     "\"scale\": 0.05, \"translate\": [0, 0, 0.2]}}]"));
+  const CommandResult r = run_weft("run " + scene.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "mesh_0001.obj: an input of this command");
+  EXPECT_CONTAINS(r.output, "mesh_NNNN.(obj|mtl|ply|gltf|bin)");
+  EXPECT_EQ(file_bytes(out / "mesh_0001.obj"), mesh);
+}
+
+TEST_F(SharedFolder, CompareRefusesToOverwriteItsInputs) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(run_weft("run " + good_scene().string() + " --frames 1 --out " + out.string()).exit_code, 0);
+  fs::copy_file(out / "frame_0001.png", out / "photo.png");
+  const std::string photo = file_bytes(out / "photo.png");
+  const CommandResult r = run_weft("compare " + (out / "photo.png").string() + " " +
+                                   (out / "frame_0001.png").string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, (out / "photo.png").string() + ": an input of this command");
+  EXPECT_EQ(file_bytes(out / "photo.png"), photo);
+  EXPECT_FALSE(fs::exists(out / "report.html"));
 }
 
 }  // namespace
