@@ -248,9 +248,9 @@ int submit_gallery(const GalleryOptions& options, const std::vector<fs::path>& f
   collect.log = slurm_dir / "weft-gallery-collect.log";
   collect.chdir = array.chdir;
   collect.resources = estimate_resources({TaskWork{}}, 1);
+  check_slurm_scripts(array, collect);
   fs::remove_all(slurm_dir / "results");  // an earlier submission's
   record_submission(options.out, options.command_line);
-  check_slurm_scripts(array, collect);
   submit_array_and_collect(array, slurm_dir / "gallery.sbatch", collect,
                            slurm_dir / "collect.sbatch", options.dry_run);
   return exit_ok;
