@@ -121,9 +121,12 @@ float EnvironmentMap::pdf(const Eigen::Vector3f& d) const {
 }
 
 EnvironmentMap read_environment_map(const std::filesystem::path& path) {
+  const std::string bytes = read_image_file(path, "read_environment_map");
   int width = 0, height = 0, channels = 0;
   std::unique_ptr<float, void (*)(void*)> pixels(
-      stbi_loadf(path.c_str(), &width, &height, &channels, 3), stbi_image_free);
+      stbi_loadf_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                             static_cast<int>(bytes.size()), &width, &height, &channels, 3),
+      stbi_image_free);
   if (!pixels)
     throw std::runtime_error("read_environment_map: cannot read '" + path.string() +
                              "': " + stb_read_failure(path));

@@ -31,6 +31,12 @@ std::string quoted(const std::filesystem::path& path) {
   return "'" + path.string() + "'";
 }
 
+// A file's bytes as stb_image takes them (read_image_file has capped their size far below 2³¹).
+const stbi_uc* stb_bytes(const std::string& bytes) {
+  return reinterpret_cast<const stbi_uc*>(bytes.data());
+}
+int stb_size(const std::string& bytes) { return static_cast<int>(bytes.size()); }
+
 void check_inside(const Image& image, int x, int y) {
   if (x < 0 || y < 0 || x >= image.width() || y >= image.height()) {
     throw std::out_of_range("Image: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
@@ -184,11 +190,31 @@ std::string stb_read_failure(const std::filesystem::path& path) {
   return why;
 }
 
+std::string read_image_file(const std::filesystem::path& path, const char* reader) {
+  std::string bytes;
+  try {
+    bytes = base::read_file_capped(path, max_image_file_bytes, "an image file");
+  } catch (const base::FileReadError& e) {
+    throw std::runtime_error(std::string(reader) + ": " + e.what());
+  }
+  int width = 0, height = 0, channels = 0;
+  if (stbi_info_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height, &channels) &&
+      static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) > max_image_pixels)
+    throw std::runtime_error(std::string(reader) + ": " + quoted(path) + ": a " +
+                             std::to_string(width) + "x" + std::to_string(height) +
+                             " image, more than " + std::to_string(max_image_pixels) +
+                             " pixels (the limit)");
+  return bytes;
+}
+
 Image read_image(const std::filesystem::path& path) {
+  const std::string bytes = read_image_file(path, "read_image");
   int width = 0, height = 0, channels_in_file = 0;
   // 3 requested channels: stb converts grey/grey-alpha/RGBA to RGB; rows come top row first.
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load(path.c_str(), &width, &height, &channels_in_file, 3), stbi_image_free);
+      stbi_load_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height,
+                            &channels_in_file, 3),
+      stbi_image_free);
   if (!pixels)
     throw std::runtime_error("read_image: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   Image image(width, height);
@@ -198,12 +224,15 @@ Image read_image(const std::filesystem::path& path) {
 }
 
 std::vector<std::uint8_t> read_alpha(const std::filesystem::path& path) {
+  const std::string bytes = read_image_file(path, "read_alpha");
   int width = 0, height = 0, channels_in_file = 0;
-  if (!stbi_info(path.c_str(), &width, &height, &channels_in_file))
+  if (!stbi_info_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height, &channels_in_file))
     throw std::runtime_error("read_alpha: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   if (channels_in_file != 2 && channels_in_file != 4) return {};  // grey or RGB: no alpha
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load(path.c_str(), &width, &height, &channels_in_file, 4), stbi_image_free);
+      stbi_load_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height,
+                            &channels_in_file, 4),
+      stbi_image_free);
   if (!pixels)
     throw std::runtime_error("read_alpha: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);

@@ -30,6 +30,10 @@ struct NpyArray {
 // Reads a float32 or float64 array of any shape. Throws NpyError.
 NpyArray read_npy(const std::filesystem::path& path);
 
+// A .npy file is read only up to this size (44 M points of float64): a larger file or a device
+// (`/dev/zero`) is an NpyError naming it at once.
+inline constexpr std::uint64_t max_npy_bytes = std::uint64_t{1} << 30;
+
 // Reads an N×3 float array (N ≥ 1) of finite values, e.g. points in metres, as #N×3 rows.
 // Throws NpyError naming the file for another shape or a non-finite value (its row).
 Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> read_npy_points(

@@ -21,6 +21,7 @@
 #include "app/io/output_files.h"
 #include "app/io/input_error.h"
 #include "base/atomic_file.h"
+#include "base/file_read.h"
 #include "sim/state_archive.h"
 
 namespace weft::app {
@@ -32,12 +33,12 @@ constexpr std::string_view kMagicPrefix = "weft checkpoint ";
 constexpr int kCheckpointVersion = 2;
 const std::string kMagic = std::string(kMagicPrefix) + std::to_string(kCheckpointVersion) + "\n";
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot read it (no checkpoint here?)");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+std::string read_bytes(const fs::path& path, std::uint64_t max_bytes, const std::string& what) {
+  try {
+    return base::read_file_capped(path, max_bytes, what);
+  } catch (const base::FileReadError& e) {
+    throw InputError(e.what());
+  }
 }
 
 std::string hex(std::uint64_t value) {
@@ -90,7 +91,8 @@ std::uint64_t fnv1a_64(const std::string& bytes) {
 std::uint64_t build_hash() {
   static const std::uint64_t hash = [] {
     const std::string id = gnu_build_id();
-    return fnv1a_64(id.empty() ? read_bytes("/proc/self/exe") : id);
+    return fnv1a_64(id.empty() ? read_bytes("/proc/self/exe", std::uint64_t{1} << 34, "weft's program")
+                               : id);
   }();
   return hash;
 }
@@ -119,7 +121,7 @@ void write_checkpoint(const fs::path& dir, const RunCheckpoint& c) {
 
 RunCheckpoint read_checkpoint(const fs::path& dir) {
   const fs::path path = fs::is_directory(dir) ? dir / checkpoint_file_name : dir;
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = read_bytes(path, max_checkpoint_bytes, "a checkpoint");
   const std::string name = path.string();
   std::uint64_t hashes[2];
   if (bytes.compare(0, kMagicPrefix.size(), kMagicPrefix) == 0 &&

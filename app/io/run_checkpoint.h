@@ -17,6 +17,9 @@
 namespace weft::app {
 
 inline constexpr const char* checkpoint_file_name = "checkpoint.weft";
+// A checkpoint is read only up to this size (a 256² cloth's is about 10 MB): a larger file or a
+// device (`weft run --resume /dev/zero`) is refused at once.
+inline constexpr std::uint64_t max_checkpoint_bytes = std::uint64_t{1} << 30;
 
 struct RunCheckpoint {
   int frame = 0;             // frames 1..frame were simulated (and written if selected)

@@ -237,7 +237,7 @@ TEST_F(CheckpointCli, CheckpointsOfAnotherSceneOrBuildOrDamagedOnesAreRefused) {
 
   const auto missing = run_weft("run --resume " + (m_dir / "nowhere").string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
-  EXPECT_CONTAINS(missing.output, "cannot read it");
+  EXPECT_CONTAINS(missing.output, "cannot read a checkpoint");
 
   // A new run in the folder removes the earlier run's checkpoint: --resume cannot mix runs.
   ASSERT_EQ(run_weft("run " + scene + " --frames 8 --out " + cut.string()).exit_code, 0);
