@@ -31,6 +31,7 @@
 #include "app/scene/scene_inputs.h"
 #include "app/io/stats_csv.h"
 #include "base/check.h"
+#include "base/file_read.h"
 #include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -62,7 +63,6 @@ std::string mesh_name(int frame, MeshFormat format) {
   return numbered_file_name("mesh", frame, mesh_extension(format));
 }
 
-// Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
 // What weft run writes into its folder: the numbered files of each frame (an earlier run's are
 // removed) and the files by name (the point cache's cloth.* among them).
 OutputNames run_output_names() {
@@ -78,6 +78,7 @@ void refuse_overwriting_scene_inputs(const fs::path& dir, const Scene& scene) {
   refuse_overwriting_inputs(dir, run_output_names(), scene_files(scene));
 }
 
+// Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
 // folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
 // first frame is ready: a run that fails before it leaves an earlier run's files as they were.
 void prepare_output(std::optional<OutputFolderLock>& lock, const fs::path& dir, const Scene& scene,
@@ -278,8 +279,8 @@ class FrameWriter {
   }
   // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
   void resume(const RunCheckpoint& checkpoint) {
-    m_resumed_mesh_unsaved = true;
     m_lock.emplace(m_dir);
+    m_resumed_mesh_unsaved = true;
     m_rows = checkpoint.rows;
     m_crossing_frames = checkpoint.crossing_frames;
     m_stats.restore(m_rows);
@@ -329,8 +330,13 @@ class FrameWriter {
   }
   // The checkpoint of the frames written so far (the simulator at the last one's end).
   RunCheckpoint checkpoint(int every) const {
-    RunCheckpoint c{static_cast<int>(m_rows.size()), every, m_scene.source, m_scene.text,
-                    m_rows, m_crossing_frames, {}};
+    RunCheckpoint c;
+    c.frame = static_cast<int>(m_rows.size());
+    c.every = every;
+    c.scene_source = m_scene.source;
+    c.scene_text = m_scene.text;
+    c.rows = m_rows;
+    c.crossing_frames = m_crossing_frames;
     sim::StateWriter state;
     m_simulator.save_state(state);
     c.simulator_state = state.bytes();
@@ -384,13 +390,13 @@ class FrameWriter {
 
   const Scene& m_scene;
   const RunOptions& m_options;
+  std::optional<OutputFolderLock> m_lock;  // taken at the first frame, or on resuming
   fs::path m_dir;
   sim::Simulator& m_simulator;
   render::Renderer& m_renderer;
   StatsCsv m_stats;
   bool m_draw_later;   // no camera: the frames are drawn when the simulation ends
   bool m_keep_states;  // state_NNNN.npy (and remeshed meshes): --save-states, or to draw later
-  std::optional<OutputFolderLock> m_lock;  // taken at the first frame, or on resuming
   // Draws the simulator's mesh as it is at each frame (a writer that draws as it simulates).
   std::optional<FramePainter> m_painter;
   Eigen::AlignedBox3d m_cloth_box;  // the cloth over frames 0..k so far (drawing later)
@@ -474,8 +480,21 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
     std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
 }
 
-// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same.
+// The folder of --resume DIR or --resume DIR/checkpoint.weft.
+fs::path resume_folder(const fs::path& resume) {
+  return fs::is_directory(resume) ? resume : resume.parent_path();
+}
+
+// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same, and
+// so must the folder's scene.json (a checkpoint of another run copied in would mix two scenes'
+// frames) and every file the scene reads.
 Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) {
+  const fs::path record = resume_folder(*options.resume) / "scene.json";
+  if (fs::exists(record) &&
+      base::read_file_capped(record, max_scene_file_bytes, "a scene file") != checkpoint.scene_text)
+    throw InputError("--resume " + options.resume->string() + ": the checkpoint's scene is not " +
+                     record.string() + ", the scene of the run in that folder (a checkpoint of "
+                     "another run?); resume a checkpoint in its own run's folder");
   Scene scene = parse_scene(checkpoint.scene_text, checkpoint.scene_source);
   if (options.scene || !options.overrides.empty()) {
     const Scene given = load_scene_with(options.scene, options.overrides);
@@ -486,6 +505,7 @@ Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) 
                        given.source + ", hash " + std::to_string(fnv1a_64(given.text)) +
                        "); give no scene to go on with the checkpoint's");
   }
+  check_input_files(checkpoint, scene.input_files, options.resume->string());
   return scene;
 }
 
@@ -577,6 +597,9 @@ int run_scene(const RunOptions& options) {
                         : load_scene_with(options.scene, options.overrides);
   const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
   check_run_input(scene, options, resumed, every);
+  // The input files as read now, bound to each checkpoint (a resume with others is refused).
+  const std::vector<InputFileHash> inputs =
+      every > 0 ? hash_input_files(scene.input_files) : std::vector<InputFileHash>{};
   apply_threads(scene, options.threads);
   if (options.rest) {  // one frame showing the solved shape, nothing simulated in time
     scene.frames = 1;
@@ -591,10 +614,9 @@ int run_scene(const RunOptions& options) {
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
                          "over the run (the frames are drawn when the simulation ends)\n");
 
-  const fs::path dir = options.resume ? (fs::is_directory(*options.resume)
-                                              ? *options.resume
-                                              : options.resume->parent_path())
+  const fs::path dir = options.resume ? resume_folder(*options.resume)
                                        : options.out.value_or(fs::path("out") / scene.name);
+  refuse_overwriting_scene_inputs(dir, scene);
   print_header(scene, *simulator, *renderer, options);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
   if (resumed) {
@@ -606,8 +628,11 @@ int run_scene(const RunOptions& options) {
       scene, *simulator,
       [&](const Frame& frame) {
         if (writer.write(frame) == StreamControl::stop) return StreamControl::stop;
-        if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
-          write_checkpoint(dir, writer.checkpoint(every));
+        if (every > 0 && frame.index % every == 0 && frame.index < scene.frames) {
+          RunCheckpoint checkpoint = writer.checkpoint(every);
+          checkpoint.inputs = inputs;
+          write_checkpoint(dir, checkpoint);
+        }
         return StreamControl::go_on;
       },
       resumed ? resumed->frame + 1 : 1);
@@ -616,7 +641,6 @@ int run_scene(const RunOptions& options) {
   if (const std::optional<CrossingStop>& stop = writer.crossing_stop())
     return report_crossing_stop(*stop, dir);
   if (end.divergence) return report_divergence(*end.divergence, dir, scene, options, writer.rows());
-  refuse_overwriting_scene_inputs(dir, scene);
   print_summary(scene, options, dir, *simulator, writer);
   return rest_converged ? exit_ok : exit_failure;
 }
