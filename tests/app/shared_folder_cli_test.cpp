@@ -181,4 +181,20 @@ TEST_F(SharedFolder, CompareRefusesToOverwriteItsInputs) {
   EXPECT_FALSE(fs::exists(out / "report.html"));
 }
 
+// A fit file kept in the folder its results go to, under the name of one of them.
+TEST_F(SharedFolder, FitRefusesToOverwriteItsFitFile) {
+  const fs::path out = m_dir / "out";
+  fs::create_directories(out);
+  const fs::path fit = out / "fit_result.json";
+  std::ofstream(fit) << R"({"description": "test", "scene": ")" << WEFT_SOURCE_DIR
+                     << R"(/assets/scenes/bendstiff_strip.json", "parameters": [{"name": "bend", )"
+                        R"("start": "0.05 N*m"}], "target": {"measured": {"drop": "80 mm"}}})";
+  const std::string before = file_bytes(fit);
+  const CommandResult r = run_weft("fit " + fit.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, fit.string() + ": an input of this command");
+  EXPECT_EQ(file_bytes(fit), before);
+  EXPECT_FALSE(fs::exists(out / "fit.csv"));
+}
+
 }  // namespace
