@@ -87,6 +87,10 @@ std::string slurm_array_script(const SlurmArray& a) {
   if (a.tasks.empty()) throw std::invalid_argument("slurm_array_script: no tasks");
   const std::string first = std::to_string(a.first_index);
   const std::string last = std::to_string(a.first_index + static_cast<int>(a.tasks.size()) - 1);
+  if (a.first_index + static_cast<long>(a.tasks.size()) - 1 > max_slurm_array_index)
+    throw InputError(std::to_string(a.tasks.size()) + " tasks from index " + first +
+                     ": more than a Slurm array holds (sbatch's default MaxArraySize of 1001 "
+                     "allows indices up to 1000); split the work");
   std::string s = "#!/bin/bash\n";
   s += "# Written by weft: task i of the array runs command i below; resubmit one with\n";
   s += "#   sbatch --array=I THIS_SCRIPT\n";

@@ -188,4 +188,28 @@ TEST_F(SlurmScripts, DirectiveValuesAreQuoted) {
   EXPECT_CONTAINS(r.output, "#SBATCH --job-name=\"weft-sweep\"\n");
 }
 
+// A sweep of more points than a Slurm array holds (or than one sweep may have) is refused at
+// once, before a scene is read: 10⁶ points used to read scenes for minutes, writing nothing.
+TEST_F(SlurmScripts, ASweepLargerThanAnArrayIsRefusedAtOnce) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const auto values = [](int n) {
+    std::string list;
+    for (int k = 1; k <= n; ++k) list += (k > 1 ? "," : "") + std::to_string(k);
+    return list;
+  };
+  const fs::path out = m_dir / "sweep";
+  const CommandResult slurm = run_weft("sweep " + scene.string() + " --set output.frames=" + values(11) +
+                                       " --set output.fps=" + values(100) + " --slurm --dry-run --out " +
+                                       out.string());
+  EXPECT_EQ(slurm.exit_code, 1) << slurm.output;
+  EXPECT_CONTAINS(slurm.output, "--set: 11 x 100 values make more than 1000 points, more than a "
+                                "Slurm array holds");
+  const CommandResult local = run_weft("sweep " + scene.string() + " --set output.frames=" +
+                                       values(1000) + " --set output.fps=" + values(1000) +
+                                       " --out " + out.string());
+  EXPECT_EQ(local.exit_code, 1) << local.output;
+  EXPECT_CONTAINS(local.output, "more than 10000 points, the limit of one sweep");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
