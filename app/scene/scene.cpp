@@ -277,7 +277,8 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
 }
 
 // A frame must take at most sim::max_substeps steps: of a fixed step, or of an adaptive step's
-// max_step, its first and longest. (The automatic step comes from the material: make_simulator
+// max_step, its first and longest, and min_step, its shortest (a min_step of 1e-300 s used to run
+// for a minute before failing). (The automatic step comes from the material: make_simulator
 // checks it.)
 void check_steps_per_frame(const Scene& scene) {
   const sim::TimeStep& t = scene.sim.time_step;
@@ -289,6 +290,10 @@ void check_steps_per_frame(const Scene& scene) {
     throw InputError(scene.source + ": " +
                      (fixed ? "simulation.time_step: " : "simulation.adaptive_step.max_step: ") +
                      why);
+  const std::string shortest = fixed ? "" : sim::too_many_steps(1.0 / scene.fps, t.adaptive.min_step_s);
+  if (!shortest.empty())
+    throw InputError(scene.source + ": simulation.adaptive_step.min_step: " + shortest +
+                     " (were the step to shrink to it)");
 }
 
 
