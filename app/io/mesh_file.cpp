@@ -84,6 +84,12 @@ class MeshMerger {
       const sim::Vec2 t = mesh.HasTextureCoords(0)
                               ? sim::Vec2(mesh.mTextureCoords[0][v].x, mesh.mTextureCoords[0][v].y)
                               : sim::Vec2::Zero();
+      // `vt nan 0` or `vt 1e39 0` (infinite as a float) used to give the pattern of `vt 0 0`.
+      if (!t.allFinite())
+        throw MeshFileError(m_name + ": vertex " + std::to_string(v) + " of mesh " +
+                            std::to_string(mesh_index) + " has texture coordinates (" +
+                            std::to_string(t.x()) + ", " + std::to_string(t.y()) +
+                            "), not finite numbers");
       if (inserted) {
         m_positions.push_back(p);
         m_uv.push_back(t);

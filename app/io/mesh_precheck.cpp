@@ -2,7 +2,10 @@
 
 #include "app/io/mesh_precheck.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -193,16 +196,34 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
       }
 }
 
-// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit.
+// An OBJ "vt" line's numbers must be finite as floats: assimp reads `vt nan 0` and `vt 1e39 0`
+// as `vt 0 0`, silently.
+void check_obj_texture_line(std::string_view line, std::uint64_t number, const std::string& name) {
+  std::istringstream words{std::string(line.substr(2))};
+  for (std::string word; words >> word;) {
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
+      fail(name, "line " + std::to_string(number) + ": texture coordinates '" + std::string(line) +
+                     "': '" + word + "' is not a finite number (as a float)");
+  }
+}
+
+// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit, and checks its texture
+// coordinate ("vt ") lines.
 void check_obj_counts(std::string_view bytes, const std::string& name) {
-  std::uint64_t v = 0, f = 0;
+  std::uint64_t v = 0, f = 0, number = 0;
   for (std::size_t at = 0; at < bytes.size();) {
-    if (bytes.size() - at > 1 && (bytes[at + 1] == ' ' || bytes[at + 1] == '\t')) {
-      v += bytes[at] == 'v';
-      f += bytes[at] == 'f';
+    const std::size_t end = std::min(bytes.find('\n', at), bytes.size());
+    const std::string_view line = bytes.substr(at, end - at);
+    ++number;
+    if (line.size() > 1 && (line[1] == ' ' || line[1] == '\t')) {
+      v += line[0] == 'v';
+      f += line[0] == 'f';
     }
-    const std::size_t end = bytes.find('\n', at);
-    at = end == std::string_view::npos ? bytes.size() : end + 1;
+    if (line.size() > 2 && line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
+      check_obj_texture_line(line, number, name);
+    at = end + 1;
   }
   for (const auto& [count, what] : {std::pair{v, "vertices"}, std::pair{f, "faces"}})
     if (count > max_mesh_elements)

@@ -2,7 +2,8 @@
 // Checks of a mesh file's bytes made before assimp reads them, for what assimp would crash on
 // or spend minutes and gigabytes on: a PLY's header and body are walked (element counts against
 // the file's size and the limits, each face's list count and vertex indices), an OBJ's vertex
-// and face lines are counted. Other formats are bounded by the file size alone
+// and face lines are counted and its texture coordinates must be finite (assimp reads `vt nan
+// 0` as `vt 0 0`). Other formats are bounded by the file size alone
 // (max_mesh_file_bytes, app/io/mesh_file_io.h).
 
 #include <cstdint>

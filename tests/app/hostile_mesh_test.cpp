@@ -134,6 +134,22 @@ TEST(HostileMesh, AGltfOrObjReferringOutsideItsFolderIsRefused) {
                   (d / "mesh" / "absolute.gltf").string() + ": cannot read mesh file: it refers to ");
 }
 
+// `vt nan 0` and `vt 1e39 0` (infinite as a float) used to give the pattern of `vt 0 0`.
+TEST(HostileMesh, NonFiniteTextureCoordinatesAreRefused) {
+  const fs::path d = dir();
+  for (const char* vt : {"nan 0", "1e39 0"}) {
+    write_text(d / "uv.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt ") + vt +
+                                 "\nf 1/1 2/2 3/3\n");
+    try {
+      load_polygon_mesh(d / "uv.obj");
+      ADD_FAILURE() << vt;
+    } catch (const MeshFileError& e) {
+      EXPECT_CONTAINS(std::string(e.what()), (d / "uv.obj").string() + ": line 6: texture coordinates 'vt ");
+      EXPECT_CONTAINS(std::string(e.what()), "is not a finite number (as a float)");
+    }
+  }
+}
+
 TEST(HostileMesh, ADeviceOrAFolderIsNotAMeshFile) {
   EXPECT_CONTAINS(load_error("/dev/zero"), "/dev/zero: cannot read mesh file: not a regular file");
   EXPECT_CONTAINS(load_error(dir()), "not a regular file");
