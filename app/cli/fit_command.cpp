@@ -3,15 +3,16 @@
 #include "app/cli/fit_command.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
-
 #include <variant>
 #include <vector>
+
 #include "app/fit/fit_report.h"
-#include "app/scene/json_reader.h"
 #include "app/io/input_guard.h"
 #include "app/io/output_lock.h"
 #include "app/scene/scene_inputs.h"
+#include "app/scene/json_reader.h"
 #include "app/io/progress.h"
 #include "app/cli/options.h"
 
@@ -19,7 +20,6 @@ namespace weft::app {
 
 namespace fs = std::filesystem;
 
-int run_fit_command(const FitOptions& options) {
 namespace {
 
 // The files a fit reads: the fit file, its scene's files, a point cloud or a photo and its mask
@@ -44,6 +44,7 @@ const OutputNames fit_outputs = {
 
 }  // namespace
 
+int run_fit_command(const FitOptions& options) {
   FitSpec spec = load_fit_spec(options.spec);
   if (options.max_evaluations) spec.optimizer.max_evaluations = *options.max_evaluations;
   if (options.profile_points) spec.profile.points = *options.profile_points;
@@ -72,6 +73,13 @@ const OutputNames fit_outputs = {
                  e.failure.empty() ? "" : (" diverged: " + e.failure).c_str());
   };
   const FitResult result = run_fit(problem, on_evaluation);
+  // A target no evaluation could be compared with (a point cloud at 1e300 m) used to end with
+  // exit 0, reporting the start as the fit.
+  if (!std::isfinite(result.best.objective))
+    throw InputError(spec.source + ": target: none of the " +
+                     std::to_string(result.evaluations.size()) +
+                     " evaluations gave a finite objective (is the target in the scene's units "
+                     "and frame?); nothing was fitted (fit.csv lists them)");
   const FitOutputs outputs = write_fit_outputs(dir, problem, result, options.command_line);
 
   std::printf("weft: fit %s: %s after %zu evaluations (%s)\n", spec.name.c_str(),
