@@ -96,8 +96,14 @@ void print_table(const Scene& scene, const SceneMeasurement& m) {
 int run_measure(const MeasureOptions& options) {
   Scene scene = load_scene_with(options.scene, options.overrides);
   apply_threads(scene, options.threads);
-  if (options.until_settled_max_s)
+  if (options.until_settled_max_s) {
     scene.frames = static_cast<int>(std::ceil(*options.until_settled_max_s * scene.fps - 1e-9));
+    // Shorter than a frame used to simulate nothing and report "settle time 0.00 s".
+    if (scene.frames < 1)
+      throw InputError("--until-settled: " + format("%g", *options.until_settled_max_s) +
+                       " s is shorter than one frame of the scene (1/" + format("%g", scene.fps) +
+                       " s); nothing would be simulated");
+  }
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::optional<analysis::DrapeSupport> support =

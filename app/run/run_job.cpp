@@ -347,6 +347,7 @@ class FrameWriter {
   // The frame that ended the run by passing through itself, if one did.
   const std::optional<CrossingStop>& crossing_stop() const { return m_crossing_stop; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
+  int frames_drawn() const { return m_frames_drawn; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
  private:
@@ -358,6 +359,7 @@ class FrameWriter {
   // Draws frame `index` (the cloth at x, the obstacles at time_s) and writes its exports.
   void render_frame(FramePainter& painter, int index, const sim::Matrix3X& x, double time_s) {
     const render::RenderMesh cloth = painter.paint(index, x, time_s, m_dir);
+    ++m_frames_drawn;
     if (!m_options.export_cache.empty()) m_cache.add(cloth, time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
@@ -391,6 +393,7 @@ class FrameWriter {
   const Scene& m_scene;
   const RunOptions& m_options;
   std::optional<OutputFolderLock> m_lock;  // taken at the first frame, or on resuming
+  int m_frames_drawn = 0;                  // by this process: a resumed run draws only some
   fs::path m_dir;
   sim::Simulator& m_simulator;
   render::Renderer& m_renderer;
@@ -467,8 +470,8 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
                  crossed.size(), writer.rows().size(), frame_ranges(crossed).c_str(), most);
   }
   if (options.explain) print_phase_shares(simulator.timers());
-  int written = 0;
-  for (int k = 1; k <= scene.frames; ++k) written += options.selection.selects(k, scene.frames);
+  // The frames this process drew (a resumed run said it wrote the interrupted run's too).
+  const int written = writer.frames_drawn();
   std::fprintf(stderr, "weft: wrote %d frame%s to %s (simulation %s, rendering %s, total %s)\n",
               written, written == 1 ? "" : "s",
               dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
@@ -480,9 +483,11 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
     std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
 }
 
-// The folder of --resume DIR or --resume DIR/checkpoint.weft.
+// The folder of --resume DIR or --resume DIR/checkpoint.weft ("." for a bare checkpoint.weft,
+// which used to be named "" in the messages).
 fs::path resume_folder(const fs::path& resume) {
-  return fs::is_directory(resume) ? resume : resume.parent_path();
+  if (fs::is_directory(resume)) return resume;
+  return resume.has_parent_path() ? resume.parent_path() : fs::path(".");
 }
 
 // The scene of a checkpoint; a scene (and overrides) given with --resume must be the same, and
