@@ -58,44 +58,60 @@ int ply_type_size(const std::string& t, bool& is_signed, bool& floating) {
   throw MeshFileError(name + ": " + what);
 }
 
+// "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME" (the words after "property").
+PlyProperty read_ply_property(const std::vector<std::string>& w, const std::string& line,
+                              const std::string& name) {
+  PlyProperty p;
+  bool count_floating = false;
+  p.list = w.size() == 5 && w[1] == "list";
+  if (w.size() != (p.list ? 5u : 3u)) fail(name, "PLY header line '" + line + "': malformed property");
+  p.size = ply_type_size(p.list ? w[3] : w[1], p.is_signed, p.floating);
+  if (p.list) p.count_size = ply_type_size(w[2], p.count_signed, count_floating);
+  p.name = w.back();
+  if (p.size == 0 || (p.list && (p.count_size == 0 || count_floating)))
+    fail(name, "PLY header line '" + line + "': unknown or unusable type");
+  return p;
+}
+
+// The header, line by line: "ply", then only format, comment, obj_info, element and property
+// lines up to an "end_header" line. Anything else is refused: assimp's reader was seen to hang
+// on a misspelt keyword.
 PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
-  const std::size_t end = bytes.find("end_header");
-  if (bytes.substr(0, 3) != "ply" || end == std::string_view::npos || end > 65536)
-    fail(name, "not a PLY file (expected \"ply\" … \"end_header\" in its first 64 KiB)");
   PlyHeader h;
-  h.body = bytes.find('\n', end);
-  if (h.body == std::string_view::npos) fail(name, "nothing after the PLY header");
-  ++h.body;
-  std::istringstream lines{std::string(bytes.substr(0, end))};
-  for (std::string line; std::getline(lines, line);) {
-    std::istringstream words(line);
-    std::string key, a, b, c, d;
-    words >> key >> a >> b >> c >> d;
-    if (key == "format") {
-      if (a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian")
-        fail(name, "PLY format '" + a + "' (expected ascii or binary_*_endian)");
-      h.ascii = a == "ascii";
-      h.big_endian = a == "binary_big_endian";
-    } else if (key == "element") {
-      PlyElement e{a, 0, {}};
-      if (b.empty() || b.find_first_not_of("0123456789") != std::string::npos || b.size() > 19)
-        fail(name, "PLY element '" + a + "': count '" + b + "' (expected a whole number)");
-      e.count = std::stoull(b);
-      h.elements.push_back(e);
-    } else if (key == "property") {
-      if (h.elements.empty()) fail(name, "PLY property before any element");
-      PlyProperty p;
-      bool unused = false;
-      p.list = a == "list";
-      p.size = ply_type_size(p.list ? c : a, p.is_signed, p.floating);
-      if (p.list) p.count_size = ply_type_size(b, p.count_signed, unused);
-      p.name = p.list ? d : b;
-      if (p.size == 0 || (p.list && (p.count_size == 0 || unused)))
-        fail(name, "PLY property '" + line + "': unknown type");
-      h.elements.back().properties.push_back(p);
+  bool format = false;
+  for (std::size_t at = 0, number = 1; at < bytes.size() && at < 65536; ++number) {
+    const std::size_t end = std::min(bytes.find('\n', at), bytes.size());
+    std::string line(bytes.substr(at, end - at));
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    at = end + 1;
+    std::istringstream words_in(line);
+    std::vector<std::string> w;
+    for (std::string word; words_in >> word;) w.push_back(word);
+    const std::string key = w.empty() ? "" : w[0];
+    if (number == 1) {
+      if (line != "ply") fail(name, "not a PLY file (expected its first line to be \"ply\")");
+    } else if (key == "end_header" && w.size() == 1) {
+      if (!format) fail(name, "the PLY header has no format line");
+      h.body = std::min(at, bytes.size());
+      return h;
+    } else if (key == "format" && w.size() == 3 && !format) {
+      if (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")
+        fail(name, "PLY format '" + w[1] + "' (expected ascii or binary_*_endian)");
+      h.ascii = w[1] == "ascii";
+      h.big_endian = w[1] == "binary_big_endian";
+      format = true;
+    } else if (key == "element" && w.size() == 3) {
+      if (w[2].find_first_not_of("0123456789") != std::string::npos || w[2].size() > 19)
+        fail(name, "PLY element '" + w[1] + "': count '" + w[2] + "' (expected a whole number)");
+      h.elements.push_back({w[1], std::stoull(w[2]), {}});
+    } else if (key == "property" && !h.elements.empty()) {
+      h.elements.back().properties.push_back(read_ply_property(w, line, name));
+    } else if (key != "comment" && key != "obj_info") {
+      fail(name, "PLY header line " + std::to_string(number) + ": '" + line +
+                     "' (expected format, comment, obj_info, element, property or end_header)");
     }
   }
-  return h;
+  fail(name, "not a PLY file (no \"end_header\" line in its first 64 KiB)");
 }
 
 // A value as the file gives it: 512, -1, 1.5, 1e+30.
@@ -176,7 +192,8 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
     if (e.name == "vertex") vertices = e.count;
   PlyBody body(bytes, h, name);
   for (const PlyElement& e : h.elements)
-    for (std::uint64_t i = 0; i < e.count; ++i)
+    // An element without properties takes no bytes, whatever its count (up to 10¹⁹).
+    for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i)
       for (const PlyProperty& p : e.properties) {
         const std::string where = e.name + " " + std::to_string(i) + ", " + p.name;
         if (!p.list) {
