@@ -112,8 +112,9 @@ double element(const std::string& bytes, std::size_t at, const Dtype& d) {
 
 }  // namespace
 
-NpyArray read_npy(const fs::path& path) {
-  const std::string bytes = file_bytes(path);
+NpyArray read_npy(const fs::path& path) { return parse_npy(file_bytes(path), path); }
+
+NpyArray parse_npy(const std::string& bytes, const fs::path& path) {
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0)
     fail(path, "not a .npy file (expected the magic string \\x93NUMPY at the start)");
   const int major = static_cast<unsigned char>(bytes[6]);

@@ -29,6 +29,8 @@ struct NpyArray {
 
 // Reads a float32 or float64 array of any shape. Throws NpyError.
 NpyArray read_npy(const std::filesystem::path& path);
+// The same from a file's bytes; `path` names it in errors (tests/fuzz reads bytes).
+NpyArray parse_npy(const std::string& bytes, const std::filesystem::path& path);
 
 // A .npy file is read only up to this size (44 M points of float64): a larger file or a device
 // (`/dev/zero`) is an NpyError naming it at once.

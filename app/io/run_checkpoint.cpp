@@ -120,17 +120,23 @@ void write_checkpoint(const fs::path& dir, const RunCheckpoint& c) {
   out.section("simulator");
   out.text(c.simulator_state);
   out.section("end");
-  std::string bytes(kMagic);
-  const std::uint64_t hashes[3] = {build_hash(), fnv1a_64(c.scene_text), fnv1a_64(out.bytes())};
-  bytes.append(reinterpret_cast<const char*>(hashes), sizeof hashes);
-  bytes += out.bytes();
-  base::write_file_atomically(dir / checkpoint_file_name, bytes);
+  base::write_file_atomically(dir / checkpoint_file_name,
+                              checkpoint_header(fnv1a_64(c.scene_text), out.bytes()) + out.bytes());
 }
 
 RunCheckpoint read_checkpoint(const fs::path& dir) {
   const fs::path path = fs::is_directory(dir) ? dir / checkpoint_file_name : dir;
-  const std::string bytes = read_bytes(path, max_checkpoint_bytes, "a checkpoint");
-  const std::string name = path.string();
+  return parse_checkpoint(read_bytes(path, max_checkpoint_bytes, "a checkpoint"), path.string());
+}
+
+std::string checkpoint_header(std::uint64_t scene_hash, std::string_view payload) {
+  std::string bytes(kMagic);
+  const std::uint64_t hashes[3] = {build_hash(), scene_hash, fnv1a_64(payload)};
+  bytes.append(reinterpret_cast<const char*>(hashes), sizeof hashes);
+  return bytes;
+}
+
+RunCheckpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   std::uint64_t hashes[3];
   if (bytes.compare(0, kMagicPrefix.size(), kMagicPrefix) == 0 &&
       bytes.compare(0, kMagic.size(), kMagic) != 0) {

@@ -60,6 +60,11 @@ void write_checkpoint(const std::filesystem::path& dir, const RunCheckpoint& che
 // header holds, so a changed byte anywhere is refused, not resumed.
 RunCheckpoint read_checkpoint(const std::filesystem::path& dir);
 
+// The same from a checkpoint's bytes; `name` names it in errors (tests/fuzz reads bytes).
+RunCheckpoint parse_checkpoint(const std::string& bytes, const std::string& name);
+// The header a checkpoint of this build with this scene hash and payload begins with.
+std::string checkpoint_header(std::uint64_t scene_hash, std::string_view payload);
+
 // The files and the hashes of their bytes. Throws InputError naming a file that cannot be read.
 std::vector<InputFileHash> hash_input_files(const std::vector<std::filesystem::path>& files);
 
