@@ -2,8 +2,6 @@
 
 #include "app/io/input_guard.h"
 
-#include <regex>
-
 #include "app/io/input_error.h"
 
 namespace weft::app {
@@ -24,7 +22,7 @@ std::string output_named(const std::string& name, const OutputNames& outputs) {
   for (const std::string& file : outputs.files)
     if (name == file) return file;
   for (const NumberedFiles& kind : outputs.numbered)
-    if (std::regex_match(name, std::regex(kind.prefix + R"(_\d{4,}\.)" + kind.extension)))
+    if (std::regex_match(name, numbered_file_pattern(kind)))
       return kind.prefix + "_NNNN." + kind.extension;
   return "";
 }
@@ -38,11 +36,10 @@ void refuse_overwriting_inputs(const fs::path& dir, const OutputNames& outputs,
   for (const fs::path& input : inputs) {
     const fs::path file = resolved(input);
     if (file.empty()) continue;
-    std::string output;
-    if (file.parent_path() == folder) output = output_named(file.filename().string(), outputs);
-    // A hard link, or a link inside the folder that leads to the input.
-    for (const std::string& name : outputs.files)
-      if (output.empty() && same_file(dir / name, input)) output = name;
+    // Outputs are renamed over their names and earlier files unlinked, so only the input's own
+    // name (links resolved) matters: another hard link to it in the folder loses nothing.
+    const std::string output =
+        file.parent_path() == folder ? output_named(file.filename().string(), outputs) : "";
     if (!output.empty())
       throw InputError(input.string() + ": an input of this command, but the output folder " +
                        dir.string() + " is where it writes (or removes an earlier run's) " +

@@ -19,8 +19,9 @@ struct OutputNames {
 };
 
 // Throws InputError naming the input, the folder and the output when an existing file of
-// `inputs` is one that the command would write or remove in `dir` — by any path to it
-// (links, `..`, hard links). An input elsewhere is left alone.
+// `inputs` is one that the command would write or remove in `dir` — by any path to it (links
+// and `..` resolved). An input elsewhere is left alone (so is another hard link to it in the
+// folder: an output is renamed over the name, an earlier file unlinked, the input's file kept).
 void refuse_overwriting_inputs(const std::filesystem::path& dir, const OutputNames& outputs,
                                const std::vector<std::filesystem::path>& inputs);
 

@@ -55,9 +55,13 @@ std::string lower_extension(const fs::path& path) {
   return ext;
 }
 
+std::regex numbered_file_pattern(const NumberedFiles& kind) {
+  return std::regex(kind.prefix + R"(_\d{4,}\.)" + kind.extension);
+}
+
 int remove_numbered_files(const fs::path& dir, const std::string& prefix,
                           const std::string& extension) {
-  const std::regex pattern(prefix + R"(_\d{4,}\.)" + extension);
+  const std::regex pattern = numbered_file_pattern({prefix, extension});
   int removed = 0;
   for (const auto& entry : fs::directory_iterator(dir))
     if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,9 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
 // The path's extension in lower case, with its dot: ".png" for "A.PNG", "" for none.
 std::string lower_extension(const std::filesystem::path& path);
+
+// The names of that kind, <prefix>_<4 or more digits>.<extension>, as a regular expression.
+std::regex numbered_file_pattern(const NumberedFiles& kind);
 
 // Removes the files in `dir` named <prefix>_<4 or more digits>.<extension> (extension a
 // regular expression such as "png" or "(obj|ply|gltf|bin)"); returns how many.
