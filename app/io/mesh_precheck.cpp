@@ -84,6 +84,11 @@ PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
     std::string line(bytes.substr(at, end - at));
     if (!line.empty() && line.back() == '\r') line.pop_back();
     at = end + 1;
+    // A header is text: assimp leaks on an element name with a NUL in it (found by fuzzing).
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+        fail(name, "PLY header line " + std::to_string(number) + ": a control character (a PLY "
+                   "header is text)");
     std::istringstream words_in(line);
     std::vector<std::string> w;
     for (std::string word; words_in >> word;) w.push_back(word);

@@ -85,8 +85,9 @@ TEST(HostileMesh, APlyListCountPastItsFacesOrAHeaderPastTheFileIsRefused) {
   EXPECT_CONTAINS(load_error(d / "ascii.ply"), "face 0, vertex_indices: the file ends before it");
 }
 
-// Found by fuzzing: assimp's PLY reader hung on a misspelt header keyword, and weft's own walk
-// on an element of 4·10¹² items without properties.
+// Found by fuzzing: assimp's PLY reader hung on a misspelt header keyword and leaked on a NUL
+// in an element's name, and weft's own walk took forever over an element of 4·10¹² items
+// without properties.
 TEST(HostileMesh, APlyHeaderIsReadStrictlyAndAnEmptyElementTakesNoTime) {
   const fs::path d = dir();
   std::string typo = ascii_ply("3 0 1 2\n");
@@ -94,6 +95,13 @@ TEST(HostileMesh, APlyHeaderIsReadStrictlyAndAnEmptyElementTakesNoTime) {
   write_text(d / "typo.ply", typo);
   EXPECT_CONTAINS(load_error(d / "typo.ply"), "PLY header line 4: 'propesty float x' (expected format, "
                                               "comment, obj_info, element, property or end_header)");
+  EXPECT_CONTAINS(load_error([&] {
+                    std::string nul = ascii_ply("3 0 1 2\n");
+                    nul.replace(nul.find("face"), 4, std::string("fa\1\0e", 5));
+                    write_text(d / "nul.ply", nul);
+                    return d / "nul.ply";
+                  }()),
+                  "PLY header line 7: a control character");
   EXPECT_NO_THROW(precheck_mesh_bytes("ply\nformat ascii 1.0\nelement nothing 4444444888888\n"
                                       "end_header\n", ".ply", "empty.ply"));
 }
