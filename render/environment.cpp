@@ -121,9 +121,19 @@ float EnvironmentMap::pdf(const Eigen::Vector3f& d) const {
 }
 
 EnvironmentMap read_environment_map(const std::filesystem::path& path) {
+  const std::string bytes = read_image_file(path, "read_environment_map");
+  // stb converts an 8-bit image (a PNG named .hdr) to floats without a word: its radiance
+  // would be made up, so only a Radiance file is read.
+  if (!stbi_is_hdr_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                               static_cast<int>(bytes.size())))
+    throw std::runtime_error("read_environment_map: '" + path.string() +
+                             "': not a Radiance .hdr file (expected the header \"#?RADIANCE\" "
+                             "or \"#?RGBE\"; an 8-bit image holds no radiance)");
   int width = 0, height = 0, channels = 0;
   std::unique_ptr<float, void (*)(void*)> pixels(
-      stbi_loadf(path.c_str(), &width, &height, &channels, 3), stbi_image_free);
+      stbi_loadf_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                             static_cast<int>(bytes.size()), &width, &height, &channels, 3),
+      stbi_image_free);
   if (!pixels)
     throw std::runtime_error("read_environment_map: cannot read '" + path.string() +
                              "': " + stb_read_failure(path));

@@ -68,8 +68,8 @@ class EnvironmentMap {
   double m_total = 0.0;               // sum of m_weight
 };
 
-// Reads a Radiance .hdr (or any float image stb_image reads) as linear RGB. Throws
-// std::runtime_error naming the path and stb's reason.
+// Reads a Radiance .hdr as linear RGB. Throws std::runtime_error naming the path and stb's
+// reason, or that the file is not a Radiance file (an 8-bit PNG or JPG, whatever its name).
 EnvironmentMap read_environment_map(const std::filesystem::path& path);
 // Writes `map` as a Radiance .hdr (tests make their maps with it). Throws std::runtime_error.
 void write_environment_map(const std::filesystem::path& path, const EnvironmentMap& map);

@@ -20,6 +20,9 @@
 #include <stb_image_write.h>
 #include <png.h>
 
+#include "base/atomic_file.h"
+#include "base/file_read.h"
+
 namespace weft::render {
 
 namespace {
@@ -27,6 +30,12 @@ namespace {
 std::string quoted(const std::filesystem::path& path) {
   return "'" + path.string() + "'";
 }
+
+// A file's bytes as stb_image takes them (read_image_file has capped their size far below 2³¹).
+const stbi_uc* stb_bytes(const std::string& bytes) {
+  return reinterpret_cast<const stbi_uc*>(bytes.data());
+}
+int stb_size(const std::string& bytes) { return static_cast<int>(bytes.size()); }
 
 void check_inside(const Image& image, int x, int y) {
   if (x < 0 || y < 0 || x >= image.width() || y >= image.height()) {
@@ -36,43 +45,10 @@ void check_inside(const Image& image, int x, int y) {
   }
 }
 
-// Owns a FILE*; closing is explicit (close()) where its result matters.
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
 // stbi_write_png_to_func callback: appends the encoded bytes to a std::string.
 void append_bytes(void* context, void* data, int size) {
   static_cast<std::string*>(context)->append(static_cast<const char*>(data),
                                              static_cast<std::size_t>(size));
-}
-
-// Writes bytes to path, atomically: to PATH.partial first, renamed over PATH once complete,
-// so that an interrupted run never leaves a truncated PNG. Throws naming the path and the
-// system's reason.
-void write_file(const std::filesystem::path& final_path, const std::string& bytes) {
-  const std::filesystem::path path = final_path.string() + ".partial";
-  errno = 0;
-  FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) {
-    throw std::runtime_error("write_png: cannot open " + quoted(path) +
-                             " for writing: " + std::strerror(errno));
-  }
-  const std::size_t written = std::fwrite(bytes.data(), 1, bytes.size(), file.get());
-  const int saved_errno = errno;
-  if (written != bytes.size()) {
-    throw std::runtime_error("write_png: cannot write " + quoted(path) + ": " +
-                             std::strerror(saved_errno));
-  }
-  if (std::fclose(file.release()) != 0) {
-    throw std::runtime_error("write_png: cannot close " + quoted(path) + ": " +
-                             std::strerror(errno));
-  }
-  if (std::rename(path.c_str(), final_path.c_str()) != 0) {
-    throw std::runtime_error("write_png: cannot rename " + quoted(path) + " to " +
-                             quoted(final_path) + ": " + std::strerror(errno));
-  }
 }
 
 }  // namespace
@@ -110,25 +86,14 @@ void Image::set(int x, int y, Rgb8 c) {
 
 namespace {
 
-// Writes encoded image bytes beside the target and renames them over it, so an interrupted run
-// never leaves a half image.
+// Writes encoded image bytes to PATH.partial, created exclusively, and renames them over
+// PATH, so an interrupted run never leaves a half image and a link planted at the partial
+// name cannot redirect the write; a failed write (a full disk) leaves no partial file.
 void write_encoded(const std::string& encoded, const std::filesystem::path& path) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
   try {
-    write_file(tmp, encoded);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("write_png: cannot rename " + quoted(tmp) + " to " + quoted(path) +
-                             ": " + ec.message());
+    base::write_file_atomically(path, encoded);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("write_png: ") + e.what());
   }
 }
 
@@ -225,11 +190,31 @@ std::string stb_read_failure(const std::filesystem::path& path) {
   return why;
 }
 
+std::string read_image_file(const std::filesystem::path& path, const char* reader) {
+  std::string bytes;
+  try {
+    bytes = base::read_file_capped(path, max_image_file_bytes, "an image file");
+  } catch (const base::FileReadError& e) {
+    throw std::runtime_error(std::string(reader) + ": " + e.what());
+  }
+  int width = 0, height = 0, channels = 0;
+  if (stbi_info_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height, &channels) &&
+      static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) > max_image_pixels)
+    throw std::runtime_error(std::string(reader) + ": " + quoted(path) + ": a " +
+                             std::to_string(width) + "x" + std::to_string(height) +
+                             " image, more than " + std::to_string(max_image_pixels) +
+                             " pixels (the limit)");
+  return bytes;
+}
+
 Image read_image(const std::filesystem::path& path) {
+  const std::string bytes = read_image_file(path, "read_image");
   int width = 0, height = 0, channels_in_file = 0;
   // 3 requested channels: stb converts grey/grey-alpha/RGBA to RGB; rows come top row first.
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load(path.c_str(), &width, &height, &channels_in_file, 3), stbi_image_free);
+      stbi_load_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height,
+                            &channels_in_file, 3),
+      stbi_image_free);
   if (!pixels)
     throw std::runtime_error("read_image: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   Image image(width, height);
@@ -239,12 +224,15 @@ Image read_image(const std::filesystem::path& path) {
 }
 
 std::vector<std::uint8_t> read_alpha(const std::filesystem::path& path) {
+  const std::string bytes = read_image_file(path, "read_alpha");
   int width = 0, height = 0, channels_in_file = 0;
-  if (!stbi_info(path.c_str(), &width, &height, &channels_in_file))
+  if (!stbi_info_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height, &channels_in_file))
     throw std::runtime_error("read_alpha: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   if (channels_in_file != 2 && channels_in_file != 4) return {};  // grey or RGB: no alpha
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load(path.c_str(), &width, &height, &channels_in_file, 4), stbi_image_free);
+      stbi_load_from_memory(stb_bytes(bytes), stb_size(bytes), &width, &height,
+                            &channels_in_file, 4),
+      stbi_image_free);
   if (!pixels)
     throw std::runtime_error("read_alpha: cannot read " + quoted(path) + ": " + stb_read_failure(path));
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);

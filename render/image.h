@@ -46,6 +46,17 @@ void write_png(const Image& image, const std::vector<std::uint8_t>& alpha,
 void write_png(const Mask& mask, const std::filesystem::path& path);
 // Writes a baseline JPEG of the given quality (1…100); throws std::runtime_error naming the path.
 void write_jpg(const Image& image, const std::filesystem::path& path, int quality = 95);
+// Image files read (PNG, JPG, Radiance .hdr) are at most max_image_file_bytes and
+// max_image_pixels (width × height, 8192² — a decoded RGB float map of it is 805 MB): a larger
+// file, a device (`/dev/zero`) or a small file claiming a huge image is refused before it is
+// decoded.
+inline constexpr std::uint64_t max_image_file_bytes = std::uint64_t{256} << 20;
+inline constexpr std::uint64_t max_image_pixels = std::uint64_t{1} << 26;
+
+// The bytes of an image file after those checks (stb's header read gives the size); throws
+// std::runtime_error "READER: PATH: …" naming what is wrong.
+std::string read_image_file(const std::filesystem::path& path, const char* reader);
+
 // Reads a PNG/JPG as RGB; throws std::runtime_error naming the path and stb's reason.
 Image read_image(const std::filesystem::path& path);
 

@@ -17,6 +17,8 @@
 #include "base/html_escape.h"
 #include "app/scene/json_reader.h"
 #include "app/cli/options.h"
+#include "app/io/input_guard.h"
+#include "app/io/output_files.h"
 #include "base/constants.h"
 #include "render/photo_compare/photo_compare.h"
 
@@ -161,8 +163,7 @@ std::string warnings_html(const nlohmann::json& warnings) {
 }
 
 void write_report(const fs::path& path, const nlohmann::json& j) {
-  std::ofstream html(path);
-  if (!html) throw std::runtime_error("cannot write " + path.string());
+  std::ostringstream html;
   const auto row = [&](const std::string& name, const std::string& value, const std::string& note) {
     html << "<tr><td>" << name << "</td><td>" << value << "</td><td>" << note << "</td></tr>\n";
   };
@@ -212,6 +213,7 @@ void write_report(const fs::path& path, const nlohmann::json& j) {
           "left the photo, right the render; grey: compared, unlabelled.</p>\n<a "
           "href=\"folds.png\"><img src=\"folds.png\" alt=\"fold labels\" style=\"max-width:97%\">"
           "</a>\n</body></html>\n";
+  write_text(path, html.str());
 }
 
 }  // namespace
@@ -246,6 +248,20 @@ render::Similarity parse_transform(const std::string& text) {
   return t;
 }
 
+namespace {
+
+// What weft compare writes into --out; none may be one of its inputs.
+void refuse_overwriting_compare_inputs(const CompareOptions& o, const Masks& masks) {
+  std::vector<fs::path> inputs{o.photo, o.render};
+  for (const auto& mask : {masks.photo, masks.render})
+    if (mask) inputs.push_back(*mask);
+  refuse_overwriting_inputs(
+      o.out, {{"photo.png", "render_aligned.png", "overlay.png", "folds.png", "report.html"}, {}},
+      inputs);
+}
+
+}  // namespace
+
 int run_compare(const CompareOptions& o) {
   std::optional<render::Similarity> transform;
   render::Image photo, render;
@@ -254,6 +270,7 @@ int run_compare(const CompareOptions& o) {
   const Masks masks = masks_of(o);
   try {
     if (o.transform) transform = parse_transform(*o.transform);
+    refuse_overwriting_compare_inputs(o, masks);
     photo = read_input(o.photo, "photo");
     render = read_input(o.render, "render");
     ps = silhouette(photo, o.photo, masks.photo, "photo", "--mask-photo");

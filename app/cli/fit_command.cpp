@@ -3,9 +3,15 @@
 #include "app/cli/fit_command.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <variant>
+#include <vector>
 
 #include "app/fit/fit_report.h"
+#include "app/io/input_guard.h"
+#include "app/io/output_lock.h"
+#include "app/scene/scene_inputs.h"
 #include "app/scene/json_reader.h"
 #include "app/io/progress.h"
 #include "app/cli/options.h"
@@ -13,6 +19,30 @@
 namespace weft::app {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The files a fit reads: the fit file, its scene's files, a point cloud or a photo and its mask
+// (drape photos are read by name from their own folder).
+std::vector<fs::path> fit_inputs(const FitSpec& spec, const fs::path& fit_file) {
+  std::vector<fs::path> inputs = scene_files(spec.base);
+  inputs.push_back(fit_file);
+  if (const auto* cloud = std::get_if<PointCloudTarget>(&spec.target)) inputs.push_back(cloud->file);
+  if (const auto* photo = std::get_if<PhotoTarget>(&spec.target)) {
+    inputs.push_back(photo->image_path);
+    if (photo->mask_path) inputs.push_back(*photo->mask_path);
+  }
+  return inputs;
+}
+
+// What weft fit writes into its folder (app/fit/fit_report.h, drape_photos_report.h).
+const OutputNames fit_outputs = {
+    {"fit.csv", "report.html", "fit_result.json", "fitted_scene.json", "fit.txt",
+     "convergence.png", "profile.png", "photo.png", "fitted_render.png", "overlay.png",
+     "comparison.png", "drape_photos.png", "outline_spectra.png"},
+    {}};
+
+}  // namespace
 
 int run_fit_command(const FitOptions& options) {
   FitSpec spec = load_fit_spec(options.spec);
@@ -27,7 +57,8 @@ int run_fit_command(const FitOptions& options) {
   problem.scene_at(start);
 
   const fs::path dir = options.out.value_or(fs::path("out") / spec.name);
-  fs::create_directories(dir);
+  refuse_overwriting_inputs(dir, fit_outputs, fit_inputs(spec, options.spec));
+  const OutputFolderLock lock(dir);  // creates the folder
   FitLog log(dir / "fit.csv", spec);
   std::fprintf(stderr, "weft: fitting %s to %s (%s) — %zu parameter(s), up to %d evaluations\n",
                spec.base.source.c_str(), spec.source.c_str(), objective_label(spec.target).c_str(),
@@ -42,6 +73,13 @@ int run_fit_command(const FitOptions& options) {
                  e.failure.empty() ? "" : (" diverged: " + e.failure).c_str());
   };
   const FitResult result = run_fit(problem, on_evaluation);
+  // A target no evaluation could be compared with (a point cloud at 1e300 m) used to end with
+  // exit 0, reporting the start as the fit.
+  if (!std::isfinite(result.best.objective))
+    throw InputError(spec.source + ": target: none of the " +
+                     std::to_string(result.evaluations.size()) +
+                     " evaluations gave a finite objective (is the target in the scene's units "
+                     "and frame?); nothing was fitted (fit.csv lists them)");
   const FitOutputs outputs = write_fit_outputs(dir, problem, result, options.command_line);
 
   std::printf("weft: fit %s: %s after %zu evaluations (%s)\n", spec.name.c_str(),

@@ -21,6 +21,7 @@
 #include "app/scene/scene.h"
 #include "app/cluster/slurm_job.h"
 #include "app/cluster/slurm_resources.h"
+#include "base/atomic_file.h"
 #include "base/timer.h"
 
 namespace weft::app {
@@ -126,9 +127,10 @@ void render_scene(GalleryEntry& entry, const GalleryOptions& options) {
     fs::remove_all(scratch);
     throw std::runtime_error("weft run stopped with exit code " + std::to_string(code));
   }
-  write_atomically(options.out / (entry.name + ".png"), [&](const fs::path& partial) {
-    fs::copy_file(scratch / frame_file_name(frames), partial, fs::copy_options::overwrite_existing);
-  });
+  std::ifstream frame(scratch / frame_file_name(frames), std::ios::binary);
+  const std::string png((std::istreambuf_iterator<char>(frame)), std::istreambuf_iterator<char>());
+  if (!frame) throw std::runtime_error((scratch / frame_file_name(frames)).string() + ": cannot read");
+  base::write_file_atomically(options.out / (entry.name + ".png"), png);
   render::write_png(frame_contact_sheet(scratch, evenly_spaced_frames(frames, report_sheet_frames),
                                         scene.fps),
                     options.out / (entry.name + "_sheet.png"));
@@ -246,6 +248,7 @@ int submit_gallery(const GalleryOptions& options, const std::vector<fs::path>& f
   collect.log = slurm_dir / "weft-gallery-collect.log";
   collect.chdir = array.chdir;
   collect.resources = estimate_resources({TaskWork{}}, 1);
+  check_slurm_scripts(array, collect);
   fs::remove_all(slurm_dir / "results");  // an earlier submission's
   record_submission(options.out, options.command_line);
   submit_array_and_collect(array, slurm_dir / "gallery.sbatch", collect,

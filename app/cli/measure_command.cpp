@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/run/drape_photo.h"
 #include "app/run/frame_stream.h"
 #include "app/scene/json_reader.h"
@@ -94,8 +96,14 @@ void print_table(const Scene& scene, const SceneMeasurement& m) {
 int run_measure(const MeasureOptions& options) {
   Scene scene = load_scene_with(options.scene, options.overrides);
   apply_threads(scene, options.threads);
-  if (options.until_settled_max_s)
+  if (options.until_settled_max_s) {
     scene.frames = static_cast<int>(std::ceil(*options.until_settled_max_s * scene.fps - 1e-9));
+    // Shorter than a frame used to simulate nothing and report "settle time 0.00 s".
+    if (scene.frames < 1)
+      throw InputError("--until-settled: " + format("%g", *options.until_settled_max_s) +
+                       " s is shorter than one frame of the scene (1/" + format("%g", scene.fps) +
+                       " s); nothing would be simulated");
+  }
   // Everything that can reject the input happens before the output folder is touched.
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   const std::optional<analysis::DrapeSupport> support =
@@ -103,6 +111,8 @@ int run_measure(const MeasureOptions& options) {
 
   // The output folder is touched when the first frame is measured (start_output).
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  refuse_overwriting_inputs(dir, {{"measure.csv", "measure.txt", "outline.csv"}, {}},
+                            scene_files(scene));
   MeasureCsv csv(dir / "measure.csv");
   std::fprintf(stderr,
                "weft: measuring %s — %d frames at %g fps, %s, time step %.3g ms, %s\n",
@@ -113,12 +123,13 @@ int run_measure(const MeasureOptions& options) {
   Progress progress(stderr, scene.frames, "frame");
   SceneMeasurement m;
   int measured = 0;  // the last frame in measure.csv
+  std::optional<OutputFolderLock> lock;  // from the first frame on
   try {
     m = measure_scene(scene, *simulator, options.require_drape, [&](const MeasureRow& row) {
       csv.add(row);
       if (row.frame == 0) return;
       if (row.frame == 1)
-        start_output(dir, {}, {{"measure.txt", run_record(options.command_line,
+        start_output(lock, dir, {}, {{"measure.txt", run_record(options.command_line,
                                                           {{"scene", scene.source}})}});
       csv.save();
       measured = row.frame;

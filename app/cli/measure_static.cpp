@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/cli/measure_command.h"
 #include "app/io/output_files.h"
 #include "app/io/progress.h"
@@ -72,17 +74,20 @@ int run_measure_static(const MeasureOptions& options) {
   Scene scene = load_scene_with(options.scene, options.overrides);
   apply_threads(scene, options.threads);
   const fs::path dir = options.out.value_or(fs::path("out") / scene.name);
+  refuse_overwriting_inputs(dir, {{"static.csv", "measure.txt", "outline.csv"}, {}},
+                            scene_files(scene));
   std::string csv = "seed,converged,iterations,factorizations,residual,cpu_s,drape_coefficient,"
                     "folds,self_intersections\n";
   std::vector<RestMeasurement> runs;
   Progress progress(stderr, options.seeds, "seed");
   const unsigned first = scene.sim.statics.seed;
+  std::optional<OutputFolderLock> lock;  // from the first seed's result on
   for (int k = 0; k < options.seeds; ++k) {
     const unsigned seed = first + static_cast<unsigned>(k);
     const RestShape rest = solve_rest_shape(scene, seed);  // bad input throws before any write
     runs.push_back(measure_rest_shape(scene, rest, seed));
     if (k == 0) {
-      start_output(dir, {}, {{"measure.txt", run_record(options.command_line,
+      start_output(lock, dir, {}, {{"measure.txt", run_record(options.command_line,
                                                         {{"scene", scene.source}})}});
       if (runs.front().drape)
         write_outline(dir / "outline.csv", *runs.front().drape, analysis::DrapeMeasureSettings{}.folds);

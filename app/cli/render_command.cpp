@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <regex>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/run/auto_camera.h"
 #include "app/io/cloth_mesh_states.h"
 #include "app/run/frame_painter.h"
@@ -91,6 +93,7 @@ int run_render(const RenderOptions& options) {
   std::vector<int> selected;
   for (int k = first; k <= last; k += options.every) selected.push_back(k);
   const fs::path out = options.out.value_or(options.states);
+  refuse_overwriting_inputs(out, {{}, {{"frame", "png"}, {"mask", "png"}}}, scene_files(scene));
   if (options.slurm) return submit_render(options, scene, mesh.vertex_count(), selected, out);
   // Each state file is read once: without a camera every frame's, for weft run's framing (the
   // cloth over frames 0..N), keeping the selected ones; otherwise only the selected ones.

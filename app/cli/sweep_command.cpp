@@ -10,7 +10,10 @@
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/scene/scene.h"
 #include "app/scene/scene_patch.h"
 #include "app/cluster/slurm_job.h"
@@ -90,12 +93,37 @@ int submit_sweep(const SweepOptions& options, const std::vector<SweepRun>& runs,
   TaskWork merge_work;  // every point's last frame and mesh at once
   merge_work.vertices = vertices;
   collect.resources = estimate_resources({merge_work}, 1);
+  check_slurm_scripts(array, collect);
   // An earlier submission's results must not be merged as this one's.
   fs::remove_all(dir / "points");
   record_submission(dir, options.command_line);
   submit_array_and_collect(array, slurm_dir / "sweep.sbatch", collect,
                            slurm_dir / "collect.sbatch", options.dry_run);
   return exit_ok;
+}
+
+// At most this many points in one sweep (each is a scene read and a run).
+constexpr std::size_t max_sweep_points = 10000;
+
+// The number of points, refused before any scene is read when there are more than
+// max_sweep_points, or when a Slurm array could not hold them (a sweep's run k is task k):
+// a sweep of 10⁶ points used to read scenes for minutes before it wrote anything.
+void check_sweep_size(const std::vector<SettingValues>& values, bool slurm) {
+  std::size_t points = 1;  // stops growing past the limit, so it cannot overflow
+  std::string sizes;
+  for (const SettingValues& v : values) {
+    if (points <= max_sweep_points) points *= std::max<std::size_t>(v.values.size(), 1);
+    sizes += (sizes.empty() ? "" : " x ") + std::to_string(v.values.size());
+  }
+  const std::size_t limit = slurm ? static_cast<std::size_t>(max_slurm_array_index)
+                                  : max_sweep_points;
+  if (points > limit)
+    throw InputError("--set: " + sizes + " values make more than " + std::to_string(limit) +
+                     " points, " +
+                     (slurm ? "more than a Slurm array holds (sbatch's default MaxArraySize of "
+                              "1001 allows indices up to 1000)"
+                            : "the limit of one sweep") +
+                     "; split the sweep");
 }
 
 }  // namespace
@@ -107,6 +135,7 @@ int run_sweep(const SweepOptions& options) {
     throw InputError("--set: expected at least one KEY=V1,V2,... to sweep over");
   std::vector<SettingValues> values;
   for (const std::string& text : options.set) values.push_back(parse_set_option(text));
+  check_sweep_size(values, options.slurm);
 
   // Every combination is read (and so checked) before any is simulated.
   std::vector<SweepRun> runs;
@@ -125,6 +154,8 @@ int run_sweep(const SweepOptions& options) {
     throw InputError("--point: expected a run number in 1.." + std::to_string(n) + ", got " +
                      std::to_string(*options.point));
   const fs::path dir = output_dir(options, base);
+  refuse_overwriting_inputs(dir, {{"sweep.csv", "sweep.png", "scene.json", "run.txt"}, {}},
+                            scene_files(base));
   if (options.slurm) return submit_sweep(options, runs, dir);
 
   SweepMerge merge{&base, values, options.reference, options.command_line, dir};

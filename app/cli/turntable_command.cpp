@@ -13,6 +13,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/io/input_guard.h"
+#include "app/scene/scene_inputs.h"
 #include "app/scene/json_reader.h"
 #include "app/io/output_files.h"
 #include "app/report/contact_sheet.h"
@@ -46,6 +48,7 @@ struct Subject {
   render::RenderMesh mesh;
   std::vector<render::RenderObject> objects;
   std::unique_ptr<render::Renderer> renderer;  // made from `settings`
+  std::vector<fs::path> inputs;  // the mesh file, or the scene's files
 };
 
 bool is_mesh_file(const fs::path& path) {
@@ -98,6 +101,7 @@ Subject scene_subject(const TurntableOptions& o) {
   apply_threads(scene, o.threads);
   const std::unique_ptr<sim::Simulator> simulator = make_simulator(scene);
   Subject s;
+  s.inputs = scene_files(scene);
   // A renderer that cannot start fails before the simulation time is spent.
   s.renderer = make_chosen_renderer(scene.render);
 
@@ -134,6 +138,7 @@ Subject mesh_subject(const TurntableOptions& o) {
   }
   Subject s;
   s.name = o.input.stem().string();
+  s.inputs = {o.input};
   Scene defaults = load_scene_with(std::nullopt, o.overrides);  // the default render settings
   apply_threads(defaults, o.threads);
   s.settings = defaults.render;
@@ -220,6 +225,11 @@ int run_turntable(const TurntableOptions& given) {
 
   // The output folder is touched when the first image is ready (start_output).
   const fs::path dir = options.out.value_or(fs::path("out") / (subject.name + "_turntable"));
+  refuse_overwriting_inputs(dir,
+                            {{"turntable.txt", "scene.json", "contact_sheet.png", "turntable.mp4",
+                              "turntable.gif"},
+                             {{"turntable", "png"}}},
+                            subject.inputs);
   std::vector<std::pair<std::string, std::string>> records = {
       {"turntable.txt", run_record(options.command_line, {{"input", options.input.string()}})}};
   if (is_scene) records.emplace_back("scene.json", subject.text);
@@ -235,12 +245,13 @@ int run_turntable(const TurntableOptions& given) {
   std::vector<render::Image> thumbnails;
   std::vector<std::string> labels;
   Progress progress(stderr, n, "frame");
+  std::optional<OutputFolderLock> lock;  // from the first image on
   for (int i = 0; i < n; ++i) {
     render::RenderSettings settings = subject.settings;
     settings.camera = orbit_camera(base, center, i, n, options.orbit);
     const render::Image image = render_frame_png(
         renderer, subject.mesh, settings, subject.objects, subject.alpha, dir / frame_name(i + 1),
-        [&] { if (i == 0) start_output(dir, {{"turntable", "png"}}, records); });
+        [&] { if (i == 0) start_output(lock, dir, {{"turntable", "png"}}, records); });
     thumbnails.push_back(thumbnail(image, thumb_width));
     labels.push_back(angle_label(orbit_azimuth_deg(i, n)));
     progress.update(i + 1, "azimuth " + labels.back());

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 
+#include "app/io/input_error.h"
 #include "app/io/output_files.h"
 
 namespace weft::app {
@@ -21,10 +22,52 @@ std::string command_words(const std::vector<std::string>& argv) {
   return s;
 }
 
+// The value in single quotes with control characters written as \n, \t or \xNN, so that an
+// error message naming it stays on one line.
+std::string printable(const std::string& value) {
+  std::string out = "'";
+  for (const char c : value) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (u < 0x20 || u == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+    } else out += c;
+  }
+  return out + "'";
+}
+
+// One "#SBATCH --KEY=VALUE" line. sbatch reads a directive's value up to white space or '#'
+// unless it is quoted, and takes a backslash as an escape, so the value is written in double
+// quotes with '"' and '\' escaped. A line break cannot be quoted (the rest of the value would be
+// a bash command when the script runs), so a value with any control character is refused.
+std::string directive(const std::string& key, const std::string& value) {
+  std::string quoted = "\"";
+  for (const char c : value) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      throw InputError(printable(value) + ": a Slurm script cannot name a path or value with a line "
+                       "break or another control character in it (its #SBATCH --" + key +
+                       " line would end there); rename it or choose another folder");
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return "#SBATCH --" + key + "=" + quoted + "\"\n";
+}
+
+// A path as a literal part of a Slurm file name pattern (--output): '%' starts a pattern
+// there (%a, %j, …), so each is doubled.
+std::string literal_filename(const std::filesystem::path& path) {
+  std::string out;
+  for (const char c : path.string()) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
 std::string header(const std::string& job_name, const SlurmResources& r,
                    const std::filesystem::path& chdir) {
-  std::string s = "#SBATCH --job-name=" + job_name + "\n";
-  if (!chdir.empty()) s += "#SBATCH --chdir=" + chdir.string() + "\n";
+  std::string s = directive("job-name", job_name);
+  if (!chdir.empty()) s += directive("chdir", chdir.string());
   s += "#SBATCH --ntasks=1\n";
   s += "#SBATCH --cpus-per-task=" + std::to_string(r.cpus) + "\n";
   if (r.memory_mb > 0) s += "#SBATCH --mem=" + std::to_string(r.memory_mb) + "M\n";
@@ -44,13 +87,17 @@ std::string slurm_array_script(const SlurmArray& a) {
   if (a.tasks.empty()) throw std::invalid_argument("slurm_array_script: no tasks");
   const std::string first = std::to_string(a.first_index);
   const std::string last = std::to_string(a.first_index + static_cast<int>(a.tasks.size()) - 1);
+  if (a.first_index + static_cast<long>(a.tasks.size()) - 1 > max_slurm_array_index)
+    throw InputError(std::to_string(a.tasks.size()) + " tasks from index " + first +
+                     ": more than a Slurm array holds (sbatch's default MaxArraySize of 1001 "
+                     "allows indices up to 1000); split the work");
   std::string s = "#!/bin/bash\n";
   s += "# Written by weft: task i of the array runs command i below; resubmit one with\n";
   s += "#   sbatch --array=I THIS_SCRIPT\n";
   if (!a.resources.basis.empty()) s += "# Resources per task: " + a.resources.basis + "\n";
   s += header(a.job_name, a.resources, a.chdir);
   s += "#SBATCH --array=" + first + "-" + last + "\n";
-  s += "#SBATCH --output=" + (a.log_dir / (a.job_name + "_%a.log")).string() + "\n";
+  s += directive("output", literal_filename(a.log_dir / a.job_name) + "_%a.log");
   s += "set -eu\n";
   s += "case \"${SLURM_ARRAY_TASK_ID:?set by Slurm: the task to run}\" in\n";
   for (std::size_t i = 0; i < a.tasks.size(); ++i)
@@ -67,7 +114,7 @@ std::string slurm_job_script(const SlurmJob& job) {
   s += "# Written by weft: one job; run it again with sbatch THIS_SCRIPT\n";
   if (!job.resources.basis.empty()) s += "# Resources: " + job.resources.basis + "\n";
   s += header(job.job_name, job.resources, job.chdir);
-  s += "#SBATCH --output=" + job.log.string() + "\n";
+  s += directive("output", literal_filename(job.log));
   s += "set -eu\n";
   s += "exec " + command_words(job.argv) + "\n";
   return s;
@@ -112,10 +159,16 @@ std::string submitted_job_id(const std::string& output) {
   return output.substr(at + prefix.size(), end - at - prefix.size());
 }
 
+void check_slurm_scripts(const SlurmArray& array, const SlurmJob& collect) {
+  slurm_array_script(array);
+  slurm_job_script(collect);
+}
+
 std::string write_slurm_array(const SlurmArray& array, const std::filesystem::path& path,
                               bool dry_run) {
+  const std::string text = slurm_array_script(array);  // refuses a bad path before any write
   std::filesystem::create_directories(array.log_dir);
-  write_slurm_script(path, slurm_array_script(array));
+  write_slurm_script(path, text);
   return dry_run ? std::string() : submit_slurm_script(path);
 }
 

@@ -33,12 +33,22 @@ struct SlurmJob {
   std::filesystem::path chdir;  // #SBATCH --chdir, if not empty
 };
 
+// The largest array index sbatch accepts with Slurm's default MaxArraySize (1001).
+inline constexpr int max_slurm_array_index = 1000;
+
 // The word quoted for bash: 'text' with each ' written as '\''.
 std::string shell_quoted(const std::string& word);
 
-// The script's text. Throws std::invalid_argument for an array without tasks.
+// The script's text. Throws std::invalid_argument for an array without tasks, and InputError
+// naming the path for a folder, log or job name with a line break or another control
+// character (an #SBATCH directive cannot hold one: the rest of the line would run as a
+// command), and for an array index over max_slurm_array_index; every directive's value is
+// quoted.
 std::string slurm_array_script(const SlurmArray& array);
 std::string slurm_job_script(const SlurmJob& job);
+
+// Throws as the two functions above would, before a command changes anything for a submission.
+void check_slurm_scripts(const SlurmArray& array, const SlurmJob& collect);
 
 // Writes `text` to `path` as an executable script (creating its folder).
 void write_slurm_script(const std::filesystem::path& path, const std::string& text);

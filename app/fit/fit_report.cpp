@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 #include "app/report/contact_sheet.h"
@@ -193,15 +194,14 @@ std::string report_html(const FitSpec& spec, const FitResult& r, const std::stri
 
 }  // namespace
 
-FitLog::FitLog(const fs::path& path, const FitSpec& spec) : m_path(path), m_out(path) {
-  if (!m_out) throw std::runtime_error(path.string() + ": cannot write");
-  m_out << "evaluation,phase";
-  for (const FitParameter& p : spec.parameters) m_out << ',' << p.name;
-  m_out << ",objective,settled,iterations,residual,seconds,measures\n";
-  m_out.flush();
+FitLog::FitLog(const fs::path& path, const FitSpec& spec) : m_file(path) {
+  std::string header = "evaluation,phase";
+  for (const FitParameter& p : spec.parameters) header += ',' + p.name;
+  m_file.write(header + ",objective,settled,iterations,residual,seconds,measures\n");
 }
 
 void FitLog::write(const Evaluation& e, int number, FitPhase phase) {
+  std::ostringstream m_out;
   m_out.precision(10);
   m_out << number << ',' << (phase == FitPhase::optimise ? "optimise" : "profile");
   for (const double v : e.values) m_out << ',' << v;
@@ -211,8 +211,7 @@ void FitLog::write(const Evaluation& e, int number, FitPhase phase) {
     m_out << (k ? " " : "") << e.measures[k].first << '=' << e.measures[k].second;
   if (!e.failure.empty()) m_out << " failed: " << e.failure;
   m_out << "\"\n";
-  m_out.flush();
-  if (!m_out) throw std::runtime_error(m_path.string() + ": write failed");
+  m_file.write(m_out.str());
 }
 
 std::string describe_values(const FitSpec& spec, const std::vector<double>& values) {

@@ -18,6 +18,7 @@
 
 #include "app/fit/drape_photos_report.h"
 #include "app/fit/fit_optimizer.h"
+#include "base/atomic_file.h"
 
 namespace weft::app {
 
@@ -29,8 +30,7 @@ class FitLog {
   void write(const Evaluation& e, int number, FitPhase phase);
 
  private:
-  std::filesystem::path m_path;
-  std::ofstream m_out;
+  base::ExclusiveFile m_file;  // created anew: a link planted at fit.csv is not followed
 };
 
 // "bend=0.1234 N*m" for each parameter.

@@ -7,6 +7,7 @@
 
 #include "app/scene/json_reader.h"
 #include "app/io/npy_file.h"
+#include "base/file_read.h"
 #include "sim/simulator.h"
 
 namespace weft::app {
@@ -243,11 +244,12 @@ FitSpec parse_fit_spec(const std::string& text, const std::string& source) {
 }
 
 FitSpec load_fit_spec(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot read the fit file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_fit_spec(text.str(), path.string());
+  try {  // as large as a scene file may be
+    return parse_fit_spec(base::read_file_capped(path, max_scene_file_bytes, "a fit file"),
+                          path.string());
+  } catch (const base::FileReadError& e) {
+    throw InputError(e.what());
+  }
 }
 
 }  // namespace weft::app

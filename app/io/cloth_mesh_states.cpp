@@ -7,7 +7,9 @@
 #include <string>
 
 #include "app/io/output_files.h"
-#include "app/io/output_files.h"
+#include "app/io/run_checkpoint.h"
+#include "base/atomic_file.h"
+#include "base/file_read.h"
 #include "app/io/input_error.h"
 #include "sim/cloth_mesh_archive.h"
 
@@ -28,12 +30,7 @@ void write_cloth_mesh_state(const fs::path& dir, int frame, const sim::ClothMesh
   sim::StateWriter out;
   sim::save_cloth_mesh(out, mesh);
   const std::string bytes = std::string(kClothMeshMagic) + out.bytes();
-  write_atomically(cloth_mesh_state_path(dir, frame), [&](const fs::path& path) {
-    std::ofstream file(path, std::ios::binary);
-    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    file.close();
-    if (!file) throw std::runtime_error(path.string() + ": cannot write the cloth's mesh");
-  });
+  base::write_file_atomically(cloth_mesh_state_path(dir, frame), bytes);
 }
 
 ClothMeshStates::ClothMeshStates(fs::path dir, const sim::ClothMesh& scene_mesh)
@@ -48,10 +45,12 @@ const sim::ClothMesh& ClothMeshStates::at(int frame) {
     const fs::path path = cloth_mesh_state_path(m_dir, j);
     if (!fs::exists(path)) continue;
     if (m_file_frame == j) return m_mesh;
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream bytes_in;
-    bytes_in << in.rdbuf();
-    const std::string bytes = bytes_in.str();
+    std::string bytes;
+    try {
+      bytes = base::read_file_capped(path, max_checkpoint_bytes, "a saved cloth mesh");
+    } catch (const base::FileReadError& e) {
+      throw InputError(e.what());
+    }
     if (bytes.compare(0, kClothMeshMagic.size(), kClothMeshMagic) != 0)
       throw InputError(path.string() + ": not a cloth mesh of format version 1 (weft run "
                        "--save-states writes them for a remeshed run)");

@@ -85,7 +85,7 @@ VideoResult encode_video(const std::filesystem::path& ffmpeg, const std::filesys
   args.insert(args.end(), {"-f", gif ? "gif" : "mp4"});
   VideoResult result;
   try {
-    write_atomically(output, [&](const std::filesystem::path& partial) {
+    write_through_folder(output, [&](const std::filesystem::path& partial) {
       args.push_back(partial.string());
       run_ffmpeg(ffmpeg, args, output);
     });

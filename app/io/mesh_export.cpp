@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/io/input_error.h"
+#include "app/io/output_files.h"
 
 namespace weft::app {
 namespace {
@@ -142,23 +143,14 @@ void export_mesh(const render::RenderMesh& mesh, MeshFormat format,
         aiMatrix4x4(1, 0, 0, 0,  0, 0, 1, 0,  0, -1, 0, 0,  0, 0, 0, 1);
   }
   // assimp writes the file and its companions (an OBJ's .mtl, a glTF's .bin) itself: into a
-  // folder PATH.partial, whose files are then moved beside PATH, companions first, so that a
-  // reader never sees a part of a mesh file, nor one without its companions.
-  const fs::path folder = path.string() + ".partial";
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  Assimp::Exporter exporter;
-  if (exporter.Export(&scene, exporter_id(format), (folder / path.filename()).string()) !=
-      aiReturn_SUCCESS) {
-    fs::remove_all(folder);
-    throw std::runtime_error(path.string() + ": cannot export mesh: " +
-                             exporter.GetErrorString());
-  }
-  for (const auto& entry : fs::directory_iterator(folder))
-    if (entry.path().filename() != path.filename())
-      fs::rename(entry.path(), path.parent_path() / entry.path().filename());
-  fs::rename(folder / path.filename(), path);
-  fs::remove(folder);
+  // private folder PATH.partial, whose files are then moved beside PATH, companions first, so
+  // that a reader never sees a part of a mesh file, nor one without its companions.
+  write_through_folder(path, [&](const fs::path& inside) {
+    Assimp::Exporter exporter;
+    if (exporter.Export(&scene, exporter_id(format), inside.string()) != aiReturn_SUCCESS)
+      throw std::runtime_error(path.string() + ": cannot export mesh: " +
+                               exporter.GetErrorString());
+  });
 }
 
 }  // namespace weft::app

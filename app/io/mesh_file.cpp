@@ -7,9 +7,16 @@
 
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <utility>
+
+#include "app/io/mesh_file_io.h"
+#include "app/io/mesh_precheck.h"
+#include "app/io/output_files.h"
 
 namespace weft::app {
 namespace {
@@ -77,6 +84,12 @@ class MeshMerger {
       const sim::Vec2 t = mesh.HasTextureCoords(0)
                               ? sim::Vec2(mesh.mTextureCoords[0][v].x, mesh.mTextureCoords[0][v].y)
                               : sim::Vec2::Zero();
+      // `vt nan 0` or `vt 1e39 0` (infinite as a float) used to give the pattern of `vt 0 0`.
+      if (!t.allFinite())
+        throw MeshFileError(m_name + ": vertex " + std::to_string(v) + " of mesh " +
+                            std::to_string(mesh_index) + " has texture coordinates (" +
+                            std::to_string(t.x()) + ", " + std::to_string(t.y()) +
+                            "), not finite numbers");
       if (inserted) {
         m_positions.push_back(p);
         m_uv.push_back(t);
@@ -137,20 +150,96 @@ class MeshMerger {
   long m_dropped = 0, m_points_and_lines = 0;
 };
 
+// The file's bytes, read once for the checks of mesh_precheck.h (assimp then reads the file
+// itself, through ConfinedMeshIO). Throws MeshFileError for a file that is not a regular file
+// of at most max_mesh_file_bytes, or that the checks refuse.
+void precheck_mesh_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  const std::string why = why_not_a_readable_file(path, max_mesh_file_bytes);
+  if (!why.empty()) throw MeshFileError(name + ": cannot read mesh file: " + why);
+  const std::string extension = lower_extension(path);
+  if (extension != ".ply" && extension != ".obj") return;
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  precheck_mesh_bytes(bytes, extension, name);
+}
+
+// The scene as imported, before any post-processing may trip on it: every face's corners must
+// be vertices of its mesh, every node's meshes meshes of the scene, the counts within the
+// limits (assimp's own aiProcess_ValidateDataStructure then runs first of the post-processing).
+void check_imported_scene(const aiScene& scene, const std::string& name) {
+  std::uint64_t vertices = 0, faces = 0;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    vertices += mesh.mNumVertices;
+    faces += mesh.mNumFaces;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+      for (unsigned c = 0; c < mesh.mFaces[f].mNumIndices; ++c)
+        if (mesh.mFaces[f].mIndices[c] >= mesh.mNumVertices)
+          throw MeshFileError(name + ": cannot read mesh file: face " + std::to_string(f) +
+                              " of mesh " + std::to_string(m) + " refers to vertex " +
+                              std::to_string(mesh.mFaces[f].mIndices[c]) + " of a mesh of " +
+                              std::to_string(mesh.mNumVertices));
+  }
+  if (vertices > max_mesh_elements || faces > max_mesh_elements)
+    throw MeshFileError(name + ": " + std::to_string(vertices) + " vertices and " +
+                        std::to_string(faces) + " faces, more than " +
+                        std::to_string(max_mesh_elements) + " (the limit of weft's mesh files)");
+  std::vector<const aiNode*> stack;
+  if (scene.mRootNode) stack.push_back(scene.mRootNode);
+  while (!stack.empty()) {
+    const aiNode* node = stack.back();
+    stack.pop_back();
+    for (unsigned k = 0; k < node->mNumMeshes; ++k)
+      if (node->mMeshes[k] >= scene.mNumMeshes)
+        throw MeshFileError(name + ": cannot read mesh file: a node refers to mesh " +
+                            std::to_string(node->mMeshes[k]) + " of " +
+                            std::to_string(scene.mNumMeshes));
+    for (unsigned c = 0; c < node->mNumChildren; ++c) stack.push_back(node->mChildren[c]);
+  }
+}
+
+// Whether any face has three corners or more (a file of points or lines has none, and
+// aiProcess_ValidateDataStructure would refuse its meshes as "Validation failed" where
+// MeshMerger says "no triangles").
+bool has_polygons(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+    for (unsigned f = 0; f < scene.mMeshes[m]->mNumFaces; ++f)
+      if (scene.mMeshes[m]->mFaces[f].mNumIndices >= 3) return true;
+  return false;
+}
+
+// The file imported and post-processed: checked by precheck_mesh_file first, read through
+// ConfinedMeshIO (no companion outside the file's folder), checked again as imported, then
+// post-processed (validated first; polygons triangulated or not; identical vertices joined
+// within each mesh — positions are joined across meshes by MeshMerger, where normals and
+// texture coordinates no longer matter).
+const aiScene* import_mesh(Assimp::Importer& importer, const std::filesystem::path& path,
+                           bool triangulate) {
+  const std::string name = path.string();
+  precheck_mesh_file(path);
+  auto* io = new ConfinedMeshIO(path);
+  importer.SetIOHandler(io);  // the importer owns it
+  const aiScene* scene = importer.ReadFile(name, 0u);
+  if (!io->refused().empty())
+    throw MeshFileError(name + ": cannot read mesh file: it refers to " + io->refused());
+  if (!scene)
+    throw MeshFileError(name + ": cannot read mesh file: " + importer.GetErrorString());
+  check_imported_scene(*scene, name);
+  const unsigned steps = (has_polygons(*scene) ? aiProcess_ValidateDataStructure : 0u) |
+                         (triangulate ? aiProcess_Triangulate : 0u) |
+                         aiProcess_JoinIdenticalVertices;
+  scene = importer.ApplyPostProcessing(steps);
+  if (!scene)
+    throw MeshFileError(name + ": cannot read mesh file: " + importer.GetErrorString());
+  return scene;
+}
+
 // What both readers share: the file's meshes merged (mesh_file.h), polygons triangulated or not.
 PolygonMesh read_mesh(const std::filesystem::path& path, bool triangulate) {
-  const std::string name = path.string();
   Assimp::Importer importer;
-  // Join identical vertices within each mesh (positions are joined across meshes by
-  // MeshMerger, where normals and texture coordinates no longer matter). No
-  // aiProcess_ValidateDataStructure: it rejects a mesh without faces as "Validation failed",
-  // where we say "no triangles"; MeshMerger checks the indices instead.
-  const aiScene* scene = importer.ReadFile(
-      name, (triangulate ? aiProcess_Triangulate : 0u) | aiProcess_JoinIdenticalVertices);
-  if (!scene) {
-    throw MeshFileError(name + ": cannot read mesh file: " + importer.GetErrorString());
-  }
-  MeshMerger merger(name, triangulate);
+  const aiScene* scene = import_mesh(importer, path, triangulate);
+  MeshMerger merger(path.string(), triangulate);
   // The node tree depth first, in the file's order (children pushed in reverse).
   std::vector<PlacedNode> stack;
   if (scene->mRootNode) stack.push_back({scene->mRootNode, scene->mRootNode->mTransformation});

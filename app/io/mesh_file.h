@@ -32,6 +32,10 @@ struct TriangleMesh {
 // read it (missing file, unknown format, malformed content), and "PATH: no triangles in the
 // mesh file (…)" when it holds none, and "PATH: vertex V of mesh M is at (…), not a finite
 // position …" for a NaN or infinite coordinate (assimp reads floats: 1e39 is infinite).
+// Before assimp can trip on the file (docs/reliability.md, "Hostile mesh files"): a device,
+// folder or file over max_mesh_file_bytes, a PLY whose faces or counts are wrong, more than
+// max_mesh_elements vertices or faces, a companion file outside the mesh's folder — each a
+// MeshFileError naming the file and what is wrong.
 TriangleMesh load_triangle_mesh(const std::filesystem::path& path);
 
 // A mesh read with its polygons as the file gives them (for the cloth: a quad grid is kept as

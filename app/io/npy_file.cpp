@@ -8,6 +8,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/atomic_file.h"
+#include "base/file_read.h"
+
 namespace weft::app {
 namespace {
 
@@ -25,11 +28,11 @@ bool native_big_endian() {
 }
 
 std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the .npy file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  try {
+    return base::read_file_capped(path, max_npy_bytes, "a .npy file");
+  } catch (const base::FileReadError& e) {
+    throw NpyError(e.what());
+  }
 }
 
 std::uint32_t little_endian(const std::string& bytes, std::size_t at, int count) {
@@ -85,6 +88,13 @@ std::vector<std::int64_t> parse_shape(const fs::path& path, const std::string& h
   return shape;
 }
 
+// "(2, 3)".
+std::string shape_text(const std::vector<std::int64_t>& shape) {
+  std::string text = "(";
+  for (std::size_t k = 0; k < shape.size(); ++k) text += (k ? ", " : "") + std::to_string(shape[k]);
+  return text + ")";
+}
+
 double element(const std::string& bytes, std::size_t at, const Dtype& d) {
   unsigned char raw[8];
   std::memcpy(raw, bytes.data() + at, static_cast<std::size_t>(d.bytes));
@@ -102,8 +112,9 @@ double element(const std::string& bytes, std::size_t at, const Dtype& d) {
 
 }  // namespace
 
-NpyArray read_npy(const fs::path& path) {
-  const std::string bytes = file_bytes(path);
+NpyArray read_npy(const fs::path& path) { return parse_npy(file_bytes(path), path); }
+
+NpyArray parse_npy(const std::string& bytes, const fs::path& path) {
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0)
     fail(path, "not a .npy file (expected the magic string \\x93NUMPY at the start)");
   const int major = static_cast<unsigned char>(bytes[6]);
@@ -120,13 +131,21 @@ NpyArray read_npy(const fs::path& path) {
   const Dtype dtype = parse_descr(path, header);
   NpyArray array;
   array.shape = parse_shape(path, header);
-  std::size_t count = 1;
-  for (const std::int64_t n : array.shape) count *= static_cast<std::size_t>(n);
   const std::size_t data_start = header_start + header_length;
-  const std::size_t expected = count * static_cast<std::size_t>(dtype.bytes);
-  if (bytes.size() - data_start != expected)
-    fail(path, "expected " + std::to_string(expected) + " bytes of data for its shape, got " +
-                   std::to_string(bytes.size() - data_start));
+  const std::size_t data_bytes = bytes.size() - data_start;
+  // The element count and its bytes, each product checked: a shape of 2⁶¹ × 3 used to wrap
+  // round (to the data's size, or to std::bad_alloc naming no file).
+  std::size_t count = 1, expected = 0;
+  for (const std::int64_t n : array.shape)
+    if (__builtin_mul_overflow(count, static_cast<std::size_t>(n), &count))
+      fail(path, "its shape " + shape_text(array.shape) + " has more elements than a size holds "
+                 "(the element count overflows)");
+  if (__builtin_mul_overflow(count, static_cast<std::size_t>(dtype.bytes), &expected))
+    fail(path, "its shape " + shape_text(array.shape) + " needs more bytes than a size holds "
+               "(the byte count overflows)");
+  if (data_bytes != expected)
+    fail(path, "expected " + std::to_string(expected) + " bytes of data for its shape " +
+                   shape_text(array.shape) + ", got " + std::to_string(data_bytes));
   array.values.resize(count);
   for (std::size_t i = 0; i < count; ++i)
     array.values[i] = element(bytes, data_start + i * static_cast<std::size_t>(dtype.bytes), dtype);
@@ -135,12 +154,8 @@ NpyArray read_npy(const fs::path& path) {
 
 Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> read_npy_points(const fs::path& path) {
   const NpyArray a = read_npy(path);
-  if (a.shape.size() != 2 || a.shape[1] != 3 || a.shape[0] < 1) {
-    std::string shape = "(";
-    for (std::size_t k = 0; k < a.shape.size(); ++k)
-      shape += (k ? ", " : "") + std::to_string(a.shape[k]);
-    fail(path, "expected an N×3 array of points (N ≥ 1), got shape " + shape + ")");
-  }
+  if (a.shape.size() != 2 || a.shape[1] != 3 || a.shape[0] < 1)
+    fail(path, "expected an N×3 array of points (N ≥ 1), got shape " + shape_text(a.shape));
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> points(a.shape[0], 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     for (int c = 0; c < 3; ++c) {
@@ -158,22 +173,21 @@ void write_npy_points(const fs::path& path,
                        std::to_string(points.rows()) + ", 3), }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out.write("\x93NUMPY\x01\x00", 8);
+  std::string out("\x93NUMPY\x01\x00", 8);
   const auto n = static_cast<std::uint16_t>(header.size());
-  const char length[2] = {static_cast<char>(n & 0xff), static_cast<char>(n >> 8)};
-  out.write(length, 2);
-  out << header;
+  out += static_cast<char>(n & 0xff);
+  out += static_cast<char>(n >> 8);
+  out += header;
+  out.reserve(out.size() + 24 * static_cast<std::size_t>(points.rows()));
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     for (int c = 0; c < 3; ++c) {
       const double v = points(i, c);
-      unsigned char raw[8];
+      char raw[8];
       std::memcpy(raw, &v, 8);
       if (native_big_endian()) std::reverse(raw, raw + 8);
-      out.write(reinterpret_cast<const char*>(raw), 8);
+      out.append(raw, 8);
     }
-  if (!out) throw std::runtime_error(path.string() + ": write failed");
+  base::write_file_atomically(path, out);
 }
 
 }  // namespace weft::app

@@ -29,6 +29,12 @@ struct NpyArray {
 
 // Reads a float32 or float64 array of any shape. Throws NpyError.
 NpyArray read_npy(const std::filesystem::path& path);
+// The same from a file's bytes; `path` names it in errors (tests/fuzz reads bytes).
+NpyArray parse_npy(const std::string& bytes, const std::filesystem::path& path);
+
+// A .npy file is read only up to this size (44 M points of float64): a larger file or a device
+// (`/dev/zero`) is an NpyError naming it at once.
+inline constexpr std::uint64_t max_npy_bytes = std::uint64_t{1} << 30;
 
 // Reads an N×3 float array (N ≥ 1) of finite values, e.g. points in metres, as #N×3 rows.
 // Throws NpyError naming the file for another shape or a non-finite value (its row).
@@ -36,7 +42,8 @@ Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> read_npy_points(
     const std::filesystem::path& path);
 
 // Writes rows×3 float64 values as a version 1.0 .npy file (little-endian, C order), e.g. a
-// synthetic point cloud. Throws std::runtime_error naming the path when it cannot.
+// synthetic point cloud, atomically and exclusively (base::write_file_atomically). Throws
+// std::runtime_error naming the path when it cannot.
 void write_npy_points(const std::filesystem::path& path,
                       const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points);
 

@@ -2,39 +2,46 @@
 
 #include "app/io/output_files.h"
 
-#include <cstdio>
-#include <fstream>
+#include <sys/stat.h>
+
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <regex>
 #include <stdexcept>
 
 #include "app/io/version.h"
+#include "base/atomic_file.h"
 
 namespace weft::app {
 
 namespace fs = std::filesystem;
 
-void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-  const fs::path partial = path.string() + ".partial";
+void write_through_folder(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  const fs::path folder = base::partial_path(path);
+  std::error_code ignored;
+  fs::remove_all(folder, ignored);  // a killed run's; a link there is removed, not followed
+  if (::mkdir(folder.c_str(), 0700) != 0)
+    throw std::runtime_error(folder.string() + ": cannot create (" + std::strerror(errno) + ")");
   try {
-    write(partial);
+    write(folder / path.filename());
+    for (const auto& entry : fs::directory_iterator(folder))
+      if (entry.path().filename() != path.filename())
+        fs::rename(entry.path(), path.parent_path() / entry.path().filename());
+    fs::rename(folder / path.filename(), path);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(folder, ignored);
+    throw std::runtime_error(path.string() + ": cannot write (" + e.code().message() + ")");
   } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(partial, ignored);
+    fs::remove_all(folder, ignored);
     throw;
   }
-  std::error_code error;
-  fs::rename(partial, path, error);
-  if (error) throw std::runtime_error(path.string() + ": cannot write (" + error.message() + ")");
+  fs::remove(folder, ignored);
 }
 
 void write_text(const fs::path& path, const std::string& text) {
-  write_atomically(path, [&](const fs::path& partial) {
-    std::ofstream out(partial);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  });
+  base::write_file_atomically(path, text);
 }
 
 bool same_file(const fs::path& a, const fs::path& b) {
@@ -48,9 +55,13 @@ std::string lower_extension(const fs::path& path) {
   return ext;
 }
 
+std::regex numbered_file_pattern(const NumberedFiles& kind) {
+  return std::regex(kind.prefix + R"(_\d{4,}\.)" + kind.extension);
+}
+
 int remove_numbered_files(const fs::path& dir, const std::string& prefix,
                           const std::string& extension) {
-  const std::regex pattern(prefix + R"(_\d{4,}\.)" + extension);
+  const std::regex pattern = numbered_file_pattern({prefix, extension});
   int removed = 0;
   for (const auto& entry : fs::directory_iterator(dir))
     if (std::regex_match(entry.path().filename().string(), pattern) && fs::remove(entry.path()))
@@ -58,9 +69,10 @@ int remove_numbered_files(const fs::path& dir, const std::string& prefix,
   return removed;
 }
 
-void start_output(const fs::path& dir, const std::vector<NumberedFiles>& earlier,
+void start_output(std::optional<OutputFolderLock>& lock, const fs::path& dir,
+                  const std::vector<NumberedFiles>& earlier,
                   const std::vector<std::pair<std::string, std::string>>& files) {
-  fs::create_directories(dir);
+  if (!lock) lock.emplace(dir);  // creates the folder
   int removed = 0;
   for (const NumberedFiles& kind : earlier)
     removed += remove_numbered_files(dir, kind.prefix, kind.extension);

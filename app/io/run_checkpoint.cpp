@@ -1,10 +1,12 @@
 // weft run's checkpoint file (see run_checkpoint.h).
 //
-// Layout: the magic line "weft checkpoint 2\n" (version 2: the simulator's state begins with its
-// mesh section, the remeshed cloth's mesh; version 1 had none), the build hash and the scene text's hash (8
-// bytes each, native order), then the sections of a sim::StateWriter: "run" (frame, interval,
-// scene source and text), "rows", "crossings", "simulator" (Simulator::save_state's bytes) and
-// "end".
+// Layout: the magic line "weft checkpoint 3\n" (version 2: the simulator's state begins with its
+// mesh section, the remeshed cloth's mesh; version 1 had none; version 3: the payload's hash and
+// the "inputs" section), the build hash, the scene text's hash and the payload's hash (FNV-1a of
+// every byte after the header; 8 bytes each, native order), then the payload, the sections of a
+// sim::StateWriter: "run" (frame, interval, scene source and text), "inputs" (each input file's
+// path and the hash of its bytes), "rows", "crossings", "simulator" (Simulator::save_state's
+// bytes) and "end".
 
 #include "app/io/run_checkpoint.h"
 
@@ -20,6 +22,8 @@
 
 #include "app/io/output_files.h"
 #include "app/io/input_error.h"
+#include "base/atomic_file.h"
+#include "base/file_read.h"
 #include "sim/state_archive.h"
 
 namespace weft::app {
@@ -28,15 +32,15 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::string_view kMagicPrefix = "weft checkpoint ";
-constexpr int kCheckpointVersion = 2;
+constexpr int kCheckpointVersion = 3;
 const std::string kMagic = std::string(kMagicPrefix) + std::to_string(kCheckpointVersion) + "\n";
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot read it (no checkpoint here?)");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+std::string read_bytes(const fs::path& path, std::uint64_t max_bytes, const std::string& what) {
+  try {
+    return base::read_file_capped(path, max_bytes, what);
+  } catch (const base::FileReadError& e) {
+    throw InputError(e.what());
+  }
 }
 
 std::string hex(std::uint64_t value) {
@@ -77,7 +81,7 @@ std::string gnu_build_id() {
 
 }  // namespace
 
-std::uint64_t fnv1a_64(const std::string& bytes) {
+std::uint64_t fnv1a_64(std::string_view bytes) {
   std::uint64_t hash = 0xcbf29ce484222325ULL;
   for (const char c : bytes) {
     hash ^= static_cast<unsigned char>(c);
@@ -89,7 +93,8 @@ std::uint64_t fnv1a_64(const std::string& bytes) {
 std::uint64_t build_hash() {
   static const std::uint64_t hash = [] {
     const std::string id = gnu_build_id();
-    return fnv1a_64(id.empty() ? read_bytes("/proc/self/exe") : id);
+    return fnv1a_64(id.empty() ? read_bytes("/proc/self/exe", std::uint64_t{1} << 34, "weft's program")
+                               : id);
   }();
   return hash;
 }
@@ -102,6 +107,12 @@ void write_checkpoint(const fs::path& dir, const RunCheckpoint& c) {
   out.pod(c.every);
   out.text(c.scene_source);
   out.text(c.scene_text);
+  out.section("inputs");
+  out.pod(static_cast<std::uint64_t>(c.inputs.size()));
+  for (const InputFileHash& input : c.inputs) {
+    out.text(input.path);
+    out.pod(input.hash);
+  }
   out.section("rows");
   out.pods(c.rows);
   out.section("crossings");
@@ -109,23 +120,24 @@ void write_checkpoint(const fs::path& dir, const RunCheckpoint& c) {
   out.section("simulator");
   out.text(c.simulator_state);
   out.section("end");
-  std::string bytes(kMagic);
-  const std::uint64_t hashes[2] = {build_hash(), fnv1a_64(c.scene_text)};
-  bytes.append(reinterpret_cast<const char*>(hashes), sizeof hashes);
-  bytes += out.bytes();
-  write_atomically(dir / checkpoint_file_name, [&](const fs::path& path) {
-    std::ofstream file(path, std::ios::binary);
-    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    file.close();
-    if (!file) throw std::runtime_error(path.string() + ": cannot write the checkpoint");
-  });
+  base::write_file_atomically(dir / checkpoint_file_name,
+                              checkpoint_header(fnv1a_64(c.scene_text), out.bytes()) + out.bytes());
 }
 
 RunCheckpoint read_checkpoint(const fs::path& dir) {
   const fs::path path = fs::is_directory(dir) ? dir / checkpoint_file_name : dir;
-  const std::string bytes = read_bytes(path);
-  const std::string name = path.string();
-  std::uint64_t hashes[2];
+  return parse_checkpoint(read_bytes(path, max_checkpoint_bytes, "a checkpoint"), path.string());
+}
+
+std::string checkpoint_header(std::uint64_t scene_hash, std::string_view payload) {
+  std::string bytes(kMagic);
+  const std::uint64_t hashes[3] = {build_hash(), scene_hash, fnv1a_64(payload)};
+  bytes.append(reinterpret_cast<const char*>(hashes), sizeof hashes);
+  return bytes;
+}
+
+RunCheckpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
+  std::uint64_t hashes[3];
   if (bytes.compare(0, kMagicPrefix.size(), kMagicPrefix) == 0 &&
       bytes.compare(0, kMagic.size(), kMagic) != 0) {
     const std::size_t end = bytes.find('\n', kMagicPrefix.size());
@@ -143,14 +155,28 @@ RunCheckpoint read_checkpoint(const fs::path& dir) {
                      ", this one " + hex(build_hash()) +
                      "): a checkpoint resumes only with the executable that wrote it; rerun "
                      "the scene from the start");
+  const std::string_view payload = std::string_view(bytes).substr(kMagic.size() + sizeof hashes);
+  if (fnv1a_64(payload) != hashes[2])
+    throw InputError(name + ": its content does not match the hash in its header (a damaged "
+                     "checkpoint: a byte changed, or the file was cut short)");
   RunCheckpoint c;
   try {
-    sim::StateReader in(std::string_view(bytes).substr(kMagic.size() + sizeof hashes), name);
+    sim::StateReader in(payload, name);
     in.section("run");
     in.pod(c.frame);
     in.pod(c.every);
     c.scene_source = in.text();
     c.scene_text = in.text();
+    in.section("inputs");
+    std::uint64_t inputs = 0;
+    in.pod(inputs);
+    for (std::uint64_t k = 0; k < inputs && k < max_scene_inputs; ++k) {
+      InputFileHash input;
+      input.path = in.text();
+      in.pod(input.hash);
+      c.inputs.push_back(std::move(input));
+    }
+    if (inputs > max_scene_inputs) in.fail("too many input files");
     in.section("rows");
     in.pods(c.rows);
     in.section("crossings");
@@ -168,6 +194,28 @@ RunCheckpoint read_checkpoint(const fs::path& dir) {
     throw InputError(name + ": " + std::to_string(c.rows.size()) + " stats rows for frame " +
                      std::to_string(c.frame) + " (a damaged checkpoint)");
   return c;
+}
+
+std::vector<InputFileHash> hash_input_files(const std::vector<fs::path>& files) {
+  std::vector<InputFileHash> out;
+  for (const fs::path& file : files)
+    out.push_back({file.string(), fnv1a_64(read_bytes(file, max_checkpoint_bytes, "an input file"))});
+  return out;
+}
+
+void check_input_files(const RunCheckpoint& checkpoint, const std::vector<fs::path>& files,
+                       const std::string& checkpoint_name) {
+  const std::vector<InputFileHash> now = hash_input_files(files);
+  if (now.size() != checkpoint.inputs.size())
+    throw InputError(checkpoint_name + ": the checkpoint's scene read " +
+                     std::to_string(checkpoint.inputs.size()) + " input files, the scene now " +
+                     std::to_string(now.size()) + " (a damaged checkpoint)");
+  for (std::size_t k = 0; k < now.size(); ++k)
+    if (now[k].hash != checkpoint.inputs[k].hash)
+      throw InputError(now[k].path + ": not the file the checkpointed run read (" +
+                       checkpoint.inputs[k].path + ", hash " + hex(checkpoint.inputs[k].hash) +
+                       "; this one " + hex(now[k].hash) + "): it changed, or the run is resumed "
+                       "from another folder; restore it, or rerun the scene from the start");
 }
 
 }  // namespace weft::app

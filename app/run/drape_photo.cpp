@@ -197,7 +197,8 @@ int run_measure_photo(const MeasurePhotoOptions& o) {
   const DrapePhotoReading r = read_drape_photo({o.photo, o.mask}, o.setup, settings);
   const DrapePhotoMeasurement& m = r.measurement;
   const fs::path dir = o.out.value_or(fs::path("out") / o.photo.stem());
-  start_output(dir, {}, {{"measure.txt", run_record(o.command_line, {{"photo", o.photo.string()}})}});
+  std::optional<OutputFolderLock> lock;
+  start_output(lock, dir, {}, {{"measure.txt", run_record(o.command_line, {{"photo", o.photo.string()}})}});
   write_outline(dir / "outline.csv", m.shape, settings.folds);
   render::write_png(drape_photo_overlay(r.photo, m, settings.folds), dir / "overlay.png");
   print_table(o, r.from_mask_image, m);

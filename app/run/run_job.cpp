@@ -21,14 +21,17 @@
 #include "app/run/measure.h"
 #include "app/run/obstacle_meshes.h"
 #include "app/io/output_files.h"
+#include "app/io/input_guard.h"
 #include "app/io/progress.h"
 #include "app/io/run_checkpoint.h"
 #include "app/report/run_report.h"
 #include "app/run/renderer_choice.h"
 #include "app/run/saved_states.h"
 #include "app/scene/scene.h"
+#include "app/scene/scene_inputs.h"
 #include "app/io/stats_csv.h"
 #include "base/check.h"
+#include "base/file_read.h"
 #include "sim/collision/self_intersection.h"
 #include "sim/pins.h"
 #include "sim/simulator.h"
@@ -60,13 +63,27 @@ std::string mesh_name(int frame, MeshFormat format) {
   return numbered_file_name("mesh", frame, mesh_extension(format));
 }
 
+// What weft run writes into its folder: the numbered files of each frame (an earlier run's are
+// removed) and the files by name (the point cache's cloth.* among them).
+OutputNames run_output_names() {
+  return {{"scene.json", "run.txt", "stats.csv", "report.html", checkpoint_file_name,
+           texture_file_name, "cloth.obj", "cloth.pc2", "cloth.mdd", "cloth.gltf", "cloth.bin"},
+          {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
+           {"state", "npy"}, {cloth_mesh_state_prefix, cloth_mesh_state_extension}}};
+}
+
+// Refuses an output folder where the run would replace or remove one of its inputs: the scene
+// file (the run writes its copy as scene.json) or a file the scene reads.
+void refuse_overwriting_scene_inputs(const fs::path& dir, const Scene& scene) {
+  refuse_overwriting_inputs(dir, run_output_names(), scene_files(scene));
+}
+
 // Clears the frames (and exported meshes) of an earlier run in the same folder, so that the
 // folder holds one run, and writes the scene (with its overrides) and run.txt. Called when the
 // first frame is ready: a run that fails before it leaves an earlier run's files as they were.
-void prepare_output(const fs::path& dir, const Scene& scene, const RunOptions& options) {
-  start_output(dir,
-               {{"frame", "png"}, {"mask", "png"}, {"mesh", "(obj|mtl|ply|gltf|bin)"},
-                {"state", "npy"}, {cloth_mesh_state_prefix, cloth_mesh_state_extension}},
+void prepare_output(std::optional<OutputFolderLock>& lock, const fs::path& dir, const Scene& scene,
+                    const RunOptions& options) {
+  start_output(lock, dir, run_output_names().numbered,
                {{"scene.json", scene.text},
                 {"run.txt", run_record(options.command_line, {{"scene", scene.source}})}});
   std::filesystem::remove(dir / texture_file_name);
@@ -200,7 +217,7 @@ class FrameWriter {
   StreamControl write(const Frame& frame) {
     const bool remeshed_states = m_initial_mesh != nullptr;  // kept states of a remeshed run
     if (m_rows.empty()) {
-      prepare_output(m_dir, m_scene, m_options);
+      prepare_output(m_lock, m_dir, m_scene, m_options);
       if (m_keep_states)
         write_npy_points(m_dir / numbered_file_name("state", 0, "npy"), m_initial_x);
       if (remeshed_states) write_cloth_mesh_state(m_dir, 0, *m_initial_mesh);
@@ -262,6 +279,7 @@ class FrameWriter {
   }
   // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
   void resume(const RunCheckpoint& checkpoint) {
+    m_lock.emplace(m_dir);
     m_resumed_mesh_unsaved = true;
     m_rows = checkpoint.rows;
     m_crossing_frames = checkpoint.crossing_frames;
@@ -312,8 +330,13 @@ class FrameWriter {
   }
   // The checkpoint of the frames written so far (the simulator at the last one's end).
   RunCheckpoint checkpoint(int every) const {
-    RunCheckpoint c{static_cast<int>(m_rows.size()), every, m_scene.source, m_scene.text,
-                    m_rows, m_crossing_frames, {}};
+    RunCheckpoint c;
+    c.frame = static_cast<int>(m_rows.size());
+    c.every = every;
+    c.scene_source = m_scene.source;
+    c.scene_text = m_scene.text;
+    c.rows = m_rows;
+    c.crossing_frames = m_crossing_frames;
     sim::StateWriter state;
     m_simulator.save_state(state);
     c.simulator_state = state.bytes();
@@ -324,6 +347,7 @@ class FrameWriter {
   // The frame that ended the run by passing through itself, if one did.
   const std::optional<CrossingStop>& crossing_stop() const { return m_crossing_stop; }
   const std::vector<FrameStats>& rows() const { return m_rows; }
+  int frames_drawn() const { return m_frames_drawn; }
   double elapsed_s() const { return m_progress.elapsed_s(); }
 
  private:
@@ -335,6 +359,7 @@ class FrameWriter {
   // Draws frame `index` (the cloth at x, the obstacles at time_s) and writes its exports.
   void render_frame(FramePainter& painter, int index, const sim::Matrix3X& x, double time_s) {
     const render::RenderMesh cloth = painter.paint(index, x, time_s, m_dir);
+    ++m_frames_drawn;
     if (!m_options.export_cache.empty()) m_cache.add(cloth, time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
@@ -367,6 +392,8 @@ class FrameWriter {
 
   const Scene& m_scene;
   const RunOptions& m_options;
+  std::optional<OutputFolderLock> m_lock;  // taken at the first frame, or on resuming
+  int m_frames_drawn = 0;                  // by this process: a resumed run draws only some
   fs::path m_dir;
   sim::Simulator& m_simulator;
   render::Renderer& m_renderer;
@@ -443,8 +470,8 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
                  crossed.size(), writer.rows().size(), frame_ranges(crossed).c_str(), most);
   }
   if (options.explain) print_phase_shares(simulator.timers());
-  int written = 0;
-  for (int k = 1; k <= scene.frames; ++k) written += options.selection.selects(k, scene.frames);
+  // The frames this process drew (a resumed run said it wrote the interrupted run's too).
+  const int written = writer.frames_drawn();
   std::fprintf(stderr, "weft: wrote %d frame%s to %s (simulation %s, rendering %s, total %s)\n",
               written, written == 1 ? "" : "s",
               dir.c_str(), format_duration(sim_ms / 1e3).c_str(),
@@ -456,8 +483,23 @@ void print_summary(const Scene& scene, const RunOptions& options, const fs::path
     std::printf("weft: last frame: %s (weft measure: settle time, outline)\n", drape->c_str());
 }
 
-// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same.
+// The folder of --resume DIR or --resume DIR/checkpoint.weft ("." for a bare checkpoint.weft,
+// which used to be named "" in the messages).
+fs::path resume_folder(const fs::path& resume) {
+  if (fs::is_directory(resume)) return resume;
+  return resume.has_parent_path() ? resume.parent_path() : fs::path(".");
+}
+
+// The scene of a checkpoint; a scene (and overrides) given with --resume must be the same, and
+// so must the folder's scene.json (a checkpoint of another run copied in would mix two scenes'
+// frames) and every file the scene reads.
 Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) {
+  const fs::path record = resume_folder(*options.resume) / "scene.json";
+  if (fs::exists(record) &&
+      base::read_file_capped(record, max_scene_file_bytes, "a scene file") != checkpoint.scene_text)
+    throw InputError("--resume " + options.resume->string() + ": the checkpoint's scene is not " +
+                     record.string() + ", the scene of the run in that folder (a checkpoint of "
+                     "another run?); resume a checkpoint in its own run's folder");
   Scene scene = parse_scene(checkpoint.scene_text, checkpoint.scene_source);
   if (options.scene || !options.overrides.empty()) {
     const Scene given = load_scene_with(options.scene, options.overrides);
@@ -468,6 +510,7 @@ Scene resumed_scene(const RunCheckpoint& checkpoint, const RunOptions& options) 
                        given.source + ", hash " + std::to_string(fnv1a_64(given.text)) +
                        "); give no scene to go on with the checkpoint's");
   }
+  check_input_files(checkpoint, scene.input_files, options.resume->string());
   return scene;
 }
 
@@ -559,6 +602,9 @@ int run_scene(const RunOptions& options) {
                         : load_scene_with(options.scene, options.overrides);
   const int every = options.checkpoint_every.value_or(resumed ? resumed->every : 0);
   check_run_input(scene, options, resumed, every);
+  // The input files as read now, bound to each checkpoint (a resume with others is refused).
+  const std::vector<InputFileHash> inputs =
+      every > 0 ? hash_input_files(scene.input_files) : std::vector<InputFileHash>{};
   apply_threads(scene, options.threads);
   if (options.rest) {  // one frame showing the solved shape, nothing simulated in time
     scene.frames = 1;
@@ -573,10 +619,9 @@ int run_scene(const RunOptions& options) {
     std::fprintf(stderr, "weft: the scene gives no render.camera: framing the cloth's bounding box "
                          "over the run (the frames are drawn when the simulation ends)\n");
 
-  const fs::path dir = options.resume ? (fs::is_directory(*options.resume)
-                                              ? *options.resume
-                                              : options.resume->parent_path())
+  const fs::path dir = options.resume ? resume_folder(*options.resume)
                                        : options.out.value_or(fs::path("out") / scene.name);
+  refuse_overwriting_scene_inputs(dir, scene);
   print_header(scene, *simulator, *renderer, options);
   FrameWriter writer(scene, options, dir, *simulator, *renderer);
   if (resumed) {
@@ -588,8 +633,11 @@ int run_scene(const RunOptions& options) {
       scene, *simulator,
       [&](const Frame& frame) {
         if (writer.write(frame) == StreamControl::stop) return StreamControl::stop;
-        if (every > 0 && frame.index % every == 0 && frame.index < scene.frames)
-          write_checkpoint(dir, writer.checkpoint(every));
+        if (every > 0 && frame.index % every == 0 && frame.index < scene.frames) {
+          RunCheckpoint checkpoint = writer.checkpoint(every);
+          checkpoint.inputs = inputs;
+          write_checkpoint(dir, checkpoint);
+        }
         return StreamControl::go_on;
       },
       resumed ? resumed->frame + 1 : 1);

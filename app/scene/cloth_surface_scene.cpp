@@ -1,6 +1,7 @@
 // Scene keys of the cloth's rendering aids (cloth_surface_scene.h).
 
 #include "app/scene/cloth_surface_scene.h"
+#include "app/scene/scene_inputs.h"
 
 #include <filesystem>
 #include <memory>
@@ -34,8 +35,7 @@ render::ClothTexture read_texture(ObjectReader r) {
     r.fail("file", "expected exactly one of \"file\" (an image) and \"woven_check\" (an object)");
   if (has_file) {
     const std::filesystem::path file = r.string("file", required);
-    const std::filesystem::path path =
-        file.is_absolute() ? file : std::filesystem::path(r.file()).parent_path() / file;
+    const std::filesystem::path path = scene_relative(r.file(), file);
     try {
       texture.image = std::make_shared<const render::Image>(render::read_image(path));
     } catch (const std::exception& e) {

@@ -1,6 +1,7 @@
 // Scene keys of image-based lighting (environment_scene.h).
 
 #include "app/scene/environment_scene.h"
+#include "app/scene/scene_inputs.h"
 
 #include <filesystem>
 #include <memory>
@@ -13,8 +14,7 @@ void read_environment(ObjectReader& render, render::Environment& environment) {
   if (!render.has("environment")) return;
   ObjectReader r = render.object("environment");
   const std::filesystem::path file = r.string("file", required);
-  const std::filesystem::path path =
-      file.is_absolute() ? file : std::filesystem::path(r.file()).parent_path() / file;
+  const std::filesystem::path path = scene_relative(r.file(), file);
   try {
     environment.map =
         std::make_shared<const render::EnvironmentMap>(render::read_environment_map(path));

@@ -2,6 +2,7 @@
 // by key, in docs/scene.md; keep the two in step.
 
 #include "app/scene/scene.h"
+#include "app/scene/scene_inputs.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -41,8 +42,7 @@ sim::MeshObstacle read_mesh_obstacle(ObjectReader& o) {
   mesh.pose.translation_m =
       o.quantity_vec3("translate", Quantity::length, Eigen::Vector3d::Zero());
   mesh.pose.yaw_rad = o.angle_deg("rotate_z", 0.0) * base::kPi / 180.0;
-  const std::filesystem::path path =
-      file.is_absolute() ? file : std::filesystem::path(o.file()).parent_path() / file;
+  const std::filesystem::path path = scene_relative(o.file(), file);
   try {
     TriangleMesh triangles = load_triangle_mesh(path);
     mesh.solid = std::make_shared<const sim::MeshSolid>(scale * triangles.vertices,
@@ -277,7 +277,8 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
 }
 
 // A frame must take at most sim::max_substeps steps: of a fixed step, or of an adaptive step's
-// max_step, its first and longest. (The automatic step comes from the material: make_simulator
+// max_step, its first and longest, and min_step, its shortest (a min_step of 1e-300 s used to run
+// for a minute before failing). (The automatic step comes from the material: make_simulator
 // checks it.)
 void check_steps_per_frame(const Scene& scene) {
   const sim::TimeStep& t = scene.sim.time_step;
@@ -289,6 +290,10 @@ void check_steps_per_frame(const Scene& scene) {
     throw InputError(scene.source + ": " +
                      (fixed ? "simulation.time_step: " : "simulation.adaptive_step.max_step: ") +
                      why);
+  const std::string shortest = fixed ? "" : sim::too_many_steps(1.0 / scene.fps, t.adaptive.min_step_s);
+  if (!shortest.empty())
+    throw InputError(scene.source + ": simulation.adaptive_step.min_step: " + shortest +
+                     " (were the step to shrink to it)");
 }
 
 
@@ -531,6 +536,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   scene.source = source;
   scene.name = std::filesystem::path(source).stem().string();
   scene.text = text;
+  scene.input_files = scene_input_files(document, source);
   scene.description = top.string("description", required);
   if (scene.description.find_first_not_of(" \t\r\n") == std::string::npos)
     top.fail("description", "expected a non-empty string saying what the scene shows");

@@ -25,6 +25,8 @@ struct Scene {
   std::string name;         // output folder name: the file's stem ("default" for the built-in)
   std::string description;  // what the scene shows and which figure or test it reproduces
   std::string text;         // the scene file's text, copied into the output folder
+  // The files the scene reads besides its text (app/scene/scene_inputs.h), resolved.
+  std::vector<std::filesystem::path> input_files;
 
   sim::GridSpec grid;
   // cloth.mesh: the cloth read from a mesh file (app/io/cloth_mesh_file.h); null: the grid above.

@@ -194,7 +194,8 @@ int merge_sweep(std::vector<SweepRun>& runs, const SweepMerge& m) {
   if (reference < runs.size()) compare_with_reference(runs, reference);
 
   const fs::path& dir = m.dir;
-  start_output(dir, {}, {{"scene.json", base.text},
+  std::optional<OutputFolderLock> lock;
+  start_output(lock, dir, {}, {{"scene.json", base.text},
                          {"run.txt", run_record(m.command_line, {{"scene", base.source}})}});
   write_csv(dir / "sweep.csv", m.values, runs, reference);
   std::vector<PlotRun> plot_runs;

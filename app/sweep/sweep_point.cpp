@@ -44,8 +44,7 @@ fs::path sweep_point_file(const fs::path& dir, std::size_t k) {
 void write_sweep_point(const fs::path& dir, std::size_t k, const SweepRun& run) {
   fs::create_directories(dir / "points");
   if (!run.diverged)  // a diverged run's last state may not be finite, and is not compared
-    write_atomically(positions_file(dir, k),
-                     [&](const fs::path& partial) { write_npy_points(partial, run.x); });
+    write_npy_points(positions_file(dir, k), run.x);
   std::ostringstream text;
   text << "weft sweep point\n"
        << "run: " << k << "\n"

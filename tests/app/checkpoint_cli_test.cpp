@@ -210,7 +210,7 @@ TEST_F(CheckpointCli, CheckpointsOfAnotherSceneOrBuildOrDamagedOnesAreRefused) {
   EXPECT_EQ(same_scene.exit_code, 0) << same_scene.output;
 
   std::string other_build = good;
-  other_build[std::string("weft checkpoint 2\n").size()] ^= 1;  // the build hash's first byte
+  other_build[std::string("weft checkpoint 3\n").size()] ^= 1;  // the build hash's first byte
   std::ofstream(file, std::ios::binary) << other_build;
   const auto build = run_weft("run --resume " + cut.string());
   EXPECT_EQ(build.exit_code, 1) << build.output;
@@ -218,12 +218,12 @@ TEST_F(CheckpointCli, CheckpointsOfAnotherSceneOrBuildOrDamagedOnesAreRefused) {
 
   // Format version 1 (before remeshed meshes were saved) is refused by its version.
   std::string version_1 = good;
-  version_1.replace(0, std::string("weft checkpoint 2").size(), "weft checkpoint 1");
+  version_1.replace(0, std::string("weft checkpoint 3").size(), "weft checkpoint 1");
   std::ofstream(file, std::ios::binary) << version_1;
   const auto old_format = run_weft("run --resume " + cut.string());
   EXPECT_EQ(old_format.exit_code, 1) << old_format.output;
   EXPECT_CONTAINS(old_format.output, file.string() + ": a weft checkpoint of format version 1; "
-                                     "this weft reads version 2 only");
+                                     "this weft reads version 3 only");
 
   std::ofstream(file, std::ios::binary) << good.substr(0, good.size() - 100);
   const auto truncated = run_weft("run --resume " + cut.string());
@@ -237,7 +237,7 @@ TEST_F(CheckpointCli, CheckpointsOfAnotherSceneOrBuildOrDamagedOnesAreRefused) {
 
   const auto missing = run_weft("run --resume " + (m_dir / "nowhere").string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
-  EXPECT_CONTAINS(missing.output, "cannot read it");
+  EXPECT_CONTAINS(missing.output, "cannot read a checkpoint");
 
   // A new run in the folder removes the earlier run's checkpoint: --resume cannot mix runs.
   ASSERT_EQ(run_weft("run " + scene + " --frames 8 --out " + cut.string()).exit_code, 0);

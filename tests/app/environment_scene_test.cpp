@@ -12,6 +12,7 @@
 #include "app/scene/json_reader.h"
 #include "app/scene/scene.h"
 #include "render/environment.h"
+#include "render/image.h"
 #include "tests/app/scene_test_support.h"
 
 namespace weft::app {
@@ -49,6 +50,22 @@ TEST(EnvironmentScene, MapIsRelativeToTheSceneWithItsSettings) {
   EXPECT_NEAR(e.rotation_deg, 0.5 * 180.0 / 3.14159265358979, 1e-9);
   EXPECT_DOUBLE_EQ(e.intensity, 2.5);
   EXPECT_FALSE(e.background);
+}
+
+// stb reads a PNG as floats whatever its name: a PNG named .hdr used to light the scene with
+// made-up radiance; a device used to be read on and on.
+TEST(EnvironmentScene, APngNamedHdrOrADeviceIsNotAnEnvironmentMap) {
+  const std::filesystem::path dir = folder_with_map("png");
+  render::write_png(render::Image(8, 4, {200, 200, 200}), dir / "maps" / "fake.hdr");
+  const std::string png = test::scene_error_of(
+      test::scene_with_render(Json::parse(R"({"environment": {"file": "maps/fake.hdr"}})")),
+      dir / "scene.json");
+  EXPECT_CONTAINS(png, "render.environment.file");
+  EXPECT_CONTAINS(png, "fake.hdr': not a Radiance .hdr file");
+  const std::string device = test::scene_error_of(
+      test::scene_with_render(Json::parse(R"({"environment": {"file": "/dev/zero"}})")),
+      dir / "scene.json");
+  EXPECT_CONTAINS(device, "/dev/zero: cannot read an image file (not a regular file");
 }
 
 TEST(EnvironmentScene, BadMapOrValuesNameTheKeyAndFile) {

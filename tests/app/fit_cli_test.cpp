@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/io/npy_file.h"
 #include "tests/app/cli_test_support.h"
 
 namespace fs = std::filesystem;
@@ -155,6 +156,21 @@ TEST_F(FitCli, DrapePhotosFitComparesEveryImageAndWritesItsPictures) {
   EXPECT_CONTAINS(bad.output, "fit.json: target.drape_photos.images[0]: image ");
   EXPECT_CONTAINS(bad.output, "nowhere.png: no such file");
   EXPECT_FALSE(fs::exists(m_dir / "bad"));
+}
+
+// A point cloud at 1e300 m: every objective is infinite. This used to exit 0, reporting the
+// start as the fit.
+TEST_F(FitCli, AFitWithNoFiniteObjectiveFails) {
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> far(2, 3);
+  far << 1e300, 0, 0, 0, 1e300, 0;
+  weft::app::write_npy_points(m_dir / "far.npy", far);
+  const fs::path fit = write_fit(R"([{"name": "bend", "start": "0.05 N*m"}])",
+                                 R"({"point_cloud": {"file": "far.npy"}})");
+  const CommandResult r = run_weft("fit " + fit.string() + " --max-evaluations 2 --out " +
+                                   (m_dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, fit.string() + ": target: none of the ");
+  EXPECT_CONTAINS(r.output, "evaluations gave a finite objective");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <numeric>
 #include <string>
 
@@ -16,6 +17,8 @@
 #include "tests/support/test_files.h"
 
 namespace {
+
+namespace fs = std::filesystem;
 
 using weft::app::test::CliDirectoryTest;
 using weft::app::test::run_weft;
@@ -128,6 +131,26 @@ TEST_F(MessagesCli, ARayTracerOptionWithTheRasterRendererIsWarnedOf) {
                                (m_dir / "raytrace").string());
   EXPECT_EQ(traced.exit_code, 0) << traced.output;
   EXPECT_EQ(traced.output.find("ignores"), std::string::npos) << traced.output;
+}
+
+// A limit shorter than a frame used to simulate nothing and report "settle time 0.00 s".
+TEST_F(MessagesCli, UntilSettledShorterThanAFrameIsRefused) {
+  const auto r = run_weft("measure " + write_scene("tiny.json", tiny_scene()).string() +
+                          " --until-settled '1e-300 s' --out " + (m_dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "--until-settled: 1e-300 s is shorter than one frame of the scene");
+}
+
+// `cd DIR && weft run --resume checkpoint.weft` used to say "wrote 8 frames to  (": an empty
+// folder name, and the interrupted run's frames counted as written.
+TEST_F(MessagesCli, AResumeFromABareCheckpointNameNamesTheFolderAndTheFramesItWrote) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(run_weft("run " + write_scene("tiny.json", tiny_scene()).string() +
+                     " --frames 8 --checkpoint-every 4 --out " + out.string()).exit_code, 0);
+  const auto r = run_weft("run --resume checkpoint.weft", "cd " + out.string() + " &&");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "resuming from the checkpoint of frame 4 in .\n");
+  EXPECT_CONTAINS(r.output, "wrote 4 frames to . (");
 }
 
 }  // namespace

@@ -71,7 +71,7 @@ TEST(NpyFile, ReadsFloat32InCOrder) {
 }
 
 TEST(NpyFile, BadFilesAreNamedWithWhatWasExpected) {
-  expect_error(temp_file("missing.npy"), "cannot open");
+  expect_error(temp_file("missing.npy"), "cannot read a .npy file");
   {
     std::ofstream(temp_file("text.npy")) << "x,y,z\n1,2,3\n";
     expect_error(temp_file("text.npy"), "magic string");
@@ -91,6 +91,20 @@ TEST(NpyFile, BadFilesAreNamedWithWhatWasExpected) {
   expect_error(npy_with("nan.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (1, 3), }",
                         floats({1, std::numeric_limits<float>::quiet_NaN(), 3})),
                "point 0 has a non-finite");
+}
+
+// A shape whose element count overflows used to wrap round to the data's size, or end in
+// std::bad_alloc naming no file; /dev/zero was read for gigabytes.
+TEST(NpyFile, AHugeShapeOrADeviceIsRefusedNamingTheFile) {
+  expect_error(npy_with("huge.npy",
+                        "{'descr': '<f8', 'fortran_order': False, 'shape': (2305843009213693952, 3), }",
+                        std::string(48, '\0')),
+               "its shape (2305843009213693952, 3) needs more bytes than a size holds");
+  expect_error(npy_with("wraps.npy",
+                        "{'descr': '<f8', 'fortran_order': False, 'shape': (6148914691236517206, 3), }",
+                        std::string(16, '\0')),
+               "(the element count overflows)");
+  expect_error("/dev/zero", "cannot read a .npy file (not a regular file");
 }
 
 }  // namespace

@@ -39,9 +39,9 @@ TEST_F(SlurmScripts, SweepDryRunPrintsTheArrayAndTheCollectJobWithResources) {
       run_weft("sweep " + scene.string() + kSweep + " --out " + out.string() + " --slurm --dry-run");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* part :
-       {"#SBATCH --array=1-6", "#SBATCH --job-name=weft-sweep", "#SBATCH --cpus-per-task=1",
+       {"#SBATCH --array=1-6", "#SBATCH --job-name=\"weft-sweep\"", "#SBATCH --cpus-per-task=1",
         "#SBATCH --mem=", "#SBATCH --time=", "# Resources per task: estimated", "'--point' '6'",
-        "#SBATCH --job-name=weft-sweep-collect", "'--collect'", "--dependency=afterany:",
+        "#SBATCH --job-name=\"weft-sweep-collect\"", "'--collect'", "--dependency=afterany:",
         "not submitted: --dry-run"})
     EXPECT_CONTAINS(r.output, part);
   EXPECT_EQ(r.output.find("'--point' '7'"), std::string::npos) << r.output;
@@ -142,6 +142,74 @@ TEST_F(SlurmScripts, AGalleryTaskThatLeftNoResultIsListedWithItsResubmission) {
   EXPECT_CONTAINS(c.output, "1 of 2 scenes rendered");
   EXPECT_CONTAINS(c.output, "sbatch --array=2 " + fs::absolute(out / "slurm" / "gallery.sbatch").string());
   EXPECT_CONTAINS(file_bytes(out / "README.md"), "**Failed:** no result");
+}
+
+// The word in single quotes for /bin/sh (a line break inside stays part of the word).
+std::string sh_quoted(const std::string& word) {
+  std::string out = "'";
+  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// An output folder whose name carries a line break and a command: each command that writes a
+// Slurm script refuses it naming the path, writes nothing, and the command never runs.
+TEST_F(SlurmScripts, APathWithALineBreakIsRefusedBySweepRenderAndGallery) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const fs::path states = m_dir / "states";
+  ASSERT_EQ(run_weft("run " + scene.string() + " --save-states --out " + states.string()).exit_code, 0);
+  fs::create_directories(m_dir / "scenes");
+  std::ofstream(m_dir / "scenes" / "a.json") << tiny_scene();
+  const std::string evil = (m_dir / "x\ntouch PWNED\n").string();
+  const std::vector<std::string> commands = {
+      "sweep " + scene.string() + kSweep + " --slurm --dry-run --out " + sh_quoted(evil),
+      "render " + states.string() + " --slurm --dry-run --out " + sh_quoted(evil),
+      "gallery --scenes " + (m_dir / "scenes").string() + " --slurm --dry-run --out " + sh_quoted(evil)};
+  for (const std::string& command : commands) {
+    const CommandResult r = run_weft(command);
+    EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, "x\\ntouch PWNED\\n");
+    EXPECT_CONTAINS(r.output, "a Slurm script cannot name a path or value with a line break");
+    EXPECT_FALSE(fs::exists(evil)) << command << ": nothing written";
+  }
+}
+
+// sbatch reads a directive's value up to a space or '#', and expands '%' in --output: a folder
+// with a space, '#', '"' and '%' is written quoted, with '%' doubled in the log's name.
+TEST_F(SlurmScripts, DirectiveValuesAreQuoted) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const fs::path out = m_dir / "a b#c\"d%e";
+  const CommandResult r = run_weft("sweep " + scene.string() + kSweep + " --slurm --dry-run --out " +
+                                   sh_quoted(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string log = fs::absolute(out).string();
+  std::string escaped;
+  for (char c : log) escaped += c == '"' ? std::string("\\\"") : c == '%' ? std::string("%%") : std::string(1, c);
+  EXPECT_CONTAINS(r.output, "#SBATCH --output=\"" + escaped + "/slurm/weft-sweep_%a.log\"\n");
+  EXPECT_CONTAINS(r.output, "#SBATCH --job-name=\"weft-sweep\"\n");
+}
+
+// A sweep of more points than a Slurm array holds (or than one sweep may have) is refused at
+// once, before a scene is read: 10⁶ points used to read scenes for minutes, writing nothing.
+TEST_F(SlurmScripts, ASweepLargerThanAnArrayIsRefusedAtOnce) {
+  const fs::path scene = write_scene("tiny.json", tiny_scene());
+  const auto values = [](int n) {
+    std::string list;
+    for (int k = 1; k <= n; ++k) list += (k > 1 ? "," : "") + std::to_string(k);
+    return list;
+  };
+  const fs::path out = m_dir / "sweep";
+  const CommandResult slurm = run_weft("sweep " + scene.string() + " --set output.frames=" + values(11) +
+                                       " --set output.fps=" + values(100) + " --slurm --dry-run --out " +
+                                       out.string());
+  EXPECT_EQ(slurm.exit_code, 1) << slurm.output;
+  EXPECT_CONTAINS(slurm.output, "--set: 11 x 100 values make more than 1000 points, more than a "
+                                "Slurm array holds");
+  const CommandResult local = run_weft("sweep " + scene.string() + " --set output.frames=" +
+                                       values(1000) + " --set output.fps=" + values(1000) +
+                                       " --out " + out.string());
+  EXPECT_EQ(local.exit_code, 1) << local.output;
+  EXPECT_CONTAINS(local.output, "more than 10000 points, the limit of one sweep");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

@@ -178,6 +178,9 @@ TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   j["simulation"]["integrator"] = "implicit_euler";
   j["simulation"]["adaptive_step"] = {{"min_step", "1e-9 s"}, {"max_step", "1e-9 s"}};
   EXPECT_CONTAINS(scene_error_of(j), "simulation.adaptive_step.max_step: a time of");
+  // …and of its min_step, were the step to shrink to it (1e-300 s used to run for a minute).
+  j["simulation"]["adaptive_step"] = {{"min_step", "1e-300 s"}};
+  EXPECT_CONTAINS(scene_error_of(j), "simulation.adaptive_step.min_step: a time of");
   j["simulation"].erase("adaptive_step");
   j["simulation"]["time_step"] = "1e-9 s";
   EXPECT_CONTAINS(scene_error_of(j), "simulation.time_step: a time of");

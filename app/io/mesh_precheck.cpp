@@ -1,0 +1,267 @@
+// Mesh file checks before assimp; see mesh_precheck.h.
+
+#include "app/io/mesh_precheck.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <utility>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/io/mesh_file.h"
+
+namespace weft::app {
+
+namespace {
+
+// A PLY property: a scalar, or a list (count type, item type). Sizes in bytes; 0: unknown.
+struct PlyProperty {
+  std::string name;
+  int size = 0;
+  bool list = false;
+  int count_size = 0;
+  bool is_signed = false, count_signed = false, floating = false;
+};
+
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader {
+  bool ascii = false, big_endian = false;
+  std::size_t body = 0;  // offset of the first byte after end_header
+  std::vector<PlyElement> elements;
+};
+
+int ply_type_size(const std::string& t, bool& is_signed, bool& floating) {
+  static const std::map<std::string, int> sizes = {
+      {"char", -1}, {"int8", -1}, {"uchar", 1}, {"uint8", 1}, {"short", -2}, {"int16", -2},
+      {"ushort", 2}, {"uint16", 2}, {"int", -4}, {"int32", -4}, {"uint", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  const auto it = sizes.find(t);
+  if (it == sizes.end()) return 0;
+  floating = t.rfind("float", 0) == 0 || t == "double";
+  is_signed = it->second < 0 || floating;
+  return it->second < 0 ? -it->second : it->second;
+}
+
+[[noreturn]] void fail(const std::string& name, const std::string& what) {
+  throw MeshFileError(name + ": " + what);
+}
+
+// "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME" (the words after "property").
+PlyProperty read_ply_property(const std::vector<std::string>& w, const std::string& line,
+                              const std::string& name) {
+  PlyProperty p;
+  bool count_floating = false;
+  p.list = w.size() == 5 && w[1] == "list";
+  if (w.size() != (p.list ? 5u : 3u)) fail(name, "PLY header line '" + line + "': malformed property");
+  p.size = ply_type_size(p.list ? w[3] : w[1], p.is_signed, p.floating);
+  if (p.list) p.count_size = ply_type_size(w[2], p.count_signed, count_floating);
+  p.name = w.back();
+  if (p.size == 0 || (p.list && (p.count_size == 0 || count_floating)))
+    fail(name, "PLY header line '" + line + "': unknown or unusable type");
+  return p;
+}
+
+// The header, line by line: "ply", then only format, comment, obj_info, element and property
+// lines up to an "end_header" line. Anything else is refused: assimp's reader was seen to hang
+// on a misspelt keyword.
+PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
+  PlyHeader h;
+  bool format = false;
+  for (std::size_t at = 0, number = 1; at < bytes.size() && at < 65536; ++number) {
+    const std::size_t end = std::min(bytes.find('\n', at), bytes.size());
+    std::string line(bytes.substr(at, end - at));
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    at = end + 1;
+    // A header is text: assimp leaks on an element name with a NUL in it (found by fuzzing).
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+        fail(name, "PLY header line " + std::to_string(number) + ": a control character (a PLY "
+                   "header is text)");
+    std::istringstream words_in(line);
+    std::vector<std::string> w;
+    for (std::string word; words_in >> word;) w.push_back(word);
+    const std::string key = w.empty() ? "" : w[0];
+    if (number == 1) {
+      if (line != "ply") fail(name, "not a PLY file (expected its first line to be \"ply\")");
+    } else if (key == "end_header" && w.size() == 1) {
+      if (!format) fail(name, "the PLY header has no format line");
+      h.body = std::min(at, bytes.size());
+      return h;
+    } else if (key == "format" && w.size() == 3 && !format) {
+      if (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")
+        fail(name, "PLY format '" + w[1] + "' (expected ascii or binary_*_endian)");
+      h.ascii = w[1] == "ascii";
+      h.big_endian = w[1] == "binary_big_endian";
+      format = true;
+    } else if (key == "element" && w.size() == 3) {
+      if (w[2].find_first_not_of("0123456789") != std::string::npos || w[2].size() > 19)
+        fail(name, "PLY element '" + w[1] + "': count '" + w[2] + "' (expected a whole number)");
+      h.elements.push_back({w[1], std::stoull(w[2]), {}});
+    } else if (key == "property" && !h.elements.empty()) {
+      h.elements.back().properties.push_back(read_ply_property(w, line, name));
+    } else if (key != "comment" && key != "obj_info") {
+      fail(name, "PLY header line " + std::to_string(number) + ": '" + line +
+                     "' (expected format, comment, obj_info, element, property or end_header)");
+    }
+  }
+  fail(name, "not a PLY file (no \"end_header\" line in its first 64 KiB)");
+}
+
+// A value as the file gives it: 512, -1, 1.5, 1e+30.
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// The index lists of faces: "vertex_indices" or "vertex_index" of the element "face".
+bool is_face_list(const PlyElement& e, const PlyProperty& p) {
+  return e.name == "face" && p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
+}
+
+// The body of a PLY file, read value by value with every read checked against its end.
+class PlyBody {
+ public:
+  PlyBody(std::string_view bytes, const PlyHeader& h, const std::string& name)
+      : m_bytes(bytes), m_at(h.body), m_ascii(h.ascii), m_big_endian(h.big_endian), m_name(name) {}
+
+  // The next value as a double (binary integers are exact up to 2⁵³, beyond any limit here).
+  double next(int size, bool is_signed, bool floating, const std::string& where) {
+    return m_ascii ? next_word(where) : next_binary(size, is_signed, floating, where);
+  }
+
+ private:
+  double next_word(const std::string& where) {
+    while (m_at < m_bytes.size() && std::isspace(static_cast<unsigned char>(m_bytes[m_at]))) ++m_at;
+    const std::size_t start = m_at;
+    while (m_at < m_bytes.size() && !std::isspace(static_cast<unsigned char>(m_bytes[m_at]))) ++m_at;
+    if (start == m_at) fail(m_name, where + ": the file ends before it (truncated, or a bogus count)");
+    const std::string word(m_bytes.substr(start, m_at - start));
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (*end != '\0') fail(m_name, where + ": '" + word + "' is not a number");
+    return v;
+  }
+
+  double next_binary(int size, bool is_signed, bool floating, const std::string& where) {
+    if (m_bytes.size() - m_at < static_cast<std::size_t>(size))
+      fail(m_name, where + ": the file ends before it (truncated, or a bogus count)");
+    unsigned char raw[8] = {};
+    for (int k = 0; k < size; ++k)
+      raw[m_big_endian ? size - 1 - k : k] = static_cast<unsigned char>(m_bytes[m_at + k]);
+    m_at += static_cast<std::size_t>(size);
+    std::uint64_t bits = 0;
+    for (int k = size; k-- > 0;) bits = bits << 8 | raw[k];
+    if (floating) return 0.0;  // positions: assimp reads them; non-finite ones are refused later
+    if (is_signed && size < 8 && (bits >> (8 * size - 1)) & 1) bits |= ~std::uint64_t{0} << (8 * size);
+    return is_signed ? static_cast<double>(static_cast<std::int64_t>(bits)) : static_cast<double>(bits);
+  }
+
+  std::string_view m_bytes;
+  std::size_t m_at;
+  bool m_ascii, m_big_endian;
+  const std::string& m_name;
+};
+
+// Elements over the limits, or more than the bytes after the header can hold.
+void check_ply_counts(const PlyHeader& h, std::size_t body_bytes, const std::string& name) {
+  for (const PlyElement& e : h.elements) {
+    if ((e.name == "vertex" || e.name == "face") && e.count > max_mesh_elements)
+      fail(name, "the PLY header says " + std::to_string(e.count) + " " + e.name + "s, more than " +
+                     std::to_string(max_mesh_elements) + " (the limit of weft's mesh files)");
+    std::uint64_t least = 0;  // bytes per element: one per list count, each scalar's size
+    for (const PlyProperty& p : e.properties) least += h.ascii ? 2 : (p.list ? p.count_size : p.size);
+    if (least > 0 && e.count > body_bytes / least)
+      fail(name, "the PLY header says " + std::to_string(e.count) + " " + e.name +
+                     " elements, more than its " + std::to_string(body_bytes) +
+                     " bytes after the header can hold (truncated, or a bogus count)");
+  }
+}
+
+// Walks every element; each face's corners must be vertices of the file.
+void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::string& name) {
+  std::uint64_t vertices = 0;
+  for (const PlyElement& e : h.elements)
+    if (e.name == "vertex") vertices = e.count;
+  PlyBody body(bytes, h, name);
+  for (const PlyElement& e : h.elements)
+    // An element without properties takes no bytes, whatever its count (up to 10¹⁹).
+    for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i)
+      for (const PlyProperty& p : e.properties) {
+        const std::string where = e.name + " " + std::to_string(i) + ", " + p.name;
+        if (!p.list) {
+          body.next(p.size, p.is_signed, p.floating, where);
+          continue;
+        }
+        const double n = body.next(p.count_size, p.count_signed, false, where + "'s count");
+        if (!(n >= 0 && n <= 255 && n == static_cast<double>(static_cast<int>(n))))
+          fail(name, where + ": a list of " + number_text(n) + " items (expected 0 to 255)");
+        for (int k = 0; k < static_cast<int>(n); ++k) {
+          const double v = body.next(p.size, p.is_signed, p.floating, where);
+          if (is_face_list(e, p) && !(v >= 0 && v < static_cast<double>(vertices) &&
+                                      v == static_cast<double>(static_cast<std::int64_t>(v))))
+            fail(name, where + ": corner " + std::to_string(k) + " is vertex " + number_text(v) +
+                           ", not one of the file's " + std::to_string(vertices) + " vertices");
+        }
+      }
+}
+
+// An OBJ "vt" line's numbers must be finite as floats: assimp reads `vt nan 0` and `vt 1e39 0`
+// as `vt 0 0`, silently.
+void check_obj_texture_line(std::string_view line, std::uint64_t number, const std::string& name) {
+  std::istringstream words{std::string(line.substr(2))};
+  for (std::string word; words >> word;) {
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
+      fail(name, "line " + std::to_string(number) + ": texture coordinates '" + std::string(line) +
+                     "': '" + word + "' is not a finite number (as a float)");
+  }
+}
+
+// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit, and checks its texture
+// coordinate ("vt ") lines.
+void check_obj_counts(std::string_view bytes, const std::string& name) {
+  std::uint64_t v = 0, f = 0, number = 0;
+  for (std::size_t at = 0; at < bytes.size();) {
+    const std::size_t end = std::min(bytes.find('\n', at), bytes.size());
+    const std::string_view line = bytes.substr(at, end - at);
+    ++number;
+    if (line.size() > 1 && (line[1] == ' ' || line[1] == '\t')) {
+      v += line[0] == 'v';
+      f += line[0] == 'f';
+    }
+    if (line.size() > 2 && line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
+      check_obj_texture_line(line, number, name);
+    at = end + 1;
+  }
+  for (const auto& [count, what] : {std::pair{v, "vertices"}, std::pair{f, "faces"}})
+    if (count > max_mesh_elements)
+      fail(name, "an OBJ of " + std::to_string(count) + " " + what + ", more than " +
+                     std::to_string(max_mesh_elements) + " (the limit of weft's mesh files)");
+}
+
+}  // namespace
+
+void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
+                         const std::string& name) {
+  if (extension == ".obj") check_obj_counts(bytes, name);
+  if (extension != ".ply") return;
+  const PlyHeader h = read_ply_header(bytes, name);
+  check_ply_counts(h, bytes.size() - h.body, name);
+  check_ply_body(bytes, h, name);
+}
+
+}  // namespace weft::app

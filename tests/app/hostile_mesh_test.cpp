@@ -1,0 +1,180 @@
+// Hostile mesh files read by load_triangle_mesh / load_polygon_mesh (every mesh weft reads: the
+// cloth's, obstacles', weft turntable's): a PLY whose face refers to a vertex it does not have,
+// whose list count runs past its faces, whose header promises more than the file holds or more
+// than the limit; a glTF or OBJ that refers to a file outside its folder; a device as a mesh.
+// Each is a MeshFileError naming the file and what is wrong — never a crash inside assimp.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "app/io/mesh_file.h"
+#include "app/io/mesh_precheck.h"
+#include "scene_test_support.h"
+#include "tests/support/test_files.h"
+
+namespace fs = std::filesystem;
+
+namespace weft::app {
+namespace {
+
+using test_files::write_text;
+
+fs::path dir() { return test_files::fresh_directory(::testing::TempDir(), "weft_hostile_mesh_test"); }
+
+std::string load_error(const fs::path& path) {
+  try {
+    load_triangle_mesh(path);
+  } catch (const MeshFileError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+const std::string kPlyVertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+
+std::string ascii_ply(const std::string& faces) {
+  return "ply\nformat ascii 1.0\n" + kPlyVertices +
+         "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n" + faces;
+}
+
+// A binary little-endian PLY of the three vertices above and one face: count, then indices.
+std::string binary_ply(std::uint8_t count, const std::vector<std::int32_t>& indices, int faces = 1) {
+  std::string s = "ply\nformat binary_little_endian 1.0\n" + kPlyVertices + "element face " +
+                  std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  s.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  s += static_cast<char>(count);
+  for (const std::int32_t i : indices) s.append(reinterpret_cast<const char*>(&i), 4);
+  return s;
+}
+
+TEST(HostileMesh, AGoodPlyStillLoads) {
+  const fs::path d = dir();
+  write_text(d / "a.ply", ascii_ply("3 0 1 2\n"));
+  write_text(d / "b.ply", binary_ply(3, {0, 1, 2}));
+  for (const char* name : {"a.ply", "b.ply"})
+    EXPECT_EQ(load_triangle_mesh(d / name).triangles.size(), 1u) << name;
+}
+
+TEST(HostileMesh, APlyFaceOutsideTheVerticesIsRefusedNamingTheFace) {
+  const fs::path d = dir();
+  write_text(d / "a.ply", ascii_ply("3 0 1 7\n"));
+  write_text(d / "b.ply", binary_ply(3, {0, 1, 1000000}));
+  write_text(d / "c.ply", binary_ply(3, {0, -1, 2}));
+  for (const char* name : {"a.ply", "b.ply", "c.ply"}) {
+    const std::string e = load_error(d / name);
+    EXPECT_CONTAINS(e, (d / name).string() + ": face 0, vertex_indices: corner ");
+    EXPECT_CONTAINS(e, "not one of the file's 3 vertices");
+  }
+}
+
+TEST(HostileMesh, APlyListCountPastItsFacesOrAHeaderPastTheFileIsRefused) {
+  const fs::path d = dir();
+  write_text(d / "count.ply", binary_ply(255, {0, 1, 2}));
+  EXPECT_CONTAINS(load_error(d / "count.ply"), "the file ends before it (truncated, or a bogus count)");
+  write_text(d / "faces.ply", binary_ply(3, {0, 1, 2}, 1000000));
+  EXPECT_CONTAINS(load_error(d / "faces.ply"),
+                  "the PLY header says 1000000 face elements, more than its");
+  write_text(d / "huge.ply", binary_ply(3, {0, 1, 2}, 10000000));
+  EXPECT_CONTAINS(load_error(d / "huge.ply"), "the PLY header says 10000000 faces, more than 2097152");
+  write_text(d / "ascii.ply", ascii_ply("3 0 1\n"));
+  EXPECT_CONTAINS(load_error(d / "ascii.ply"), "face 0, vertex_indices: the file ends before it");
+}
+
+// Found by fuzzing: assimp's PLY reader hung on a misspelt header keyword and leaked on a NUL
+// in an element's name, and weft's own walk took forever over an element of 4·10¹² items
+// without properties.
+TEST(HostileMesh, APlyHeaderIsReadStrictlyAndAnEmptyElementTakesNoTime) {
+  const fs::path d = dir();
+  std::string typo = ascii_ply("3 0 1 2\n");
+  typo.replace(typo.find("property float x"), 8, "propesty");
+  write_text(d / "typo.ply", typo);
+  EXPECT_CONTAINS(load_error(d / "typo.ply"), "PLY header line 4: 'propesty float x' (expected format, "
+                                              "comment, obj_info, element, property or end_header)");
+  EXPECT_CONTAINS(load_error([&] {
+                    std::string nul = ascii_ply("3 0 1 2\n");
+                    nul.replace(nul.find("face"), 4, std::string("fa\1\0e", 5));
+                    write_text(d / "nul.ply", nul);
+                    return d / "nul.ply";
+                  }()),
+                  "PLY header line 7: a control character");
+  EXPECT_NO_THROW(precheck_mesh_bytes("ply\nformat ascii 1.0\nelement nothing 4444444888888\n"
+                                      "end_header\n", ".ply", "empty.ply"));
+}
+
+TEST(HostileMesh, AnObjOverTheLimitIsRefusedBeforeItIsRead) {
+  const fs::path d = dir();
+  std::string obj;
+  obj.reserve(8 * (max_mesh_elements + 1));
+  for (std::uint64_t k = 0; k <= max_mesh_elements; ++k) obj += "v 0 0 0\n";
+  write_text(d / "many.obj", obj);
+  EXPECT_CONTAINS(load_error(d / "many.obj"), "an OBJ of 2097153 vertices, more than 2097152");
+}
+
+// A glTF whose one buffer (three corners, float32, and three uint16 indices) is at `uri`.
+std::string gltf(const std::string& uri) {
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+"buffers":[{"uri":")" + uri + R"(","byteLength":42}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})";
+}
+
+std::string triangle_buffer() {
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t index[3] = {0, 1, 2};
+  std::string s(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  return s.append(reinterpret_cast<const char*>(index), sizeof index);
+}
+
+TEST(HostileMesh, AGltfOrObjReferringOutsideItsFolderIsRefused) {
+  const fs::path d = dir();
+  fs::create_directories(d / "mesh" / "sub");
+  write_text(d / "secret.bin", triangle_buffer());
+  write_text(d / "mesh" / "sub" / "tri.bin", triangle_buffer());
+  write_text(d / "mesh" / "inside.gltf", gltf("sub/tri.bin"));
+  EXPECT_EQ(load_triangle_mesh(d / "mesh" / "inside.gltf").triangles.size(), 1u);
+  write_text(d / "mesh" / "up.gltf", gltf("../secret.bin"));
+  write_text(d / "mesh" / "absolute.gltf", gltf((d / "secret.bin").string()));
+  fs::create_symlink(d / "secret.bin", d / "mesh" / "link.bin");
+  write_text(d / "mesh" / "link.gltf", gltf("link.bin"));
+  write_text(d / "secret.mtl", "newmtl m\nKd 1 0 0\n");
+  write_text(d / "mesh" / "up.obj", "mtllib ../secret.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n");
+  for (const char* name : {"up.gltf", "link.gltf", "up.obj"}) {
+    const std::string e = load_error(d / "mesh" / name);
+    EXPECT_CONTAINS(e, (d / "mesh" / name).string() + ": cannot read mesh file: it refers to ");
+    EXPECT_CONTAINS(e, "outside the mesh file's folder " + fs::canonical(d / "mesh").string());
+  }
+  // assimp reads an absolute uri below the file's folder, where there is no such file.
+  EXPECT_CONTAINS(load_error(d / "mesh" / "absolute.gltf"),
+                  (d / "mesh" / "absolute.gltf").string() + ": cannot read mesh file: it refers to ");
+}
+
+// `vt nan 0` and `vt 1e39 0` (infinite as a float) used to give the pattern of `vt 0 0`.
+TEST(HostileMesh, NonFiniteTextureCoordinatesAreRefused) {
+  const fs::path d = dir();
+  for (const char* vt : {"nan 0", "1e39 0"}) {
+    write_text(d / "uv.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt ") + vt +
+                                 "\nf 1/1 2/2 3/3\n");
+    try {
+      load_polygon_mesh(d / "uv.obj");
+      ADD_FAILURE() << vt;
+    } catch (const MeshFileError& e) {
+      EXPECT_CONTAINS(std::string(e.what()), (d / "uv.obj").string() + ": line 6: texture coordinates 'vt ");
+      EXPECT_CONTAINS(std::string(e.what()), "is not a finite number (as a float)");
+    }
+  }
+}
+
+TEST(HostileMesh, ADeviceOrAFolderIsNotAMeshFile) {
+  EXPECT_CONTAINS(load_error("/dev/zero"), "/dev/zero: cannot read mesh file: not a regular file");
+  EXPECT_CONTAINS(load_error(dir()), "not a regular file");
+}
+
+}  // namespace
+}  // namespace weft::app
