@@ -1,6 +1,7 @@
 #include "sim/material/wang2011_fabrics.h"
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 namespace weft::sim {
@@ -9,8 +10,8 @@ namespace weft::sim {
 // 0961778; identical in 0.2.1, github.com/pernorc85/ARCSim-0.2.1, commit ba616ec), as
 // assets/fabrics/arcsim_materials.json records them: {preset, file, use and fibres, density,
 // stretching 6 × 4, bending 3 × 5}.
-const std::vector<Wang2011Fabric>& wang2011_fabrics() {
-  static const std::vector<Wang2011Fabric> fabrics{
+namespace {
+const Wang2011Fabric kWang2011Fabrics[] = {
   {"wang2011_11oz_black_denim", "11oz-black-denim", "jeans, 99% cotton 1% spandex", 0.324,
      {{205.352005, 10.234077, 1013.88629, 53.387184},
       {232.027634, 40.646339, 1052.84289, 64.980499},
@@ -111,7 +112,12 @@ const std::vector<Wang2011Fabric>& wang2011_fabrics() {
      {{6.0237942e-05, 5.6357208e-05, 6.9698593e-05, 5.5305969e-05, 3.4705532e-05},
       {5.8803211e-05, 6.3121964e-05, 6.1379181e-05, 4.7971302e-05, 1.9383726e-05},
       {5.1018833e-05, 5.0741455e-05, 5.0570576e-05, 5.0006001e-05, 2.4556618e-05}}},
-  };
+};
+}  // namespace
+
+const std::vector<Wang2011Fabric>& wang2011_fabrics() {
+  static const std::vector<Wang2011Fabric> fabrics(std::begin(kWang2011Fabrics),
+                                                   std::end(kWang2011Fabrics));
   return fabrics;
 }
 

@@ -20,6 +20,7 @@ namespace {
 
 using weft::app::test::CommandResult;
 using weft::app::test::file_bytes;
+using weft::app::test::partial_names;
 using weft::app::test::run_weft;
 using weft::app::test::tiny_scene;
 
@@ -30,14 +31,6 @@ std::map<std::string, std::string> folder_bytes(const fs::path& dir) {
     if (entry.is_regular_file())
       files[fs::relative(entry.path(), dir).string()] = file_bytes(entry.path());
   return files;
-}
-
-// The names under `dir` that end in ".partial" (files or folders left half-written).
-std::vector<std::string> partial_names(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.path().extension() == ".partial") names.push_back(entry.path().string());
-  return names;
 }
 
 class AtomicOutputs : public weft::app::test::CliDirectoryTest {

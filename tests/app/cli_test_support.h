@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "tests/support/test_files.h"
 
@@ -47,6 +48,14 @@ inline std::string file_bytes(const std::filesystem::path& path) {
 }
 
 // A fresh, empty folder for the running test: WEFT_BINARY_DIR/test_output/<suite>/<test name>.
+// The names under `dir` that end in ".partial" (files, folders or links left half-written).
+inline std::vector<std::string> partial_names(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.path().extension() == ".partial") names.push_back(entry.path().string());
+  return names;
+}
+
 inline std::filesystem::path fresh_test_directory(const std::string& suite) {
   const std::filesystem::path root = std::filesystem::path(WEFT_BINARY_DIR) / "test_output";
   return test_files::fresh_directory(root, suite);

@@ -20,16 +20,9 @@ namespace {
 
 using weft::app::test::CommandResult;
 using weft::app::test::file_bytes;
+using weft::app::test::partial_names;
 using weft::app::test::run_weft;
 using weft::app::test::tiny_scene;
-
-// The names under `dir` that end in ".partial" (files, folders or links).
-std::vector<std::string> partial_names(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.path().extension() == ".partial") names.push_back(entry.path().string());
-  return names;
-}
 
 class SharedFolder : public weft::app::test::CliDirectoryTest {
  protected:
