@@ -132,7 +132,8 @@ RenderSettings mask_settings(const RenderSettings& s, bool cloth_only) {
   m.shading = Shading::lit;
   m.light_intensity = 0.0;
   m.ambient = 1.0;
-  m.front_color = m.back_color = white;
+  m.front_color = white;
+  m.back_color = std::nullopt;
   m.background = black;
   m.ground_color = cloth_only ? black : white;
   m.msaa_samples = 1;
@@ -244,9 +245,11 @@ void RasterRenderer::Impl::draw_main_pass(const RenderSettings& s, const FrameMe
   if (m.cloth_count + m.object_count == 0) return;
   const bool textured =
       s.cloth_surface.texture.image && m.cloth->uvs.size() == m.cloth->positions.size();
-  m_surface.begin(s, view_projection, textured, environment);
+  const TexturePlacement placement =
+      textured ? texture_placement(s.cloth_surface.texture, m.cloth->uvs) : TexturePlacement{};
+  m_surface.begin(s, view_projection, textured, placement, environment);
   if (m.cloth_count > 0)
-    m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, s.back_color, textured,
+    m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, back_side_color(s), textured,
                    s.shading == Shading::strain);
   for (const ObjectRange& r : m.ranges) {
     if (r.index_count > 0) m_surface.draw(m_objects, r.first_index, r.index_count, r.color, r.color);

@@ -252,7 +252,8 @@ SurfacePass::~SurfacePass() {
 }
 
 void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
-                        bool textured, const EnvironmentShading& environment) {
+                        bool textured, const TexturePlacement& texture_placement,
+                        const EnvironmentShading& environment) {
   m_program.use();
   m_program.set("u_view_projection", view_projection);
   m_program.set("u_eye", s.camera.eye);
@@ -268,16 +269,17 @@ void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_pro
     }
   }
   if (textured) {
-    const ClothTexture& texture = s.cloth_surface.texture;
-    bind_texture(texture);
+    bind_texture(s.cloth_surface.texture.image, texture_placement.repeat);
     m_program.set("u_texture", 1);  // texture unit 1
-    m_program.set("u_texture_repeat", Eigen::Vector2f(texture.repeat_m.cast<float>()));
+    m_program.set("u_texture_origin", texture_placement.origin);
+    m_program.set("u_texture_size", texture_placement.size);
+    m_program.set("u_texture_back", texture_on_back(s) ? 1 : 0);
   }
 }
 
-void SurfacePass::bind_texture(const ClothTexture& texture) {
-  m_texture_owner = texture.image;
-  const Image& image = *texture.image;
+void SurfacePass::bind_texture(const std::shared_ptr<const Image>& owner, bool repeat) {
+  m_texture_owner = owner;
+  const Image& image = *owner;
   if (m_texture == 0) {
     m_gl.GenTextures(1, &m_texture);
     m_texture_image = nullptr;
@@ -298,10 +300,11 @@ void SurfacePass::bind_texture(const ClothTexture& texture) {
     m_gl.GenerateMipmap(GL_TEXTURE_2D);
     m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     m_texture_image = &image;
   }
+  const GLint wrap = repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+  m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
   m_gl.ActiveTexture(GL_TEXTURE0);
   check_gl_error(m_gl, "uploading the cloth texture");
 }

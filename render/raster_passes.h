@@ -128,15 +128,15 @@ class SurfacePass {
 
   // Uses the program with the frame's camera and light (`environment` replacing the ambient
   // light when on); binds the cloth texture (uploading it when the image changed) when
-  // `textured`.
+  // `textured`, placed on the material by `texture_placement` (render/texture.h).
   void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured,
-             const EnvironmentShading& environment);
+             const TexturePlacement& texture_placement, const EnvironmentShading& environment);
   void draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
             const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured = false,
             bool vertex_coloured = false);  // the vertex colours on both sides
 
  private:
-  void bind_texture(const ClothTexture& texture);
+  void bind_texture(const std::shared_ptr<const Image>& image, bool repeat);
 
   const GlFunctions& m_gl;
   GlProgram m_program;

@@ -40,9 +40,11 @@ uniform vec3 u_front_color;
 uniform vec3 u_back_color;
 uniform int u_shading;            // 0 lit, 1 normals
 uniform int u_use_texture;        // 1: the front colour comes from u_texture (render/texture.h)
+uniform int u_texture_back;       // 1: and the back colour too
 uniform int u_use_vertex_colour;  // 1: both sides take v_colour (the strain false colour)
 uniform sampler2D u_texture;      // rows uploaded bottom first: t = 0 is the image's bottom
-uniform vec2 u_texture_repeat;    // metres of material per repeat along warp and weft
+uniform vec2 u_texture_origin;    // material coordinates (m) of texture coordinates (0, 0)
+uniform vec2 u_texture_size;      // metres of material per unit of texture coordinate
 uniform int u_use_environment;    // 1: image-based light (render/environment.h) replaces ambient
 uniform vec3 u_sh[9];             // its reflected radiance as a polynomial in n (environment.h)
 out vec4 o_color;
@@ -65,7 +67,8 @@ void main() {
   vec3 n = len > 1e-6 ? v_normal / len : geometric;
   if (!gl_FrontFacing && len > 1e-6) n = -n;  // back face: its normal points the other way
   vec3 base = gl_FrontFacing ? u_front_color : u_back_color;
-  if (gl_FrontFacing && u_use_texture == 1) base = texture(u_texture, v_uv / u_texture_repeat).rgb;
+  if ((gl_FrontFacing || u_texture_back == 1) && u_use_texture == 1)
+    base = texture(u_texture, (v_uv - u_texture_origin) / u_texture_size).rgb;
   if (u_use_vertex_colour == 1) base = v_colour;
 
   if (u_shading == 1) {

@@ -8,6 +8,7 @@
 // as free of Embree as this header.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,8 +40,10 @@ struct RenderSettings {
   Eigen::Vector3d light_direction{0.4, -0.6, 1.0};  // towards the key light, need not be unit
   double light_intensity = 0.85;                    // key light, diffuse
   double ambient = 0.25;
-  Eigen::Vector3f front_color{0.80f, 0.25f, 0.20f};  // linear 0..1
-  Eigen::Vector3f back_color{0.25f, 0.45f, 0.80f};   // back faces get their own colour
+  Eigen::Vector3f front_color{0.80f, 0.25f, 0.20f};  // as displayed, 0..1
+  // None (the default): the cloth is one fabric, its back the same as its front (colour,
+  // texture and sheen). A colour: the back is plain that colour, e.g. to tell the sides apart.
+  std::optional<Eigen::Vector3f> back_color;
   Eigen::Vector3f background{0.92f, 0.93f, 0.95f};
   bool ground = true;
   double ground_z_m = 0.0;
@@ -63,6 +66,13 @@ struct RenderSettings {
   // irradiance) and, with environment.background, the background colour. The key light stays.
   Environment environment;
 };
+
+// The colour of the cloth's back side where no texture covers it: back_color, else front_color.
+inline Eigen::Vector3f back_side_color(const RenderSettings& settings) {
+  return settings.back_color.value_or(settings.front_color);
+}
+// Whether the texture (cloth_surface.texture) covers the back side too: unless back_color is set.
+inline bool texture_on_back(const RenderSettings& settings) { return !settings.back_color; }
 
 // Bad input: throws std::invalid_argument naming the field ("RenderSettings: ...") unless the
 // settings can be drawn; max_size is the largest width or height the renderer supports.

@@ -66,16 +66,44 @@ Image make_woven_check(const WovenCheck& check, int size) {
   return image;
 }
 
-Eigen::Vector3f sample_texture(const Image& image, float s, float t) {
+TexturePlacement texture_placement(const ClothTexture& texture,
+                                   const std::vector<Eigen::Vector2f>& uvs) {
+  TexturePlacement placement;
+  if (texture.mapping == TextureMapping::repeat || uvs.empty()) {
+    placement.size = texture.repeat_m.cast<float>();
+    return placement;
+  }
+  Eigen::Vector2f lo = uvs.front(), hi = uvs.front();
+  for (const Eigen::Vector2f& uv : uvs) {
+    lo = lo.cwiseMin(uv);
+    hi = hi.cwiseMax(uv);
+  }
+  placement.origin = lo;
+  placement.size = hi - lo;
+  for (int k = 0; k < 2; ++k) {
+    if (!(placement.size[k] > 0.0f)) placement.size[k] = 1.0f;
+  }
+  placement.repeat = false;
+  return placement;
+}
+
+Eigen::Vector3f sample_texture(const Image& image, float s, float t, bool repeat) {
   const int w = image.width(), h = image.height();
-  // Continuous pixel coordinates with pixel centres at integers + 0.5, wrapped into one repeat.
+  // Continuous pixel coordinates with pixel centres at integers + 0.5: wrapped into one
+  // repeat, or clamped to the centres of the edge texels.
   float px = s * static_cast<float>(w) - 0.5f;
   float py = (1.0f - t) * static_cast<float>(h) - 0.5f;
   if (!std::isfinite(px) || !std::isfinite(py)) return Eigen::Vector3f::Zero();
-  px -= static_cast<float>(w) * std::floor(px / static_cast<float>(w));
-  py -= static_cast<float>(h) * std::floor(py / static_cast<float>(h));
+  if (repeat) {
+    px -= static_cast<float>(w) * std::floor(px / static_cast<float>(w));
+    py -= static_cast<float>(h) * std::floor(py / static_cast<float>(h));
+  } else {
+    px = std::clamp(px, 0.0f, static_cast<float>(w - 1));
+    py = std::clamp(py, 0.0f, static_cast<float>(h - 1));
+  }
   const int x0 = std::min(static_cast<int>(px), w - 1), y0 = std::min(static_cast<int>(py), h - 1);
-  const int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
+  const int x1 = repeat ? (x0 + 1) % w : std::min(x0 + 1, w - 1);
+  const int y1 = repeat ? (y0 + 1) % h : std::min(y0 + 1, h - 1);
   const float ax = std::clamp(px - static_cast<float>(x0), 0.0f, 1.0f);
   const float ay = std::clamp(py - static_cast<float>(y0), 0.0f, 1.0f);
   const auto texel = [&](int x, int y) {

@@ -73,7 +73,6 @@ render::RenderSettings membrane_render_settings(const sim::FoldPattern& p, const
   s.camera.eye = target + Eigen::Vector3d(0.35 * distance, -distance, 0.12 * distance);
   s.camera.far_m = 10.0 * distance;
   s.light_direction = {0.7, -0.5, 0.6};  // grazing from the right: the folds cast shade
-  s.back_color = s.front_color;          // one fabric colour on both sides
   return s;
 }
 

@@ -31,7 +31,7 @@ aiMaterial* cloth_material(MeshFormat format, const MeshExportOptions& o) {
   auto* material = new aiMaterial();
   const aiString material_name("cloth");
   material->AddProperty(&material_name, AI_MATKEY_NAME);
-  const bool textured = format == MeshFormat::gltf && !o.texture_uri.empty();
+  const bool textured = format != MeshFormat::ply && !o.texture_uri.empty();
   const aiColor4D colour = textured ? aiColor4D(1, 1, 1, 1)
                                     : aiColor4D(o.base_color.x(), o.base_color.y(), o.base_color.z(), 1);
   material->AddProperty(&colour, 1, AI_MATKEY_COLOR_DIFFUSE);
@@ -47,13 +47,15 @@ aiMaterial* cloth_material(MeshFormat format, const MeshExportOptions& o) {
   return material;
 }
 
-// Texture coordinates handed to assimp: metres, or for a textured glTF repeats (s, t) of the
-// texture (render/texture.h). assimp's glTF exporter writes (s, 1 − t), glTF's v running down
-// the image, so the image lies on the cloth as the renderers draw it.
-aiVector3D file_uv(const Eigen::Vector2f& uv, MeshFormat format, const MeshExportOptions& o) {
-  if (format != MeshFormat::gltf || o.texture_uri.empty()) return {uv.x(), uv.y(), 0.0f};
-  return {static_cast<float>(uv.x() / o.texture_repeat_m.x()),
-          static_cast<float>(uv.y() / o.texture_repeat_m.y()), 0.0f};
+// Texture coordinates handed to assimp: metres, or for a textured OBJ or glTF the texture's
+// coordinates (s, t) where `placement` puts it (render/texture.h). assimp's glTF exporter
+// writes (s, 1 − t), glTF's v running down the image, so the image lies on the cloth as the
+// renderers draw it.
+aiVector3D file_uv(const Eigen::Vector2f& uv, MeshFormat format, const MeshExportOptions& o,
+                   const render::TexturePlacement& placement) {
+  if (format == MeshFormat::ply || o.texture_uri.empty()) return {uv.x(), uv.y(), 0.0f};
+  const Eigen::Vector2f st = (uv - placement.origin).cwiseQuotient(placement.size);
+  return {st.x(), st.y(), 0.0f};
 }
 
 // A point or direction as written: turned y-up for OBJ/PLY when asked.
@@ -90,8 +92,10 @@ void fill_scene(const render::RenderMesh& mesh, MeshFormat format, const MeshExp
   if (mesh.uvs.size() == mesh.positions.size()) {
     out->mTextureCoords[0] = new aiVector3D[n];
     out->mNumUVComponents[0] = 2;
+    const render::TexturePlacement placement = render::texture_placement(
+        {nullptr, o.texture_repeat_m, o.texture_mapping}, mesh.uvs);
     for (unsigned v = 0; v < n; ++v)
-      out->mTextureCoords[0][v] = file_uv(mesh.uvs[v], format, o);
+      out->mTextureCoords[0][v] = file_uv(mesh.uvs[v], format, o, placement);
   }
   const auto f = static_cast<unsigned>(mesh.triangles.size());
   out->mNumFaces = f;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/render_mesh.h"
+#include "render/texture.h"
 
 namespace weft::app {
 
@@ -31,12 +32,15 @@ struct MeshExportOptions {
   // carries the turn; its vertex data stays in weft's coordinates).
   UpAxis up = UpAxis::y;
   Eigen::Vector3f base_color{0.80f, 0.25f, 0.20f};  // linear 0..1: OBJ's Kd, glTF's baseColorFactor
-  // glTF: the base colour texture's file, relative to the mesh file ("" none). With it the
-  // glTF's UVs are texture repeats, (s, 1 − t) with (s, t) = material coordinates /
-  // texture_repeat_m (render/texture.h; glTF's v runs down the image), and its base colour
-  // factor is white; OBJ and PLY keep metres.
+  // OBJ and glTF: the base colour texture's file, relative to the mesh file ("" none; an OBJ's
+  // MTL names it as map_Kd, a glTF as baseColorTexture). With it the UVs are texture
+  // coordinates (s, t) of the texture's placement on the mesh (render/texture.h: repeats, or
+  // the piece's bounding box for TextureMapping::piece), written (s, 1 − t) in a glTF (its v
+  // runs down the image), and the base colour is white; without it, and in a PLY, UVs are
+  // material coordinates in metres.
   std::string texture_uri;
   Eigen::Vector2d texture_repeat_m{0.1, 0.1};
+  render::TextureMapping texture_mapping = render::TextureMapping::repeat;
 };
 
 // Writes the mesh's triangles, positions (m), normals and UVs to `path` (an OBJ also writes

@@ -42,7 +42,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The cloth's texture beside glTF meshes (--export-meshes gltf), which name it.
+// The cloth's texture beside OBJ and glTF meshes (--export-meshes obj|gltf), which name it.
 constexpr const char* texture_file_name = "mesh_texture.png";
 
 // How --export-meshes writes the cloth: the --up axis, the scene's front colour and texture.
@@ -51,9 +51,10 @@ MeshExportOptions mesh_export_options(const Scene& scene, const RunOptions& opti
   o.up = options.up;
   o.base_color = scene.render.front_color;
   const render::ClothTexture& texture = scene.render.cloth_surface.texture;
-  if (texture.image && options.export_meshes == MeshFormat::gltf) {
+  if (texture.image && options.export_meshes && *options.export_meshes != MeshFormat::ply) {
     o.texture_uri = texture_file_name;
     o.texture_repeat_m = texture.repeat_m;
+    o.texture_mapping = texture.mapping;
   }
   return o;
 }

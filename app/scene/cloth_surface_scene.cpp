@@ -45,6 +45,9 @@ render::ClothTexture read_texture(ObjectReader r) {
     texture.image = std::make_shared<const render::Image>(
         render::make_woven_check(read_woven_check(r.object("woven_check"))));
   }
+  texture.mapping = r.enumeration("mapping", render::texture_mapping_names, {texture.mapping});
+  if (texture.mapping == render::TextureMapping::piece && r.has("scale"))
+    r.fail("scale", "expected no scale with \"mapping\": \"piece\" (the image spans the piece)");
   const auto scale =
       r.quantities("scale", Quantity::length, 2, std::vector<double>{0.1, 0.1}, Range::gt(0.0));
   texture.repeat_m = {scale[0], scale[1]};

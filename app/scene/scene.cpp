@@ -494,7 +494,7 @@ void read_render(ObjectReader r, Scene& scene) {
 
   ObjectReader colors = r.object("colors");
   s.front_color = read_color(colors, "front", s.front_color);
-  s.back_color = read_color(colors, "back", s.back_color);
+  if (colors.has("back")) s.back_color = read_color(colors, "back", s.front_color);
   s.background = read_color(colors, "background", s.background);
   s.obstacle_color = read_color(colors, "obstacle", s.obstacle_color);
   colors.finish();

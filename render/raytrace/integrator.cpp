@@ -99,10 +99,11 @@ bool intersect(const FrameView& view, const Eigen::Vector3f& origin,
                    : geometric;
   hit.geometric = geometric;
   hit.reflectance = front ? surface.front : surface.back;
-  if (front && surface.texture && surface.texture->image &&
+  if ((front || surface.texture_back) && surface.texture &&
       mesh.uvs.size() == mesh.positions.size()) {
     const Eigen::Vector2f uv = w * mesh.uvs[t[0]] + u * mesh.uvs[t[1]] + v * mesh.uvs[t[2]];
-    hit.reflectance = reflectance_from_color(sample_cloth_texture(*surface.texture, uv));
+    hit.reflectance = reflectance_from_color(
+        sample_placed_texture(*surface.texture, surface.texture_placement, uv));
   }
   if (const std::vector<Eigen::Vector3f>* colours = surface.vertex_colours) {
     hit.reflectance = reflectance_from_color(w * (*colours)[t[0]] + u * (*colours)[t[1]] +

@@ -25,9 +25,12 @@ struct SurfaceShading {
   Eigen::Vector3f back{0.0f, 0.0f, 0.0f};   // and of the back side
   bool sheen = false;                       // the cloth: diffuse + sheen
   bool ground = false;                      // the ground: grid lines and fade (camera rays)
-  // Replaces `front` by the texture's colour at the hit's material coordinates (mesh->uvs,
-  // interpolated) when set and the mesh has one UV per vertex (render/texture.h).
-  const ClothTexture* texture = nullptr;
+  // Replaces `front` (and `back` when texture_back) by the texture's colour at the hit's
+  // material coordinates (mesh->uvs, interpolated) when set and the mesh has one UV per vertex
+  // (render/texture.h).
+  const Image* texture = nullptr;
+  TexturePlacement texture_placement{};
+  bool texture_back = false;
   // Replaces `front` and `back` (and the texture) by the vertex colours, interpolated, when
   // set (one per vertex of mesh: the strain false colour, render/strain_colour.h).
   const std::vector<Eigen::Vector3f>* vertex_colours = nullptr;

@@ -259,11 +259,15 @@ rt::FrameView RayTracer::Impl::frame_view(const FrameMeshes& m, const RenderSett
     view.surfaces[g.id()] = surface;
   };
   float extent = std::max(max_abs_coordinate(*m.cloth), max_abs_coordinate(m.ground));
-  add_surface(cloth_geometry,
-              {m.cloth, rt::reflectance_from_color(s.front_color),
-               rt::reflectance_from_color(s.back_color), true, false,
-               s.cloth_surface.texture.image ? &s.cloth_surface.texture : nullptr,
-               m.cloth_colours.empty() ? nullptr : &m.cloth_colours});
+  rt::SurfaceShading cloth{m.cloth, rt::reflectance_from_color(s.front_color),
+                           rt::reflectance_from_color(back_side_color(s)), true, false};
+  if (const ClothTexture& texture = s.cloth_surface.texture; texture.image) {
+    cloth.texture = texture.image.get();
+    cloth.texture_placement = texture_placement(texture, m.cloth->uvs);
+    cloth.texture_back = texture_on_back(s);
+  }
+  if (!m.cloth_colours.empty()) cloth.vertex_colours = &m.cloth_colours;
+  add_surface(cloth_geometry, cloth);
   const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
   add_surface(ground_geometry, {&m.ground, ground_reflectance, ground_reflectance, false, true});
   for (std::size_t k = 0; k < objects.size(); ++k) {

@@ -88,6 +88,17 @@ TEST(ClothSurfaceScene, BadValuesNameTheirKey) {
                   "render.texture.scale");
   EXPECT_CONTAINS(error_of(R"({"texture": {"woven_check": {}, "colour": 1}})"),
                   "render.texture.colour");
+  EXPECT_CONTAINS(error_of(R"({"texture": {"woven_check": {}, "mapping": "tile"}})"),
+                  "render.texture.mapping");
+  EXPECT_CONTAINS(error_of(R"({"texture": {"woven_check": {}, "mapping": "piece", "scale": [1, 1]}})"),
+                  "render.texture.scale");
+}
+
+TEST(ClothSurfaceScene, ReadsThePieceMapping) {
+  const Scene scene = test::parse_json_scene(
+      test::scene_with_render(Json::parse(R"({"texture": {"woven_check": {}, "mapping": "piece"}})")));
+  EXPECT_EQ(scene.render.cloth_surface.texture.mapping, render::TextureMapping::piece);
+  EXPECT_NE(scene.render.cloth_surface.texture.image, nullptr);
 }
 
 // render.wireframe: off by default, true for the defaults, an object for

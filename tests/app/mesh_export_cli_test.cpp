@@ -1,8 +1,9 @@
 // Mesh export through the real `weft run --export-meshes`: OBJ and PLY are y-up by default
 // (Blender's OBJ import shows a hanging cloth hanging), `--up z` keeps weft's frame, and the
-// files carry the cloth's colour — a glTF also its texture, written beside it.
+// files carry the cloth's colour — an OBJ and a glTF also its texture, written beside them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -96,6 +97,32 @@ TEST_F(MeshExportCli, GltfCarriesBaseColourAndTexture) {
   // A later run without the texture removes it.
   run(tiny_scene(), "--export-meshes gltf");
   EXPECT_FALSE(fs::exists(textured / "mesh_texture.png"));
+}
+
+// An OBJ names the texture in its MTL (map_Kd) and carries texture coordinates: with the
+// piece mapping the 20 cm cloth spans exactly one image, [0, 1] on both axes.
+TEST_F(MeshExportCli, ObjCarriesThePieceTextureInItsMtl) {
+  const fs::path out = run(with_render(R"(, "texture": {"woven_check": {}, "mapping": "piece"})"),
+                           "--export-meshes obj");
+  ASSERT_TRUE(fs::exists(out / "mesh_texture.png"));
+  const std::string mtl = file_text(out / "mesh_0001.mtl");
+  EXPECT_CONTAINS(mtl, "map_Kd mesh_texture.png");
+  std::istringstream obj(file_text(out / "mesh_0001.obj"));
+  double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+  int count = 0;
+  for (std::string line; std::getline(obj, line);) {
+    std::istringstream fields(line);
+    std::string tag;
+    double st[2];
+    if (!(fields >> tag) || tag != "vt" || !(fields >> st[0] >> st[1])) continue;
+    ++count;
+    for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], st[k]), hi[k] = std::max(hi[k], st[k]);
+  }
+  ASSERT_GT(count, 0);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(lo[k], 0.0, 1e-6) << "axis " << k;
+    EXPECT_NEAR(hi[k], 1.0, 1e-6) << "axis " << k;
+  }
 }
 
 }  // namespace

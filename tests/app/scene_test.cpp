@@ -123,7 +123,8 @@ TEST(Scene, CompleteSceneLandsInSIUnits) {
   EXPECT_EQ(r.light_intensity, 1.5);
   EXPECT_EQ(r.ambient, 0.1);
   EXPECT_EQ(r.front_color, Eigen::Vector3f(1, 0, 0));
-  EXPECT_EQ(r.back_color, Eigen::Vector3f(0, 1, 0));
+  ASSERT_TRUE(r.back_color.has_value());
+  EXPECT_EQ(*r.back_color, Eigen::Vector3f(0, 1, 0));
   EXPECT_EQ(r.background, Eigen::Vector3f(0, 0, 1));
   EXPECT_TRUE(r.ground);
   expect_close(r.ground_z_m, -0.01);

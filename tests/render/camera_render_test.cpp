@@ -54,7 +54,7 @@ RenderSettings flat_settings(RendererKind kind, const Camera& camera) {
   s.ground = false;
   s.light_intensity = 0.0;
   s.ambient = 1.0;
-  s.front_color = s.back_color = Eigen::Vector3f::Ones();
+  s.front_color = Eigen::Vector3f::Ones();
   s.background = Eigen::Vector3f::Zero();
   s.msaa_samples = 8;
   s.renderer = kind;

@@ -132,22 +132,32 @@ TEST_P(Raster, FrontFaceIsLitFrontColourOnBackground) {
   }
 }
 
+TEST_P(Raster, BackFaceIsTheFrontMaterialByDefault) {
+  RenderSettings s = view_from_above(120, 120);
+  s.camera.eye = {0, 0, -2};  // below the square: sees its back
+  s.light_direction = {0.6, 0.0, -0.8};
+  const Image image = render(unit_square(), s, "back_default");
+  EXPECT_TRUE(colour_at(image, project(s, {0, 0, 0.5}),
+                        expected_lit(s.front_color, s, {0, 0, -1}), colour_tolerance));
+}
+
 TEST_P(Raster, BackFaceGetsBackColourAndFlippedNormal) {
   RenderSettings s = view_from_above(120, 120);
+  s.back_color = Eigen::Vector3f(0.25f, 0.45f, 0.80f);  // the two-colour view of the sides
   s.camera.eye = {0, 0, -2};  // below the square: sees its back
   // Default light is above: the back face gets ambient only.
   Image image = render(unit_square(), s, "back_ambient");
   const Pixel centre = project(s, {0, 0, 0.5});
   EXPECT_TRUE(
-      colour_at(image, centre, expected_lit(s.back_color, s, {0, 0, -1}), colour_tolerance));
-  EXPECT_TRUE(colour_near(expected_lit(s.back_color, s, {0, 0, -1}),
-                          to_rgb8(s.back_color * std::pow(0.25f, 1.0f / 2.2f)), 1));
+      colour_at(image, centre, expected_lit(*s.back_color, s, {0, 0, -1}), colour_tolerance));
+  EXPECT_TRUE(colour_near(expected_lit(*s.back_color, s, {0, 0, -1}),
+                          to_rgb8(*s.back_color * std::pow(0.25f, 1.0f / 2.2f)), 1));
 
   // Light from below: the flipped normal (0, 0, −1) faces it.
   s.light_direction = {0.6, 0.0, -0.8};
   image = render(unit_square(), s, "back_lit");
   EXPECT_TRUE(
-      colour_at(image, centre, expected_lit(s.back_color, s, {0, 0, -1}), colour_tolerance));
+      colour_at(image, centre, expected_lit(*s.back_color, s, {0, 0, -1}), colour_tolerance));
 }
 
 TEST_P(Raster, NormalsShadingShowsTheFacingNormal) {

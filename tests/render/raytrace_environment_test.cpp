@@ -77,7 +77,7 @@ TEST_F(RayTraceEnvironment, FurnaceSphereReflectsAlbedoTimesRadiance) {
       s.raytrace.bounces = bounces;
       s.environment.background = false;
       const float color = static_cast<float>(std::pow(albedo, 1.0 / rt::display_gamma));
-      s.front_color = s.back_color = Eigen::Vector3f::Constant(color);
+      s.front_color = Eigen::Vector3f::Constant(color);
       RayTracer tracer;
       const Image image = tracer.render(sphere, s, {});
       m_rendered.add("albedo_" + std::to_string(albedo) + "_bounces_" + std::to_string(bounces),
@@ -231,7 +231,7 @@ TEST_F(RayTraceEnvironment, UnoccludedSphereAgreesWithTheShIrradiance) {
   RenderSettings s = lit_by(env.map, 48, 512);
   s.environment = env;
   const float albedo = 0.8f;
-  s.front_color = s.back_color = Eigen::Vector3f::Constant(std::pow(albedo, 1.0f / rt::display_gamma));
+  s.front_color = Eigen::Vector3f::Constant(std::pow(albedo, 1.0f / rt::display_gamma));
   const Eigen::Vector3f center(0, 0, 0.5);
   RayTracer tracer;
   const Image image = tracer.render(make_sphere_mesh(center.cast<double>(), 0.5, 128, 64), s, {});
@@ -275,7 +275,7 @@ TEST_F(RayTraceEnvironment, RasterizerShowsTheShApproximationAndTheSameBackgroun
   s.environment.intensity = 0.8;
   s.msaa_samples = 1;  // the pixel centre, as the ray tracer's single sample
   s.raytrace.samples_per_pixel = 1;
-  s.front_color = s.back_color = Eigen::Vector3f::Constant(0.9f);
+  s.front_color = Eigen::Vector3f::Constant(0.9f);
   const Eigen::Vector3f center(0, 0, 0.5);
   const RenderMesh sphere = make_sphere_mesh(center.cast<double>(), 0.5, 128, 64);
   RayTracer tracer;

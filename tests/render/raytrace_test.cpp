@@ -116,12 +116,17 @@ TEST_F(RayTrace, SingleTriangleIsHitWhereItProjectsAndMissedElsewhere) {
   }
   EXPECT_EQ(m_tracer.last_ray_counts().camera, 96u * 96u);
 
-  // Seen from below: the back colour, lit by the sky alone (the sun is above).
+  // Seen from below: the front's colour by default, or the back colour when one is given,
+  // lit by the sky alone (the sun is above).
   s.camera.eye = {0, 0, -2};
-  const Image below = render(triangle, s, "triangle_below");
   const Pixel under = project(s, {0.0, -1.0 / 30.0, 0.5});
+  const Image below = render(triangle, s, "triangle_below");
   EXPECT_TRUE(
-      near_analytic(below.at(under.x, under.y), lambert_display(s.back_color, s, {0, 0, -1})));
+      near_analytic(below.at(under.x, under.y), lambert_display(s.front_color, s, {0, 0, -1})));
+  s.back_color = Eigen::Vector3f(0.25f, 0.45f, 0.80f);
+  const Image below_coloured = render(triangle, s, "triangle_below_back_color");
+  EXPECT_TRUE(near_analytic(below_coloured.at(under.x, under.y),
+                            lambert_display(*s.back_color, s, {0, 0, -1})));
 }
 
 TEST_F(RayTrace, LambertianSquareMatchesTheAnalyticValue) {

@@ -38,6 +38,12 @@ std::shared_ptr<const Image> quadrant_image() {
   return image;
 }
 
+void expect_near_rgb(const Rgb8& got, const Rgb8& want, const char* where) {
+  EXPECT_NEAR(got.r, want.r, 3) << where;
+  EXPECT_NEAR(got.g, want.g, 3) << where;
+  EXPECT_NEAR(got.b, want.b, 3) << where;
+}
+
 Eigen::Vector3f color_of(const Rgb8& p) {
   return Eigen::Vector3f(p.r, p.g, p.b) / 255.0f;
 }
@@ -126,16 +132,58 @@ TEST_P(TextureOrientation, ImageCornersLandOnTheSheetsCorners) {
   EXPECT_LT(corner.x, s.width / 2);
   EXPECT_LT(corner.y, s.height / 2);
 
-  // Seen from below, the back keeps back_color (mirrored, so only one colour is checked).
+  // Seen from below the texture covers the back too, mirrored (the camera's x runs along −x):
+  // material (0.3, 0.3) now shows left of centre.
   s.camera.eye = {0, 0, -2};
   s.camera.target = {0, 0, 0.5};
   const Image back = renderer->render(sheet, s, {});
   m_evidence.add(std::string(renderer_name(GetParam())) + "_back", back);
-  const Rgb8 centre = back.at(s.width / 2 + 8, s.height / 2 + 8);
-  const Rgb8 want = test::to_rgb8(s.back_color);
-  EXPECT_NEAR(centre.r, want.r, 3);
-  EXPECT_NEAR(centre.g, want.g, 3);
-  EXPECT_NEAR(centre.b, want.b, 3);
+  const test::Pixel mirrored = test::project(s, Eigen::Vector3d(0.3, 0.3, 0.5));
+  EXPECT_LT(mirrored.x, s.width / 2);
+  expect_near_rgb(back.at(mirrored.x, mirrored.y), top_right, "back, mirrored top right");
+  // A back colour of its own replaces the texture there.
+  s.back_color = Eigen::Vector3f(0.25f, 0.45f, 0.80f);
+  const Image coloured_back = renderer->render(sheet, s, {});
+  m_evidence.add(std::string(renderer_name(GetParam())) + "_back_colour", coloured_back);
+  expect_near_rgb(coloured_back.at(mirrored.x, mirrored.y), test::to_rgb8(*s.back_color),
+                  "back colour");
+}
+
+// Stretched over the piece, the image spans the material's bounding box once, wherever it
+// starts and however long its sides: its quadrants land on the sheet's quadrants, and its
+// edge texels on the sheet's edges (clamped, no wrap from the other side).
+TEST_P(TextureOrientation, PieceMappingSpansTheWholeSheetOnce) {
+  RenderSettings s = test::view_from_above(96, 96);
+  s.renderer = GetParam();
+  s.light_intensity = 0.0;
+  s.ambient = 1.0;
+  s.raytrace.samples_per_pixel = 1;
+  s.raytrace.sheen = 0.0;
+  s.msaa_samples = 1;
+  s.cloth_surface.texture = {quadrant_image(), Eigen::Vector2d(0.1, 0.1), TextureMapping::piece};
+  RenderMesh sheet = make_grid_mesh(
+      5, 5, [](double u, double v) { return Eigen::Vector3d(u - 0.5, v - 0.5, 0.5); });
+  for (Eigen::Vector2f& uv : sheet.uvs) uv = {2.0f + 3.0f * uv.x(), -1.0f + 0.7f * uv.y()};
+
+  std::unique_ptr<Renderer> renderer;
+  try {
+    renderer = make_renderer(s);
+  } catch (const std::runtime_error& e) {
+    GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << e.what();
+  }
+  const Image image = renderer->render(sheet, s, {});
+  m_evidence.add(std::string(renderer_name(GetParam())) + "_piece", image);
+  const auto expect_colour = [&](double x, double y, const Rgb8& want, const char* where) {
+    const test::Pixel p = test::project(s, Eigen::Vector3d(x, y, 0.5));
+    expect_near_rgb(image.at(p.x, p.y), want, where);
+  };
+  expect_colour(-0.3, 0.3, top_left, "top left");
+  expect_colour(0.3, 0.3, top_right, "top right");
+  expect_colour(-0.3, -0.3, bottom_left, "bottom left");
+  expect_colour(0.3, -0.3, bottom_right, "bottom right");
+  // At the sheet's very edges: the edge texels, not a blend with the opposite side.
+  expect_colour(-0.49, -0.49, bottom_left, "bottom-left corner");
+  expect_colour(0.49, 0.49, top_right, "top-right corner");
 }
 
 INSTANTIATE_TEST_SUITE_P(BothRenderers, TextureOrientation,
