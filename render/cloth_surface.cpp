@@ -28,6 +28,9 @@ void validate(const ClothSurface& surface) {
     if (!(r.minCoeff() > 0.0) || !r.allFinite())
       fail("texture.repeat_m must be finite and > 0 along warp and weft");
   }
+  if (!(surface.sheen >= 0.0 && surface.sheen <= 1.0)) fail("sheen must be in [0, 1]");
+  if (!(surface.sheen_roughness > 0.0 && surface.sheen_roughness <= 1.0))
+    fail("sheen_roughness must be in (0, 1]");
   if (surface.wireframe.enabled) {
     const Wireframe& w = surface.wireframe;
     if (!(w.width_px > 0.0) || !std::isfinite(w.width_px))

@@ -262,6 +262,7 @@ void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_pro
   m_program.set("u_ambient", static_cast<float>(s.ambient));
   m_program.set("u_shading", s.shading == Shading::normals ? 1 : 0);
   m_program.set("u_use_environment", environment.on ? 1 : 0);
+  m_program.set("u_sheen_roughness", static_cast<float>(s.cloth_surface.sheen_roughness));
   if (environment.on) {
     for (int k = 0; k < 9; ++k) {
       const std::string name = "u_sh[" + std::to_string(k) + "]";
@@ -310,8 +311,9 @@ void SurfacePass::bind_texture(const std::shared_ptr<const Image>& owner, bool r
 }
 
 void SurfacePass::draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-                       const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured,
-                       bool vertex_coloured) {
+                       const Eigen::Vector3f& front, const Eigen::Vector3f& back, float sheen,
+                       bool textured, bool vertex_coloured) {
+  m_program.set("u_sheen", sheen);
   m_program.set("u_use_texture", textured ? 1 : 0);
   m_program.set("u_use_vertex_colour", vertex_coloured ? 1 : 0);
   m_program.set("u_front_color", front);

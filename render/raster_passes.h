@@ -131,8 +131,10 @@ class SurfacePass {
   // `textured`, placed on the material by `texture_placement` (render/texture.h).
   void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured,
              const TexturePlacement& texture_placement, const EnvironmentShading& environment);
+  // `sheen`: the weight of the sheen lobe (render/sheen.h), 0 for surfaces other than cloth.
   void draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-            const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool textured = false,
+            const Eigen::Vector3f& front, const Eigen::Vector3f& back, float sheen = 0.0f,
+            bool textured = false,
             bool vertex_coloured = false);  // the vertex colours on both sides
 
  private:

@@ -47,7 +47,28 @@ uniform vec2 u_texture_origin;    // material coordinates (m) of texture coordin
 uniform vec2 u_texture_size;      // metres of material per unit of texture coordinate
 uniform int u_use_environment;    // 1: image-based light (render/environment.h) replaces ambient
 uniform vec3 u_sh[9];             // its reflected radiance as a polynomial in n (environment.h)
+uniform float u_sheen;            // the cloth's sheen weight (render/sheen.h); 0: none
+uniform float u_sheen_roughness;
 out vec4 o_color;
+
+const float PI = 3.14159265358979;
+
+// render/sheen.cpp in GLSL: the Charlie distribution and sheen_response (radiance towards v
+// under a unit sun from l, n·l included).
+float charlie_distribution(float n_dot_h, float roughness) {
+  float inv_r = 1.0 / roughness;
+  float sin2 = max(0.0, 1.0 - n_dot_h * n_dot_h);
+  return (2.0 + inv_r) * pow(sin2, 0.5 * inv_r) / (2.0 * PI);
+}
+float sheen_response(vec3 n, vec3 l, vec3 v, float roughness) {
+  float n_dot_l = dot(n, l), n_dot_v = dot(n, v);
+  if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
+  vec3 half_vector = l + v;
+  if (length(half_vector) <= 0.0) return 0.0;
+  float n_dot_h = dot(n, normalize(half_vector));
+  float denominator = 4.0 * (n_dot_l + n_dot_v - n_dot_l * n_dot_v);
+  return PI * charlie_distribution(n_dot_h, roughness) / denominator * n_dot_l;
+}
 
 // Radiance a white Lambertian surface of normal n reflects under the environment (9 SH terms).
 vec3 environment_radiance(vec3 n) {
@@ -75,13 +96,19 @@ void main() {
     o_color = vec4(0.5 * n + 0.5, 1.0);
     return;
   }
-  if (u_use_environment == 1) {
-    vec3 lit = u_light_intensity * max(dot(n, u_light_dir), 0.0) + environment_radiance(n);
-    o_color = vec4(base * pow(max(lit, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+  vec3 lit = u_use_environment == 1
+                 ? u_light_intensity * max(dot(n, u_light_dir), 0.0) + environment_radiance(n)
+                 : vec3(u_ambient + u_light_intensity * max(dot(n, u_light_dir), 0.0));
+  lit = max(lit, vec3(0.0));
+  if (u_sheen > 0.0 && u_use_vertex_colour == 0) {
+    // Linear radiance: diffuse ρ · light plus the key light's sheen, tinted (1 + ρ) / 2.
+    vec3 rho = pow(base, vec3(2.2));
+    float sheen = u_sheen * u_light_intensity *
+                  sheen_response(n, u_light_dir, normalize(u_eye - v_world), u_sheen_roughness);
+    o_color = vec4(pow(rho * lit + 0.5 * (1.0 + rho) * sheen, vec3(1.0 / 2.2)), 1.0);
     return;
   }
-  float light = u_ambient + u_light_intensity * max(dot(n, u_light_dir), 0.0);
-  o_color = vec4(base * pow(max(light, 0.0), 1.0 / 2.2), 1.0);
+  o_color = vec4(base * pow(lit, vec3(1.0 / 2.2)), 1.0);
 }
 )glsl";
 

@@ -77,6 +77,9 @@ void read_cloth_surface(ObjectReader& render, render::ClothSurface& surface) {
   surface.thickness_m =
       render.quantity("thickness", Quantity::length, surface.thickness_m, Range::ge(0.0));
   if (render.has("texture")) surface.texture = read_texture(render.object("texture"));
+  surface.sheen = render.number("sheen", surface.sheen, Range::closed(0.0, 1.0));
+  surface.sheen_roughness =
+      render.number("sheen_roughness", surface.sheen_roughness, Range::gt(0.0).le(1.0));
   if (render.has("wireframe")) read_wireframe(render, surface.wireframe);
 }
 

@@ -459,8 +459,11 @@ void read_raytrace(ObjectReader r, render::RayTraceSettings& t) {
   t.ao_distance_m = r.quantity("ao_distance", Quantity::length, t.ao_distance_m, Range::gt(0.0));
   t.sun_angular_radius_deg =
       r.angle_deg("sun_radius", t.sun_angular_radius_deg, Range::closed(0.0, 45.0));
-  t.sheen = r.number("sheen", t.sheen, Range::closed(0.0, 1.0));
-  t.sheen_roughness = r.number("sheen_roughness", t.sheen_roughness, Range::gt(0.0).le(1.0));
+  for (const char* moved : {"sheen", "sheen_roughness"}) {
+    if (r.has(moved))
+      r.fail(moved, std::string("expected it in \"render\": render.") + moved +
+                        " (the cloth's sheen is drawn by both renderers)");
+  }
   t.seed = static_cast<std::uint32_t>(r.integer("seed", t.seed, Range::closed(0, 4294967295)));
   t.denoise = r.boolean("denoise", t.denoise);
   r.finish();

@@ -138,10 +138,9 @@ Eigen::Vector3f sun_light(const FrameView& view, const Hit& hit, const Eigen::Ve
   if (occluded(view, offset_origin(view, hit), towards, infinity)) return Eigen::Vector3f::Zero();
   Eigen::Vector3f out = hit.reflectance * (view.sun_intensity * cosine);
   if (hit.surface->sheen && view.sheen > 0.0f) {
-    // Tinted halfway between white and the cloth's colour.
-    const Eigen::Vector3f tint = 0.5f * (Eigen::Vector3f::Ones() + hit.reflectance);
-    out += tint * (view.sheen * view.sun_intensity *
-                   sheen_response(hit.normal, view.sun, to_viewer, view.sheen_roughness));
+    out += sheen_tint(hit.reflectance) *
+           (view.sheen * view.sun_intensity *
+            sheen_response(hit.normal, view.sun, to_viewer, view.sheen_roughness));
   }
   return out;
 }
@@ -180,9 +179,9 @@ Eigen::Vector3f brdf(const FrameView& view, const Hit& hit, const Eigen::Vector3
   Eigen::Vector3f f = hit.reflectance / base::kPiF;
   const float n_dot_l = hit.normal.dot(l);
   if (hit.surface->sheen && view.sheen > 0.0f && n_dot_l > 0.0f) {
-    const Eigen::Vector3f tint = 0.5f * (Eigen::Vector3f::Ones() + hit.reflectance);
-    f += tint * (view.sheen * sheen_response(hit.normal, l, v, view.sheen_roughness) /
-                 (base::kPiF * n_dot_l));
+    f += sheen_tint(hit.reflectance) *
+         (view.sheen * sheen_response(hit.normal, l, v, view.sheen_roughness) /
+          (base::kPiF * n_dot_l));
   }
   return f;
 }

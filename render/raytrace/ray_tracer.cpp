@@ -48,9 +48,6 @@ void validate_raytrace(const RayTraceSettings& r) {
     fail("ao_distance_m must be finite and > 0");
   if (!(r.sun_angular_radius_deg >= 0.0 && r.sun_angular_radius_deg <= 45.0))
     fail("sun_angular_radius_deg must be in [0, 45]");
-  if (!(r.sheen >= 0.0 && r.sheen <= 1.0)) fail("sheen must be in [0, 1]");
-  if (!(r.sheen_roughness > 0.0 && r.sheen_roughness <= 1.0))
-    fail("sheen_roughness must be in (0, 1]");
   if (r.threads < 0 || r.threads > 4096)
     fail("threads must be in 0..4096 (0: all hardware threads), got " + std::to_string(r.threads));
 }
@@ -139,8 +136,8 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.bounces = s.raytrace.bounces;
   view.ao_samples = s.raytrace.ao_samples;
   view.ao_distance_m = static_cast<float>(s.raytrace.ao_distance_m);
-  view.sheen = static_cast<float>(s.raytrace.sheen);
-  view.sheen_roughness = static_cast<float>(s.raytrace.sheen_roughness);
+  view.sheen = static_cast<float>(s.cloth_surface.sheen);
+  view.sheen_roughness = static_cast<float>(s.cloth_surface.sheen_roughness);
   view.seed = s.raytrace.seed;
 }
 

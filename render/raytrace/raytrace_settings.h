@@ -1,6 +1,7 @@
 #pragma once
 // Settings of the Embree ray tracer (render/raytrace/ray_tracer.h) that the rasterizer has no
-// use for: samples, bounces, ambient occlusion, soft shadows, cloth sheen and threads. Header
+// use for: samples, bounces, ambient occlusion, soft shadows and threads (the cloth's sheen is both
+// renderers', in ClothSurface). Header
 // only and free of Embree, so that scene files can hold them whether or not the ray tracer is
 // built (CMake option WEFT_WITH_EMBREE_RT).
 
@@ -17,10 +18,6 @@ struct RayTraceSettings {
   double ao_distance_m = 1.0;  // occluders farther than this do not darken
   // Angular radius of the sun's disc: shadow rays are spread over this cone (0: hard shadows).
   double sun_angular_radius_deg = 2.0;
-  // Cloth sheen (Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF"): weight
-  // 0 (off) .. 1 and the roughness of its "Charlie" distribution, (0, 1].
-  double sheen = 0.5;
-  double sheen_roughness = 0.5;
   // Edge-aware à-trous denoising guided by normal, albedo and depth (render/denoise.h); off:
   // the plain mean of the samples.
   bool denoise = true;

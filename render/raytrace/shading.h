@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "render/sheen.h"
+
 namespace weft::render::rt {
 
 inline constexpr float display_gamma = 2.2f;
@@ -21,16 +23,8 @@ Eigen::Vector3f reflectance_from_color(const Eigen::Vector3f& color);
 // Linear radiance → 8-bit value: round(255 · clamp(L, 0, 1)^(1/2.2)).
 unsigned char encode_channel(float radiance);
 
-// The "Charlie" sheen distribution D(h) (Estevez & Kulla 2017, eq. 2) for cos θ_h = n·h and
-// roughness r in (0, 1]: (2 + 1/r) · sin^(1/r) θ_h / (2π).
-float charlie_distribution(float n_dot_h, float roughness);
-// Neubelt & Pettineo's visibility for sheen: 1 / (4 (n·l + n·v − n·l · n·v)).
-float sheen_visibility(float n_dot_l, float n_dot_v);
-// Radiance reflected towards v by the sheen lobe of weight `sheen` under a sun of radiance-
-// equivalent intensity (see above) from l, all unit vectors on the side of n:
-// π · f_sheen(l, v) · intensity · n·l with f_sheen = D · V.
-float sheen_response(const Eigen::Vector3f& n, const Eigen::Vector3f& l, const Eigen::Vector3f& v,
-                     float roughness);
+// The cloth's sheen lobe (charlie_distribution, sheen_visibility, sheen_response, sheen_tint)
+// is shared with the rasterizer: render/sheen.h.
 
 // Darkening (0..1) by the ground's grid lines at ground point (x, y), m, seen with a footprint
 // of `pixel_m` metres per pixel: lines every 0.1 m and 1 m, about two pixels wide, the fine

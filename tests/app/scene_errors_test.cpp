@@ -346,16 +346,24 @@ TEST(InputErrors, RendererAndRayTraceSettings) {
   EXPECT_CONTAINS(scene_error_of(s), "render.raytrace.sun_radius: expected an angle in [0, 45] deg");
 
   s = valid_scene();
+  s["render"]["raytrace"] = {{"sheen", 0.2}};
+  EXPECT_CONTAINS(scene_error_of(s), "render.raytrace.sheen: expected it in \"render\": render.sheen");
+  s = valid_scene();
+  s["render"]["sheen_roughness"] = 0;
+  EXPECT_CONTAINS(scene_error_of(s), "render.sheen_roughness");
+
+  s = valid_scene();
   s["render"]["renderer"] = "raytrace";
   s["render"]["raytrace"] = {{"samples", 4}, {"bounces", 2}, {"ao_distance", "20 cm"},
-                             {"sun_radius", "1 deg"}, {"sheen", 0}};
+                             {"sun_radius", "1 deg"}};
+  s["render"]["sheen"] = 0;
   const Scene scene = parse_scene(s.dump(), "scene.json");
   EXPECT_EQ(scene.render.renderer, render::RendererKind::raytrace);
   EXPECT_EQ(scene.render.raytrace.samples_per_pixel, 4);
   EXPECT_EQ(scene.render.raytrace.bounces, 2);
   EXPECT_DOUBLE_EQ(scene.render.raytrace.ao_distance_m, 0.2);
   EXPECT_DOUBLE_EQ(scene.render.raytrace.sun_angular_radius_deg, 1.0);
-  EXPECT_EQ(scene.render.raytrace.sheen, 0.0);
+  EXPECT_EQ(scene.render.cloth_surface.sheen, 0.0);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // OSMesa rasterizer, checked analytically: known quads seen from known cameras, expected colours
-// from the shading formula colour × (ambient + intensity × max(0, n·l))^(1/2.2).
+// from the shading formula colour × (ambient + intensity × max(0, n·l))^(1/2.2) of a Lambertian
+// cloth, and with the cloth's sheen lobe (render/sheen.h) added in linear radiance.
 // Every test runs with each GL context (OSMesa and EGL surfaceless, parameter /osmesa and /egl),
 // and is skipped (with the reason) when that context cannot be created. On failure the rendered
 // images are written to <build>/test_output/render/ for a person to look at.
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "render/primitives.h"
+#include "render/sheen.h"
 #include "tests/render/render_test_support.h"
 
 namespace weft::render {
@@ -30,7 +32,14 @@ using test::project;
 using test::rectangle;
 using test::same_bytes;
 using test::to_rgb8;
-using test::view_from_above;
+
+// The view from above (render_test_support.h) of a Lambertian cloth: the tests below check the
+// diffuse model; SheenAddsTheKeyLightsCharlieLobe checks the sheen.
+RenderSettings view_from_above(int width, int height) {
+  RenderSettings s = test::view_from_above(width, height);
+  s.cloth_surface.sheen = 0.0;
+  return s;
+}
 
 constexpr int colour_tolerance = 3;  // 8-bit units, for interpolation and rounding
 
@@ -130,6 +139,35 @@ TEST_P(Raster, FrontFaceIsLitFrontColourOnBackground) {
   for (Pixel corner : {Pixel{0, 0}, Pixel{159, 0}, Pixel{0, 119}, Pixel{159, 119}}) {
     EXPECT_TRUE(colour_at(image, corner, background, 0));
   }
+}
+
+// Light and eye both grazing, from about the same side: the half vector lies near the
+// surface, where the Charlie distribution peaks, so the sheen lobe is strong. The pixel at the
+// square's centre is (ρ (ambient + I n·l) + (1 + ρ)/2 · sheen · I · sheen_response)^(1/2.2)
+// with ρ = colour^2.2, and differs clearly from the Lambertian value.
+TEST_P(Raster, SheenAddsTheKeyLightsCharlieLobe) {
+  RenderSettings s = test::view_from_above(120, 120);
+  s.cloth_surface.sheen = 1.0;
+  s.cloth_surface.sheen_roughness = 0.4;
+  s.camera.eye = {1.6, 0.0, 1.1};
+  s.camera.target = {0.0, 0.0, 0.5};
+  s.light_direction = {1.0, 0.4, 0.35};
+  const Image image = render(unit_square(), s, "sheen");
+
+  const Eigen::Vector3f n = Eigen::Vector3f::UnitZ();
+  const Eigen::Vector3f l = s.light_direction.normalized().cast<float>();
+  const Eigen::Vector3f v =
+      (s.camera.eye - Eigen::Vector3d(0, 0, 0.5)).normalized().cast<float>();
+  const float intensity = static_cast<float>(s.light_intensity);
+  const Eigen::Vector3f rho = s.front_color.array().pow(2.2f);
+  const Eigen::Vector3f radiance =
+      rho * (static_cast<float>(s.ambient) + intensity * n.dot(l)) +
+      sheen_tint(rho) * (intensity * sheen_response(n, l, v, 0.4f));
+  const Rgb8 want = to_rgb8(radiance.array().pow(1.0f / 2.2f).matrix());
+  const Pixel centre = project(s, {0, 0, 0.5});
+  EXPECT_TRUE(colour_at(image, centre, want, colour_tolerance));
+  EXPECT_GT(max_channel_difference(want, expected_lit(s.front_color, s, {0, 0, 1})), 20)
+      << "the sheen should show at this angle";
 }
 
 TEST_P(Raster, BackFaceIsTheFrontMaterialByDefault) {
@@ -261,6 +299,7 @@ TEST_P(Raster, GroundIsLitAndShadowedByTheCloth) {
   RenderSettings s;  // default oblique camera, ground on at z = 0
   s.width = 200;
   s.height = 150;
+  s.cloth_surface.sheen = 0.0;    // a Lambertian cloth
   s.light_direction = {0, 0, 1};  // straight down: the shadow is the square's footprint
   const Image image = render(unit_square(), s, "ground");
 

@@ -49,7 +49,7 @@ std::shared_ptr<const EnvironmentMap> patch_map(int w, int h, float base, float 
 RenderSettings lit_by(std::shared_ptr<const EnvironmentMap> map, int size, int samples) {
   RenderSettings s = test::view_from_above(size, size);
   s.light_intensity = 0.0;
-  s.raytrace.sheen = 0.0;
+  s.cloth_surface.sheen = 0.0;
   s.raytrace.samples_per_pixel = samples;
   s.raytrace.threads = 2;
   s.environment.map = std::move(map);
@@ -191,7 +191,7 @@ TEST_F(RayTraceEnvironment, SameBytesWithOneAndTwoThreads) {
   RenderSettings s = lit_by(patch_map(64, 32, 0.2f, 30.0f, 40, 10), 40, 4);
   s.ground = true;
   s.raytrace.bounces = 2;
-  s.raytrace.sheen = 0.5;
+  s.cloth_surface.sheen = 0.5;
   const RenderMesh cloth = test::rectangle(-0.4, 0.4, -0.4, 0.4, 0.3);
   RayTracer one, two;
   s.raytrace.threads = 1;

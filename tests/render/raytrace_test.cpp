@@ -98,7 +98,7 @@ class RayTrace : public ::testing::Test {
 
 TEST_F(RayTrace, SingleTriangleIsHitWhereItProjectsAndMissedElsewhere) {
   RenderSettings s = view_from_above(96, 96);
-  s.raytrace.sheen = 0.0;  // Lambertian only
+  s.cloth_surface.sheen = 0.0;  // Lambertian only
   RenderMesh triangle;
   triangle.positions = {{-0.4f, -0.3f, 0.5f}, {0.4f, -0.3f, 0.5f}, {0.0f, 0.5f, 0.5f}};
   triangle.triangles = {{0, 1, 2}};  // counter-clockwise from above: front faces the camera
@@ -134,7 +134,7 @@ TEST_F(RayTrace, LambertianSquareMatchesTheAnalyticValue) {
   s.front_color = {0.9f, 0.6f, 0.3f};
   s.ambient = 0.2;
   s.light_intensity = 0.6;
-  s.raytrace.sheen = 0.0;  // Lambertian only
+  s.cloth_surface.sheen = 0.0;  // Lambertian only
   s.raytrace.ao_samples = 4;
   s.raytrace.samples_per_pixel = 4;
   const Pixel centre = project(s, {0.1, -0.1, 0.5});
@@ -154,7 +154,7 @@ TEST_F(RayTrace, LambertianSquareMatchesTheAnalyticValue) {
 TEST_F(RayTrace, ShadowedPointGetsTheSkyAlone) {
   RenderSettings s = view_from_above(96, 96);
   s.light_direction = {0, 0, 1};
-  s.raytrace.sheen = 0.0;
+  s.cloth_surface.sheen = 0.0;
   s.raytrace.ao_samples = 0;  // the blocker must not darken the sky term
   s.raytrace.sun_angular_radius_deg = 1.0;
   // A 0.3 m square 0.2 m above the floor's centre: its umbra on the floor is 0.3 − 2·0.2·tan 1°

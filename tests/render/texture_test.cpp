@@ -98,7 +98,7 @@ TEST_P(TextureOrientation, ImageCornersLandOnTheSheetsCorners) {
   s.light_intensity = 0.0;  // colour × ambient^(1/2.2) with ambient 1: the texel itself
   s.ambient = 1.0;
   s.raytrace.samples_per_pixel = 1;
-  s.raytrace.sheen = 0.0;
+  s.cloth_surface.sheen = 0.0;
   s.msaa_samples = 1;
   s.cloth_surface.subdivision_levels = 1;
   s.cloth_surface.texture = {quadrant_image(), Eigen::Vector2d(1.0, 1.0)};
@@ -158,7 +158,7 @@ TEST_P(TextureOrientation, PieceMappingSpansTheWholeSheetOnce) {
   s.light_intensity = 0.0;
   s.ambient = 1.0;
   s.raytrace.samples_per_pixel = 1;
-  s.raytrace.sheen = 0.0;
+  s.cloth_surface.sheen = 0.0;
   s.msaa_samples = 1;
   s.cloth_surface.texture = {quadrant_image(), Eigen::Vector2d(0.1, 0.1), TextureMapping::piece};
   RenderMesh sheet = make_grid_mesh(
