@@ -51,6 +51,10 @@ struct RenderSettings {
   Eigen::Vector3f ground_color{0.60f, 0.60f, 0.58f};
   // Colour app/ gives obstacles (RenderObject::color); the renderer itself does not read it.
   Eigen::Vector3f obstacle_color{0.70f, 0.74f, 0.80f};
+  // What holds the cloth — clips on pins, rods on held edges, a flag's pole, stands under
+  // floating obstacles — drawn by app/ as RenderObjects of this colour (app/run/support_meshes.h).
+  bool supports = true;
+  Eigen::Vector3f support_color{0.22f, 0.22f, 0.24f};
   Shading shading = Shading::lit;
   double strain_full_scale = 0.05;  // Shading::strain: the strain of the map's ends (±5 %)
   int msaa_samples = 4;

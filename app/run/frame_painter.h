@@ -18,16 +18,22 @@ class FramePainter {
  public:
   // `scene`, `renderer` and `mesh` must outlive the painter; the scene's camera is final.
   FramePainter(const Scene& scene, render::Renderer& renderer, const sim::ClothMesh& mesh);
-  // Draws the cloth at positions x (#V×3, m) and the obstacles where they are at time_s, writes
+  // Draws the cloth at positions x (#V×3, m), what holds it, and the obstacles where they are
+  // at time_s, writes
   // dir/frame_NNNN.png (and the mask) and returns the cloth as drawn (for mesh exports).
   render::RenderMesh paint(int frame, const sim::Matrix3X& x, double time_s,
                            const std::filesystem::path& dir);
 
  private:
+  // The obstacles where they are at time_s, with their stands (app/run/support_meshes.h).
+  std::vector<render::RenderObject> posed_obstacles(double time_s) const;
+
   const Scene& m_scene;
   render::Renderer& m_renderer;
   const sim::ClothMesh& m_mesh;
-  std::vector<render::RenderObject> m_obstacles;
+  std::vector<render::RenderObject> m_obstacles;  // and stands
+  std::vector<sim::Index> m_pinned;               // drawn with clips or rods
+  double m_edge_m = 0.0;                          // the cloth's median rest edge
 };
 
 }  // namespace weft::app

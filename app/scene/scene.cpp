@@ -500,6 +500,7 @@ void read_render(ObjectReader r, Scene& scene) {
   if (colors.has("back")) s.back_color = read_color(colors, "back", s.front_color);
   s.background = read_color(colors, "background", s.background);
   s.obstacle_color = read_color(colors, "obstacle", s.obstacle_color);
+  s.support_color = read_color(colors, "support", s.support_color);
   colors.finish();
 
   // "ground": false disables it, true keeps the defaults, an object sets them.
@@ -515,6 +516,7 @@ void read_render(ObjectReader r, Scene& scene) {
     ground.finish();
   }
 
+  s.supports = r.boolean("supports", s.supports);
   s.shading = r.enumeration("shading", render::shading_names, {s.shading});
   s.strain_full_scale = r.number("strain_scale", s.strain_full_scale, Range::gt(0.0).le(10.0));
   s.msaa_samples = static_cast<int>(r.integer("msaa", s.msaa_samples, Range::closed(1, 8)));
