@@ -24,7 +24,7 @@
 #include "app/io/frame_png.h"
 #include "app/run/frame_stream.h"
 #include "app/io/mesh_file.h"
-#include "app/run/obstacle_meshes.h"
+#include "app/run/frame_painter.h"
 #include "app/io/progress.h"
 #include "app/run/renderer_choice.h"
 #include "base/timer.h"
@@ -124,8 +124,9 @@ Subject scene_subject(const TurntableOptions& o) {
   s.settings = scene.render;
   s.alpha = scene.write_alpha;
   s.mesh = to_render_mesh(simulator->mesh(), simulator->state().x);
-  s.objects = obstacle_render_objects(scene.sim.obstacles, scene.sim.obstacle_motions,
-                                      simulator->state().time_s, scene.render);
+  // What weft run draws beside the cloth: obstacles, stands, clips and rods.
+  s.objects = FramePainter(scene, *s.renderer, simulator->mesh())
+                  .objects(simulator->state().x, simulator->state().time_s);
   return s;
 }
 

@@ -31,14 +31,19 @@ std::vector<render::RenderObject> FramePainter::posed_obstacles(double time_s) c
   return objects;
 }
 
-render::RenderMesh FramePainter::paint(int frame, const sim::Matrix3X& x, double time_s,
-                                       const std::filesystem::path& dir) {
+std::vector<render::RenderObject> FramePainter::objects(const sim::Matrix3X& x, double time_s) {
   // Moving obstacles are drawn where they are at the frame's time.
   if (sim::any_moves(m_scene.sim.obstacle_motions)) m_obstacles = posed_obstacles(time_s);
   std::vector<render::RenderObject> objects = m_obstacles;
   for (render::RenderObject& holder :
        pin_support_objects(m_pinned, x, m_edge_m, m_scene.sim.obstacles, m_scene.render))
     objects.push_back(std::move(holder));
+  return objects;
+}
+
+render::RenderMesh FramePainter::paint(int frame, const sim::Matrix3X& x, double time_s,
+                                       const std::filesystem::path& dir) {
+  const std::vector<render::RenderObject> objects = this->objects(x, time_s);
   const render::RenderMesh cloth = to_render_mesh(m_mesh, x);
   render_frame_png(m_renderer, cloth, m_scene.render, objects, m_scene.write_alpha,
                    dir / numbered_file_name("frame", frame, "png"));

@@ -23,6 +23,9 @@ class FramePainter {
   // dir/frame_NNNN.png (and the mask) and returns the cloth as drawn (for mesh exports).
   render::RenderMesh paint(int frame, const sim::Matrix3X& x, double time_s,
                            const std::filesystem::path& dir);
+  // What paint draws beside the cloth at positions x and time_s: the obstacles, their stands
+  // and the pins' clips and rods.
+  std::vector<render::RenderObject> objects(const sim::Matrix3X& x, double time_s);
 
  private:
   // The obstacles where they are at time_s, with their stands (app/run/support_meshes.h).

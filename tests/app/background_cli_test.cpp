@@ -44,14 +44,15 @@ Rgba read_rgba(const std::string& png_path) {
   return image;
 }
 
-// Without a ground the opaque pixels are the cloth's. Alpha is the share of the pixel the cloth
+// Without a ground and supports (the pins' clips) the opaque pixels are the cloth's. Alpha is the share of the pixel the cloth
 // covers (16 samples; the antialiased alpha of render/coverage_alpha.h): 255 inside the cloth's
 // mask (--mask, pixel centres), 0 well outside it, in between along the silhouette, and the covered
 // area is the mask's. The edge colours are freed of the background: composited over the background
 // colour again they give the RGB frame that the same run writes without --background transparent.
 TEST_F(BackgroundCli, TransparentRunHasAntialiasedCoverageAlpha) {
   const auto scene = write_scene("tiny.json", test::tiny_scene());
-  const std::string common = " --frames 2 --mask --set render.ground=false --out ";
+  const std::string common =
+      " --frames 2 --mask --set render.ground=false --set render.supports=false --out ";
   const auto r = test::run_weft("run " + scene.string() + " --background transparent" + common +
                                 path("run"));
   ASSERT_EQ(r.exit_code, 0) << r.output;

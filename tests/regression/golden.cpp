@@ -8,7 +8,7 @@
 
 #include "app/run/frame_mesh.h"
 #include "app/run/frame_stream.h"
-#include "app/run/obstacle_meshes.h"
+#include "app/run/frame_painter.h"
 #include "app/scene/scene.h"
 #include "app/cli/options.h"
 #include "app/run/renderer_choice.h"
@@ -69,8 +69,11 @@ render::Image render_case(const GoldenCase& c, double density_scale, long* remes
   if (end.divergence) throw end.divergence->error;
   if (remeshes) *remeshes = simulator->remesh_count();
   const auto renderer = app::make_chosen_renderer(scene.render);
-  return renderer->render(app::to_render_mesh(simulator->mesh(), simulator->state().x),
-                          scene.render, app::obstacle_render_objects(scene.sim.obstacles, scene.render));
+  // With what weft run draws beside the cloth: obstacles, stands, clips and rods.
+  app::FramePainter painter(scene, *renderer, simulator->mesh());
+  const sim::Matrix3X& x = simulator->state().x;
+  return renderer->render(app::to_render_mesh(simulator->mesh(), x), scene.render,
+                          painter.objects(x, simulator->state().time_s));
 }
 
 fs::path golden_path(const GoldenCase& c) {
