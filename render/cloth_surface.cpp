@@ -31,6 +31,13 @@ void validate(const ClothSurface& surface) {
   if (!(surface.sheen >= 0.0 && surface.sheen <= 1.0)) fail("sheen must be in [0, 1]");
   if (!(surface.sheen_roughness > 0.0 && surface.sheen_roughness <= 1.0))
     fail("sheen_roughness must be in (0, 1]");
+  if (const Weave& weave = surface.weave; weave.normal_map) {
+    if (weave.normal_map->width() < 1 || weave.normal_map->height() < 1)
+      fail("weave: the normal map is empty");
+    if (!(weave.repeat_m.minCoeff() > 0.0) || !weave.repeat_m.allFinite())
+      fail("weave.repeat_m must be finite and > 0 along warp and weft");
+    if (!(weave.depth >= 0.0 && weave.depth <= 1.0)) fail("weave.depth must be in [0, 1]");
+  }
   if (surface.wireframe.enabled) {
     const Wireframe& w = surface.wireframe;
     if (!(w.width_px > 0.0) || !std::isfinite(w.width_px))

@@ -10,6 +10,7 @@
 
 #include "render/render_mesh.h"
 #include "render/texture.h"
+#include "render/weave.h"
 
 namespace weft::render {
 
@@ -29,6 +30,7 @@ struct ClothSurface {
   // weight 0 (off) .. 1, and the roughness of its distribution, (0, 1].
   double sheen = 0.5;
   double sheen_roughness = 0.5;
+  Weave weave;  // no normal map: no weave relief
   Wireframe wireframe;         // off by default
 };
 

@@ -139,6 +139,7 @@ RenderSettings mask_settings(const RenderSettings& s, bool cloth_only) {
   m.msaa_samples = 1;
   m.cloth_surface.texture.image = nullptr;
   m.cloth_surface.sheen = 0.0;
+  m.cloth_surface.weave = Weave{};
   m.environment = Environment{};  // no image-based light or background: geometry only
   return m;
 }
@@ -250,9 +251,7 @@ void RasterRenderer::Impl::draw_main_pass(const RenderSettings& s, const FrameMe
       textured ? texture_placement(s.cloth_surface.texture, m.cloth->uvs) : TexturePlacement{};
   m_surface.begin(s, view_projection, textured, placement, environment);
   if (m.cloth_count > 0)
-    m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, back_side_color(s),
-                   s.shading == Shading::lit ? static_cast<float>(s.cloth_surface.sheen) : 0.0f,
-                   textured,
+    m_surface.draw(m_cloth, 0, m.cloth_count, s.front_color, back_side_color(s), true, textured,
                    s.shading == Shading::strain);
   for (const ObjectRange& r : m.ranges) {
     if (r.index_count > 0) m_surface.draw(m_objects, r.first_index, r.index_count, r.color, r.color);

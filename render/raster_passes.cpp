@@ -248,7 +248,8 @@ SurfacePass::SurfacePass(const GlFunctions& gl)
     : m_gl(gl), m_program(gl, cloth_vertex_shader, cloth_fragment_shader, "cloth") {}
 
 SurfacePass::~SurfacePass() {
-  m_gl.DeleteTextures(1, &m_texture);  // glDelete* ignore the name 0
+  m_gl.DeleteTextures(1, &m_texture.name);  // glDelete* ignore the name 0
+  m_gl.DeleteTextures(1, &m_weave.name);
 }
 
 void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection,
@@ -262,7 +263,16 @@ void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_pro
   m_program.set("u_ambient", static_cast<float>(s.ambient));
   m_program.set("u_shading", s.shading == Shading::normals ? 1 : 0);
   m_program.set("u_use_environment", environment.on ? 1 : 0);
+  m_program.set("u_sheen", s.shading == Shading::lit ? static_cast<float>(s.cloth_surface.sheen)
+                                                       : 0.0f);
   m_program.set("u_sheen_roughness", static_cast<float>(s.cloth_surface.sheen_roughness));
+  const Weave& weave = s.cloth_surface.weave;
+  m_program.set("u_weave_depth", weave.normal_map ? static_cast<float>(weave.depth) : 0.0f);
+  if (weave.normal_map) {
+    bind_image(m_weave, weave.normal_map, GL_TEXTURE2, true);
+    m_program.set("u_weave", 2);  // texture unit 2
+    m_program.set("u_weave_repeat", Eigen::Vector2f(weave.repeat_m.cast<float>()));
+  }
   if (environment.on) {
     for (int k = 0; k < 9; ++k) {
       const std::string name = "u_sh[" + std::to_string(k) + "]";
@@ -270,7 +280,7 @@ void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_pro
     }
   }
   if (textured) {
-    bind_texture(s.cloth_surface.texture.image, texture_placement.repeat);
+    bind_image(m_texture, s.cloth_surface.texture.image, GL_TEXTURE1, texture_placement.repeat);
     m_program.set("u_texture", 1);  // texture unit 1
     m_program.set("u_texture_origin", texture_placement.origin);
     m_program.set("u_texture_size", texture_placement.size);
@@ -278,16 +288,17 @@ void SurfacePass::begin(const RenderSettings& s, const Eigen::Matrix4f& view_pro
   }
 }
 
-void SurfacePass::bind_texture(const std::shared_ptr<const Image>& owner, bool repeat) {
-  m_texture_owner = owner;
+void SurfacePass::bind_image(ImageTexture& texture, const std::shared_ptr<const Image>& owner,
+                             GLenum unit, bool repeat) {
+  texture.owner = owner;
   const Image& image = *owner;
-  if (m_texture == 0) {
-    m_gl.GenTextures(1, &m_texture);
-    m_texture_image = nullptr;
+  if (texture.name == 0) {
+    m_gl.GenTextures(1, &texture.name);
+    texture.image = nullptr;
   }
-  m_gl.ActiveTexture(GL_TEXTURE1);
-  m_gl.BindTexture(GL_TEXTURE_2D, m_texture);
-  if (m_texture_image != &image) {
+  m_gl.ActiveTexture(unit);
+  m_gl.BindTexture(GL_TEXTURE_2D, texture.name);
+  if (texture.image != &image) {
     // GL's t = 0 is the first row uploaded: the image's bottom row goes first (texture.h).
     const auto row_bytes = static_cast<std::size_t>(image.width()) * 3;
     std::vector<std::uint8_t> rows(row_bytes * static_cast<std::size_t>(image.height()));
@@ -301,19 +312,19 @@ void SurfacePass::bind_texture(const std::shared_ptr<const Image>& owner, bool r
     m_gl.GenerateMipmap(GL_TEXTURE_2D);
     m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    m_texture_image = &image;
+    texture.image = &image;
   }
   const GLint wrap = repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
   m_gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
   m_gl.ActiveTexture(GL_TEXTURE0);
-  check_gl_error(m_gl, "uploading the cloth texture");
+  check_gl_error(m_gl, "uploading a cloth texture");
 }
 
 void SurfacePass::draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-                       const Eigen::Vector3f& front, const Eigen::Vector3f& back, float sheen,
+                       const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool cloth,
                        bool textured, bool vertex_coloured) {
-  m_program.set("u_sheen", sheen);
+  m_program.set("u_cloth", cloth ? 1 : 0);
   m_program.set("u_use_texture", textured ? 1 : 0);
   m_program.set("u_use_vertex_colour", vertex_coloured ? 1 : 0);
   m_program.set("u_front_color", front);

@@ -131,20 +131,29 @@ class SurfacePass {
   // `textured`, placed on the material by `texture_placement` (render/texture.h).
   void begin(const RenderSettings& s, const Eigen::Matrix4f& view_projection, bool textured,
              const TexturePlacement& texture_placement, const EnvironmentShading& environment);
-  // `sheen`: the weight of the sheen lobe (render/sheen.h), 0 for surfaces other than cloth.
+  // `cloth`: the range is the cloth, which gets its sheen (render/sheen.h) and weave
+  // (render/weave.h).
   void draw(const MeshBuffers& b, std::size_t first_index, GLsizei index_count,
-            const Eigen::Vector3f& front, const Eigen::Vector3f& back, float sheen = 0.0f,
+            const Eigen::Vector3f& front, const Eigen::Vector3f& back, bool cloth = false,
             bool textured = false,
             bool vertex_coloured = false);  // the vertex colours on both sides
 
  private:
-  void bind_texture(const std::shared_ptr<const Image>& image, bool repeat);
+  // A GL texture holding an image, uploaded again only when the image changes.
+  struct ImageTexture {
+    GLuint name = 0;                     // created on first use
+    const Image* image = nullptr;        // what it holds (compared by address)
+    std::shared_ptr<const Image> owner;  // keeps that address valid
+  };
+  // Binds `image` to texture unit `unit` (mipmapped, repeating or clamped), uploading it first
+  // when `texture` holds another.
+  void bind_image(ImageTexture& texture, const std::shared_ptr<const Image>& image, GLenum unit,
+                  bool repeat);
 
   const GlFunctions& m_gl;
   GlProgram m_program;
-  GLuint m_texture = 0;                        // created on first use
-  const Image* m_texture_image = nullptr;      // what it holds (compared by address)
-  std::shared_ptr<const Image> m_texture_owner;  // keeps that address valid
+  ImageTexture m_texture;  // the cloth's texture, unit 1
+  ImageTexture m_weave;    // the weave's normal map, unit 2
 };
 
 }  // namespace weft::render::detail

@@ -47,11 +47,35 @@ uniform vec2 u_texture_origin;    // material coordinates (m) of texture coordin
 uniform vec2 u_texture_size;      // metres of material per unit of texture coordinate
 uniform int u_use_environment;    // 1: image-based light (render/environment.h) replaces ambient
 uniform vec3 u_sh[9];             // its reflected radiance as a polynomial in n (environment.h)
+uniform sampler2D u_weave;        // the weave's normal map (render/weave.h), unit 2
+uniform vec2 u_weave_repeat;      // metres of material per weave repeat along warp and weft
+uniform float u_weave_depth;      // 0: no weave relief
+uniform int u_cloth;              // 1: the cloth, with its sheen and weave
 uniform float u_sheen;            // the cloth's sheen weight (render/sheen.h); 0: none
 uniform float u_sheen_roughness;
 out vec4 o_color;
 
 const float PI = 3.14159265358979;
+
+// render/weave.cpp's tilt_normal: n tilted by the weave's normal map, with the tangents along
+// the warp and the weft from the screen-space derivatives of position and material coordinates.
+vec3 weave_tilted(vec3 n) {
+  vec3 dp_dx = dFdx(v_world), dp_dy = dFdy(v_world);
+  vec2 duv_dx = dFdx(v_uv), duv_dy = dFdy(v_uv);
+  float det = duv_dx.x * duv_dy.y - duv_dx.y * duv_dy.x;
+  if (abs(det) < 1e-20) return n;
+  vec3 t_warp = (dp_dx * duv_dy.y - dp_dy * duv_dx.y) / det;
+  vec3 t_weft = (dp_dy * duv_dx.x - dp_dx * duv_dy.x) / det;
+  vec3 t = t_warp - dot(n, t_warp) * n;
+  if (length(t) < 1e-12) return n;
+  t = normalize(t);
+  vec3 b = cross(n, t);
+  if (dot(b, t_weft) < 0.0) b = -b;
+  vec3 m = 2.0 * texture(u_weave, v_uv / u_weave_repeat).rgb - 1.0;
+  m.xy *= u_weave_depth;
+  vec3 tilted = m.x * t + m.y * b + m.z * n;
+  return length(tilted) > 0.0 ? normalize(tilted) : n;
+}
 
 // render/sheen.cpp in GLSL: the Charlie distribution and sheen_response (radiance towards v
 // under a unit sun from l, n·l included).
@@ -87,6 +111,8 @@ void main() {
   float len = length(v_normal);
   vec3 n = len > 1e-6 ? v_normal / len : geometric;
   if (!gl_FrontFacing && len > 1e-6) n = -n;  // back face: its normal points the other way
+  if (u_cloth == 1 && u_weave_depth > 0.0 && u_use_vertex_colour == 0 && u_shading == 0)
+    n = weave_tilted(n);
   vec3 base = gl_FrontFacing ? u_front_color : u_back_color;
   if ((gl_FrontFacing || u_texture_back == 1) && u_use_texture == 1)
     base = texture(u_texture, (v_uv - u_texture_origin) / u_texture_size).rgb;
@@ -100,7 +126,7 @@ void main() {
                  ? u_light_intensity * max(dot(n, u_light_dir), 0.0) + environment_radiance(n)
                  : vec3(u_ambient + u_light_intensity * max(dot(n, u_light_dir), 0.0));
   lit = max(lit, vec3(0.0));
-  if (u_sheen > 0.0 && u_use_vertex_colour == 0) {
+  if (u_cloth == 1 && u_sheen > 0.0 && u_use_vertex_colour == 0) {
     // Linear radiance: diffuse ρ · light plus the key light's sheen, tinted (1 + ρ) / 2.
     vec3 rho = pow(base, vec3(2.2));
     float sheen = u_sheen * u_light_intensity *

@@ -55,6 +55,33 @@ render::ClothTexture read_texture(ObjectReader r) {
   return texture;
 }
 
+// "weave": true (the built-in plain weave's relief at its defaults), false, or an object.
+void read_weave(ObjectReader& render, render::Weave& weave) {
+  if (render.holds_boolean("weave")) {
+    weave.normal_map = render.boolean("weave", required)
+                           ? std::make_shared<const render::Image>(render::make_weave_normal_map())
+                           : nullptr;
+    return;
+  }
+  ObjectReader r = render.object("weave");
+  if (r.has("file")) {
+    const std::filesystem::path path = scene_relative(r.file(), r.string("file", required));
+    try {
+      weave.normal_map = std::make_shared<const render::Image>(render::read_image(path));
+    } catch (const std::exception& e) {
+      r.fail("file", "expected a PNG or JPG normal map: " + std::string(e.what()));
+    }
+  } else {
+    weave.normal_map = std::make_shared<const render::Image>(render::make_weave_normal_map());
+  }
+  const auto scale = r.quantities("scale", Quantity::length, 2,
+                                  std::vector<double>{weave.repeat_m.x(), weave.repeat_m.y()},
+                                  Range::gt(0.0));
+  weave.repeat_m = {scale[0], scale[1]};
+  weave.depth = r.number("depth", weave.depth, Range::closed(0.0, 1.0));
+  r.finish();
+}
+
 // "wireframe": true (the defaults), false, or {"width": pixels, "color": [r, g, b]}.
 void read_wireframe(ObjectReader& render, render::Wireframe& wireframe) {
   if (render.holds_boolean("wireframe")) {
@@ -80,6 +107,7 @@ void read_cloth_surface(ObjectReader& render, render::ClothSurface& surface) {
   surface.sheen = render.number("sheen", surface.sheen, Range::closed(0.0, 1.0));
   surface.sheen_roughness =
       render.number("sheen_roughness", surface.sheen_roughness, Range::gt(0.0).le(1.0));
+  if (render.has("weave")) read_weave(render, surface.weave);
   if (render.has("wireframe")) read_wireframe(render, surface.wireframe);
 }
 

@@ -41,6 +41,7 @@ std::vector<fs::path> scene_input_files(const Json& document, const std::string&
   if (document.is_object() && document.contains("obstacles") && document["obstacles"].is_array())
     for (const Json& obstacle : document["obstacles"]) add(string_at(obstacle, {"mesh", "file"}));
   add(string_at(document, {"render", "texture", "file"}));
+  add(string_at(document, {"render", "weave", "file"}));
   add(string_at(document, {"render", "environment", "file"}));
   return files;
 }

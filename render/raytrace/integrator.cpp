@@ -43,6 +43,28 @@ struct Hit {
   float distance_m = 0.0f;      // from the ray origin
 };
 
+// The shading normal n of the triangle t at barycentric (u, v), tilted by the weave's normal
+// map with the triangle's tangents along the warp and the weft (weave.h); n itself where the
+// tilt would turn it away from the side seen (geometric) or the triangle's UVs are degenerate.
+Eigen::Vector3f woven_normal(const Weave& weave, const RenderMesh& mesh,
+                             const std::array<std::uint32_t, 3>& t, float u, float v,
+                             const Eigen::Vector3f& n, const Eigen::Vector3f& geometric) {
+  const Eigen::Vector2f &uv_a = mesh.uvs[t[0]], &uv_b = mesh.uvs[t[1]], &uv_c = mesh.uvs[t[2]];
+  const Eigen::Vector2f d1 = uv_b - uv_a, d2 = uv_c - uv_a;
+  const float det = d1.x() * d2.y() - d1.y() * d2.x();
+  if (!(std::abs(det) > 0.0f)) return n;
+  const Eigen::Vector3f p1 = mesh.positions[t[1]] - mesh.positions[t[0]];
+  const Eigen::Vector3f p2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+  const Eigen::Vector3f t_warp = (p1 * d2.y() - p2 * d1.y()) / det;
+  const Eigen::Vector3f t_weft = (p2 * d1.x() - p1 * d2.x()) / det;
+  const Eigen::Vector2f uv = (1.0f - u - v) * uv_a + u * uv_b + v * uv_c;
+  const Eigen::Vector3f m =
+      weave_normal(*weave.normal_map, uv.x() / static_cast<float>(weave.repeat_m.x()),
+                   uv.y() / static_cast<float>(weave.repeat_m.y()), static_cast<float>(weave.depth));
+  const Eigen::Vector3f tilted = tilt_normal(n, t_warp, t_weft, m);
+  return tilted.dot(geometric) > 0.0f ? tilted : n;
+}
+
 RTCRay make_ray(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float tnear,
                 float tfar) {
   RTCRay ray;
@@ -98,6 +120,8 @@ bool intersect(const FrameView& view, const Eigen::Vector3f& origin,
                    ? Eigen::Vector3f(normal / normal_length)
                    : geometric;
   hit.geometric = geometric;
+  if (surface.weave && mesh.uvs.size() == mesh.positions.size())
+    hit.normal = woven_normal(*surface.weave, mesh, t, u, v, hit.normal, geometric);
   hit.reflectance = front ? surface.front : surface.back;
   if ((front || surface.texture_back) && surface.texture &&
       mesh.uvs.size() == mesh.positions.size()) {

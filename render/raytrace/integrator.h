@@ -15,6 +15,7 @@
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
 #include "render/texture.h"
+#include "render/weave.h"
 
 namespace weft::render::rt {
 
@@ -34,6 +35,9 @@ struct SurfaceShading {
   // Replaces `front` and `back` (and the texture) by the vertex colours, interpolated, when
   // set (one per vertex of mesh: the strain false colour, render/strain_colour.h).
   const std::vector<Eigen::Vector3f>* vertex_colours = nullptr;
+  // Tilts the shading normal by the weave's normal map (render/weave.h) when set and the mesh
+  // has one UV per vertex.
+  const Weave* weave = nullptr;
 };
 
 // One frame's scene and settings in the units and form the inner loop wants.

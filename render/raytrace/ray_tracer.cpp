@@ -264,6 +264,8 @@ rt::FrameView RayTracer::Impl::frame_view(const FrameMeshes& m, const RenderSett
     cloth.texture_back = texture_on_back(s);
   }
   if (!m.cloth_colours.empty()) cloth.vertex_colours = &m.cloth_colours;
+  else if (s.cloth_surface.weave.normal_map && s.shading == Shading::lit)
+    cloth.weave = &s.cloth_surface.weave;
   add_surface(cloth_geometry, cloth);
   const Eigen::Vector3f ground_reflectance = rt::reflectance_from_color(s.ground_color);
   add_surface(ground_geometry, {&m.ground, ground_reflectance, ground_reflectance, false, true});
