@@ -86,6 +86,19 @@ TEST(Texture, WovenCheckBandsFollowWarpAndWeft) {
   EXPECT_THROW(make_woven_check(bad), std::invalid_argument);
 }
 
+// The view from above, lit so that a pixel shows its texel: colour × ambient^(1/2.2) with
+// ambient 1 and no key light, one sample per pixel.
+RenderSettings texel_view(RendererKind renderer) {
+  RenderSettings s = test::view_from_above(96, 96);
+  s.renderer = renderer;
+  s.light_intensity = 0.0;
+  s.ambient = 1.0;
+  s.raytrace.samples_per_pixel = 1;
+  s.cloth_surface.sheen = 0.0;
+  s.msaa_samples = 1;
+  return s;
+}
+
 class TextureOrientation : public ::testing::TestWithParam<RendererKind> {
  protected:
   void TearDown() override { m_evidence.save_if_failed(); }
@@ -93,25 +106,16 @@ class TextureOrientation : public ::testing::TestWithParam<RendererKind> {
 };
 
 TEST_P(TextureOrientation, ImageCornersLandOnTheSheetsCorners) {
-  RenderSettings s = test::view_from_above(96, 96);
-  s.renderer = GetParam();
-  s.light_intensity = 0.0;  // colour × ambient^(1/2.2) with ambient 1: the texel itself
-  s.ambient = 1.0;
-  s.raytrace.samples_per_pixel = 1;
-  s.cloth_surface.sheen = 0.0;
-  s.msaa_samples = 1;
+  RenderSettings s = texel_view(GetParam());
   s.cloth_surface.subdivision_levels = 1;
   s.cloth_surface.texture = {quadrant_image(), Eigen::Vector2d(1.0, 1.0)};
   // Material (u, v) in [0, 1]² on world x, y in [−0.5, 0.5]², z = 0.5, front facing +z.
   const RenderMesh sheet = make_grid_mesh(
       3, 3, [](double u, double v) { return Eigen::Vector3d(u - 0.5, v - 0.5, 0.5); });
 
-  std::unique_ptr<Renderer> renderer;
-  try {
-    renderer = make_renderer(s);
-  } catch (const std::runtime_error& e) {
-    GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << e.what();
-  }
+  std::string why;
+  const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
+  if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << why;
   const Image image = renderer->render(sheet, s, {});
   m_evidence.add(renderer_name(GetParam()), image);
 
@@ -153,24 +157,15 @@ TEST_P(TextureOrientation, ImageCornersLandOnTheSheetsCorners) {
 // starts and however long its sides: its quadrants land on the sheet's quadrants, and its
 // edge texels on the sheet's edges (clamped, no wrap from the other side).
 TEST_P(TextureOrientation, PieceMappingSpansTheWholeSheetOnce) {
-  RenderSettings s = test::view_from_above(96, 96);
-  s.renderer = GetParam();
-  s.light_intensity = 0.0;
-  s.ambient = 1.0;
-  s.raytrace.samples_per_pixel = 1;
-  s.cloth_surface.sheen = 0.0;
-  s.msaa_samples = 1;
+  RenderSettings s = texel_view(GetParam());
   s.cloth_surface.texture = {quadrant_image(), Eigen::Vector2d(0.1, 0.1), TextureMapping::piece};
   RenderMesh sheet = make_grid_mesh(
       5, 5, [](double u, double v) { return Eigen::Vector3d(u - 0.5, v - 0.5, 0.5); });
   for (Eigen::Vector2f& uv : sheet.uvs) uv = {2.0f + 3.0f * uv.x(), -1.0f + 0.7f * uv.y()};
 
-  std::unique_ptr<Renderer> renderer;
-  try {
-    renderer = make_renderer(s);
-  } catch (const std::runtime_error& e) {
-    GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << e.what();
-  }
+  std::string why;
+  const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
+  if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << why;
   const Image image = renderer->render(sheet, s, {});
   m_evidence.add(std::string(renderer_name(GetParam())) + "_piece", image);
   const auto expect_colour = [&](double x, double y, const Rgb8& want, const char* where) {

@@ -87,12 +87,9 @@ TEST_P(WeaveRender, ThreadsShowUnderGrazingLight) {
   // Metre-sized UVs on the unit square: a 10 cm repeat is about 13 pixels.
   const RenderMesh sheet = make_grid_mesh(
       9, 9, [](double u, double v) { return Eigen::Vector3d(u - 0.5, v - 0.5, 0.5); });
-  std::unique_ptr<Renderer> renderer;
-  try {
-    renderer = make_renderer(s);
-  } catch (const std::runtime_error& e) {
-    GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << e.what();
-  }
+  std::string why;
+  const std::unique_ptr<Renderer> renderer = test::try_renderer(s, why);
+  if (!renderer) GTEST_SKIP() << renderer_name(GetParam()) << " renderer unavailable: " << why;
   const Image flat = renderer->render(sheet, s, {});
   s.cloth_surface.weave.normal_map = std::make_shared<const Image>(make_weave_normal_map());
   s.cloth_surface.weave.repeat_m = {0.1, 0.1};
