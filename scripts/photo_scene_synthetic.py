@@ -92,7 +92,8 @@ def main():
         case = out / name
         case.mkdir(exist_ok=True)
         (case / "truth.json").write_text(json.dumps(truth_scene(left, right, size, tilt, density), indent=1))
-        run([a.weft, "run", case / "truth.json", "--out", case / "truth", "--mask"])
+        if not (case / "truth" / "mask_0048.png").exists():
+            run([a.weft, "run", case / "truth.json", "--out", case / "truth", "--mask"])
         for fit in a.fits.split(","):
             dst = case / ("fit_" + fit.replace("+", "_"))
             run([a.weft, "photo-scene", case / "truth" / "frame_0048.png", "--mask",

@@ -321,7 +321,8 @@ Command register_compare(CLI::App& app, const std::string& /*command_line*/) {
   const auto o = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "Compare a render with a photo: segment both, align, print silhouette IoU, Chamfer "
-                 "distance, fold agreement, SSIM and CIEDE2000 inside the mask; write DIR/overlay.png and DIR/report.html");
+                 "distance, fold agreement, SSIM and CIEDE2000 inside the mask; write "
+                 "DIR/overlay.png and DIR/report.html");
   cmd->add_option("photo", o->photo, "Photo (PNG or JPG, any size)")->required();
   cmd->add_option("render", o->render, "Render (PNG or JPG; resampled onto the photo)")->required();
   cmd->add_option("--mask-photo", o->mask_photo,

@@ -6,10 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "app/cli/options.h"
 #include "app/fit/photo_scene_fit.h"
@@ -48,7 +47,8 @@ std::pair<double, double> parse_cloth_size(const std::string& text) {
   }
   if (x == std::string::npos || used_w != x || used_h != text.size() - x - 1 || !(w > 0.0) ||
       !(h > 0.0) || !std::isfinite(w) || !std::isfinite(h) || w > 100.0 || h > 100.0)
-    throw InputError("--cloth-size '" + text + "': expected WIDTHxHEIGHT in metres, each in (0, 100], "
+    throw InputError("--cloth-size '" + text +
+                     "': expected WIDTHxHEIGHT in metres, each in (0, 100], "
                      "e.g. 0.55x0.55 (the width is the edge between the held corners)");
   return {w, h};
 }
@@ -61,20 +61,27 @@ PlacementFitSettings parse_fit(const std::string& text, int max_evaluations) {
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
-    if (item == "corners") s.corners = true;
-    else if (item == "depth") s.depth = true;
-    else if (item == "depth-difference") s.depth_difference = true;
-    else if (item == "tilt") s.tilt = true;
-    else if (item == "density") s.density = true;
+    if (item == "corners")
+      s.corners = true;
+    else if (item == "depth")
+      s.depth = true;
+    else if (item == "depth-difference")
+      s.depth_difference = true;
+    else if (item == "tilt")
+      s.tilt = true;
+    else if (item == "density")
+      s.density = true;
     else
-      throw InputError("--fit '" + text + "': unknown '" + item + "' (expected \"none\" or a comma "
+      throw InputError("--fit '" + text + "': unknown '" + item +
+                       "' (expected \"none\" or a comma "
                        "list of corners, depth, depth-difference, tilt, density)");
   }
   return s;
 }
 
 render::Image read_checked(const fs::path& path, const char* what) {
-  if (!fs::exists(path)) throw InputError(std::string(what) + " " + path.string() + ": no such file");
+  if (!fs::exists(path))
+    throw InputError(std::string(what) + " " + path.string() + ": no such file");
   try {
     return render::read_image(path);
   } catch (const std::exception& e) {
@@ -101,26 +108,30 @@ render::Image corners_picture(const render::Image& photo, const render::HeldCorn
 
 std::string placement_text(const Placement& p) {
   char text[256];
-  std::snprintf(text, sizeof text,
-                "corners moved (%+.2f, %+.2f) and (%+.2f, %+.2f) px, depth x%.4f, depth difference "
-                "%+.1f mm, tilt %+.2f deg%s", p.corner_shift_px[0].x(), p.corner_shift_px[0].y(),
-                p.corner_shift_px[1].x(), p.corner_shift_px[1].y(), p.depth_scale, 1e3 * p.depth_difference_m, p.tilt_rad / kDegree,
-                p.density_kg_m2 ? (", density " + std::to_string(*p.density_kg_m2) + " kg/m^2").c_str() : "");
+  std::snprintf(
+      text, sizeof text,
+      "corners moved (%+.2f, %+.2f) and (%+.2f, %+.2f) px, depth x%.4f, depth difference "
+      "%+.1f mm, tilt %+.2f deg%s",
+      p.corner_shift_px[0].x(), p.corner_shift_px[0].y(), p.corner_shift_px[1].x(),
+      p.corner_shift_px[1].y(), p.depth_scale, 1e3 * p.depth_difference_m, p.tilt_rad / kDegree,
+      p.density_kg_m2 ? (", density " + std::to_string(*p.density_kg_m2) + " kg/m^2").c_str() : "");
   return text;
 }
 
 nlohmann::json placement_json(const PhotoSceneSetup& setup, const PlacementEvaluation& e) {
   const auto corners = held_corner_positions(setup, e.placement);
   const auto& shift = e.placement.corner_shift_px;
-  nlohmann::json j = {{"corner_shift_px", {{shift[0].x(), shift[0].y()}, {shift[1].x(), shift[1].y()}}},
-                      {"depth_scale", e.placement.depth_scale},
-                      {"depth_difference_m", e.placement.depth_difference_m},
-                      {"tilt_deg", e.placement.tilt_rad / kDegree},
-                      {"held_corners_m", {{corners[0].x(), corners[0].y(), corners[0].z()},
-                                          {corners[1].x(), corners[1].y(), corners[1].z()}}},
-                      {"iou", e.iou},
-                      {"chamfer_px", e.chamfer_px},
-                      {"settled", e.settled}};
+  nlohmann::json j = {
+      {"corner_shift_px", {{shift[0].x(), shift[0].y()}, {shift[1].x(), shift[1].y()}}},
+      {"depth_scale", e.placement.depth_scale},
+      {"depth_difference_m", e.placement.depth_difference_m},
+      {"tilt_deg", e.placement.tilt_rad / kDegree},
+      {"held_corners_m",
+       {{corners[0].x(), corners[0].y(), corners[0].z()},
+        {corners[1].x(), corners[1].y(), corners[1].z()}}},
+      {"iou", e.iou},
+      {"chamfer_px", e.chamfer_px},
+      {"settled", e.settled}};
   if (e.placement.density_kg_m2) j["density_kg_m2"] = *e.placement.density_kg_m2;
   return j;
 }
@@ -160,7 +171,8 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   }
   setup.corners_px = corners.px;
   // The silhouette measured against: the mask's largest component, holes filled.
-  render::Mask photo_mask = render::fill_holes(render::largest_component(render::mask_from_image(mask_image)));
+  render::Mask photo_mask =
+      render::fill_holes(render::largest_component(render::mask_from_image(mask_image)));
 
   const OutputFolderLock lock(o.out);  // creates the folder
   const std::string scene_path = (o.out / "scene.json").string();
@@ -172,17 +184,20 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   start.density_kg_m2 = o.density_kg_m2;
   if (fit_settings.density && !start.density_kg_m2)
     start.density_kg_m2 = problem.scene_at(start).material.density_kg_m2;
-  std::fprintf(stderr, "weft photo-scene: held corners at (%.1f, %.1f) and (%.1f, %.1f) px; depth "
-               "from the %.3f m width %.4f m\n", setup.corners_px[0].x(), setup.corners_px[0].y(),
-               setup.corners_px[1].x(), setup.corners_px[1].y(), cloth_w, depth_from_width(setup));
+  std::fprintf(stderr,
+               "weft photo-scene: held corners at (%.1f, %.1f) and (%.1f, %.1f) px; depth "
+               "from the %.3f m width %.4f m\n",
+               setup.corners_px[0].x(), setup.corners_px[0].y(), setup.corners_px[1].x(),
+               setup.corners_px[1].y(), cloth_w, depth_from_width(setup));
   std::ofstream csv(o.out / "placement.csv");
-  csv << "evaluation,left_du_px,left_dv_px,right_du_px,right_dv_px,depth_scale,depth_difference_m,tilt_deg,density_kg_m2,iou,chamfer_px,settled,seconds\n";
+  csv << "evaluation,left_du_px,left_dv_px,right_du_px,right_dv_px,depth_scale,depth_difference_m,"
+         "tilt_deg,density_kg_m2,iou,chamfer_px,settled,seconds\n";
   const auto log = [&](const PlacementEvaluation& e, int number) {
     const auto& shift = e.placement.corner_shift_px;
     csv << number << ',' << shift[0].x() << ',' << shift[0].y() << ',' << shift[1].x() << ','
-        << shift[1].y() << ',' << e.placement.depth_scale << ',' << e.placement.depth_difference_m << ','
-        << e.placement.tilt_rad / kDegree << ',' << e.placement.density_kg_m2.value_or(0.0) << ','
-        << e.iou << ',' << e.chamfer_px << ',' << e.settled << ',' << e.seconds << '\n';
+        << shift[1].y() << ',' << e.placement.depth_scale << ',' << e.placement.depth_difference_m
+        << ',' << e.placement.tilt_rad / kDegree << ',' << e.placement.density_kg_m2.value_or(0.0)
+        << ',' << e.iou << ',' << e.chamfer_px << ',' << e.settled << ',' << e.seconds << '\n';
     std::fprintf(stderr, "photo-scene %3d  %s  IoU %.4f  Chamfer %.3f px  (%s%s)\n", number,
                  placement_text(e.placement).c_str(), e.iou, e.chamfer_px,
                  format_duration(e.seconds).c_str(), e.settled ? "" : ", NOT settled");
@@ -190,26 +205,28 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   const PlacementEvaluation first = problem.evaluate(start);
   log(first, 0);
   PlacementEvaluation best = first;
-  if (fit_settings.corners || fit_settings.depth || fit_settings.depth_difference || fit_settings.tilt ||
-      fit_settings.density) {
+  if (fit_settings.corners || fit_settings.depth || fit_settings.depth_difference ||
+      fit_settings.tilt || fit_settings.density) {
     const PlacementFit fit = fit_placement(problem, start, fit_settings, log);
     if (fit.best.chamfer_px < best.chamfer_px) best = fit.best;
-    std::fprintf(stderr, "weft photo-scene: fit %s after %zu evaluations\n", fit.stop_reason.c_str(),
-                 fit.evaluations.size());
+    std::fprintf(stderr, "weft photo-scene: fit %s after %zu evaluations\n",
+                 fit.stop_reason.c_str(), fit.evaluations.size());
   }
   csv.close();
 
   // The chosen placement, settled once more for its pictures (and texture).
   Settled settled;
   const PlacementEvaluation final_eval = problem.evaluate(best.placement, &settled);
-  if (!settled.simulator) throw std::runtime_error("the chosen placement's simulation diverged: " + final_eval.failure);
+  if (!settled.simulator)
+    throw std::runtime_error("the chosen placement's simulation diverged: " + final_eval.failure);
   Scene scene = problem.scene_at(best.placement);
   std::string texture_file;
   double seen_fraction = 0.0;
   if (o.texture) {
     const int tw = std::max(2, static_cast<int>(std::lround(o.texture_size * cloth_w / longer)));
     const int th = std::max(2, static_cast<int>(std::lround(o.texture_size * cloth_h / longer)));
-    const render::PhotoTexture t = settled_photo_texture(scene, *settled.simulator, photo, photo_mask, tw, th);
+    const render::PhotoTexture t =
+        settled_photo_texture(scene, *settled.simulator, photo, photo_mask, tw, th);
     render::write_png(t.texture, o.out / "texture.png");
     texture_file = "texture.png";
     seen_fraction = t.seen_fraction;
@@ -217,11 +234,13 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   }
   const std::string description =
       "A cloth held by two corners, placed from the photo " + o.photo.string() + " and its mask " +
-      o.mask.string() + " by weft photo-scene (" + o.command_line + "): " + placement_text(best.placement) +
-      "; outline Chamfer " + std::to_string(final_eval.chamfer_px) + " px, IoU " +
-      std::to_string(final_eval.iou) + " at rest. The world is the camera's frame (x right, y down, "
+      o.mask.string() + " by weft photo-scene (" + o.command_line +
+      "): " + placement_text(best.placement) + "; outline Chamfer " +
+      std::to_string(final_eval.chamfer_px) + " px, IoU " + std::to_string(final_eval.iou) +
+      " at rest. The world is the camera's frame (x right, y down, "
       "z forward).";
-  write_text(o.out / "scene.json", photo_scene_json(setup, best.placement, description, texture_file).dump(2) + "\n");
+  write_text(o.out / "scene.json",
+             photo_scene_json(setup, best.placement, description, texture_file).dump(2) + "\n");
 
   const render::Mask mask = problem.silhouette(scene, *settled.simulator);
   const render::Image look = problem.render_look(scene, *settled.simulator);
@@ -229,7 +248,8 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   render::write_png(look, o.out / "render.png");
   render::write_png(corners_picture(photo, corners), o.out / "corners.png");
   render::Silhouette ps{photo_mask, true, {}, 0.0}, rs{mask, true, {}, 0.0};
-  const render::PhotoComparison c = render::compare_with_photo(photo, ps, look, rs, render::Similarity{});
+  const render::PhotoComparison c =
+      render::compare_with_photo(photo, ps, look, rs, render::Similarity{});
   render::write_png(render::outline_overlay(photo, c), o.out / "overlay.png");
 
   nlohmann::json j;
@@ -254,17 +274,22 @@ int run_photo_scene(const PhotoSceneOptions& o) {
               setup.corners_px[0].y(), setup.corners_px[1].x(), setup.corners_px[1].y());
   for (const char* which : {"start", "chosen"}) {
     const auto& p = j[which];
-    std::printf("  %-15s %s: corners (%.4f, %.4f, %.4f) and (%.4f, %.4f, %.4f) m; IoU %.4f, "
-                "Chamfer %.3f px\n", which,
-                placement_text(std::string(which) == "start" ? first.placement : final_eval.placement).c_str(),
-                p["held_corners_m"][0][0].get<double>(), p["held_corners_m"][0][1].get<double>(),
-                p["held_corners_m"][0][2].get<double>(), p["held_corners_m"][1][0].get<double>(),
-                p["held_corners_m"][1][1].get<double>(), p["held_corners_m"][1][2].get<double>(),
-                p["iou"].get<double>(), p["chamfer_px"].get<double>());
+    std::printf(
+        "  %-15s %s: corners (%.4f, %.4f, %.4f) and (%.4f, %.4f, %.4f) m; IoU %.4f, "
+        "Chamfer %.3f px\n",
+        which,
+        placement_text(std::string(which) == "start" ? first.placement : final_eval.placement)
+            .c_str(),
+        p["held_corners_m"][0][0].get<double>(), p["held_corners_m"][0][1].get<double>(),
+        p["held_corners_m"][0][2].get<double>(), p["held_corners_m"][1][0].get<double>(),
+        p["held_corners_m"][1][1].get<double>(), p["held_corners_m"][1][2].get<double>(),
+        p["iou"].get<double>(), p["chamfer_px"].get<double>());
   }
   if (c.mask_ssim) std::printf("  SSIM (mask)     %.4f\n", c.mask_ssim->mean);
   std::printf("  dE2000 (mask)   mean %.3f, 95th percentile %.3f\n", c.delta_e.mean, c.delta_e.p95);
-  if (o.texture) std::printf("  texture         %.1f %% of its texels seen in the photo\n", 100.0 * seen_fraction);
+  if (o.texture)
+    std::printf("  texture         %.1f %% of its texels seen in the photo\n",
+                100.0 * seen_fraction);
   return exit_ok;
 }
 
@@ -272,28 +297,36 @@ Command register_photo_scene(CLI::App& app, const std::string& command_line) {
   const auto o = std::make_shared<PhotoSceneOptions>();
   o->command_line = command_line;
   CLI::App* cmd = app.add_subcommand(
-      "photo-scene", "Write a scene of a cloth held by two corners from one photo: its mask, the "
-                     "camera's intrinsics and the cloth's size; optionally fit depth, tilt and "
-                     "density to the outline and project the photo into a texture (docs/photos.md)");
-  cmd->add_option("photo", o->photo, "Photo (PNG or JPG; the scene renders at its size)")->required();
+      "photo-scene",
+      "Write a scene of a cloth held by two corners from one photo: its mask, the "
+      "camera's intrinsics and the cloth's size; optionally fit depth, tilt and "
+      "density to the outline and project the photo into a texture (docs/photos.md)");
+  cmd->add_option("photo", o->photo, "Photo (PNG or JPG; the scene renders at its size)")
+      ->required();
   cmd->add_option("--mask", o->mask, "The photo's cloth mask (white = cloth)")->required();
   cmd->add_option("--camera", o->camera,
                   "Camera JSON: {\"intrinsics\": {fx, fy, cx, cy, size}}, a weft scene with "
-                  "render.camera.intrinsics, or a phi-SfT scene file (R1_scene.json)")->required();
+                  "render.camera.intrinsics, or a phi-SfT scene file (R1_scene.json)")
+      ->required();
   cmd->add_option("--cloth-size", o->cloth_size,
-                  "WIDTHxHEIGHT in metres (the width between the held corners), e.g. 0.55x0.55")->required();
+                  "WIDTHxHEIGHT in metres (the width between the held corners), e.g. 0.55x0.55")
+      ->required();
   cmd->add_option("--material", o->material_preset, "Material preset (default: weft's defaults)");
-  check_range(cmd->add_option("--density", o->density_kg_m2, "Areal density, kg/m^2 (the start of a fit)"),
-              Range::gt(0.0).le(100.0));
-  check_range(cmd->add_option("--resolution", o->resolution, "Vertices along the longer side (default 32)"),
-              Range::closed(3, 200));
+  check_range(
+      cmd->add_option("--density", o->density_kg_m2, "Areal density, kg/m^2 (the start of a fit)"),
+      Range::gt(0.0).le(100.0));
+  check_range(
+      cmd->add_option("--resolution", o->resolution, "Vertices along the longer side (default 32)"),
+      Range::closed(3, 200));
   cmd->add_option("--fit", o->fit,
                   "What to fit to the outline: none, or a comma list of corners (their pixels, "
                   "within 3 px), depth, depth-difference, tilt, density (default depth,tilt)");
-  check_range(cmd->add_option("--max-evaluations", o->max_evaluations, "Fit evaluations (default 40)"),
-              Range::closed(1, 10000));
-  check_range(cmd->add_option("--tilt", o->tilt_deg, "Start: the camera's pitch, degrees down (default 0)"),
-              Range::closed(-25.0, 25.0));
+  check_range(
+      cmd->add_option("--max-evaluations", o->max_evaluations, "Fit evaluations (default 40)"),
+      Range::closed(1, 10000));
+  check_range(
+      cmd->add_option("--tilt", o->tilt_deg, "Start: the camera's pitch, degrees down (default 0)"),
+      Range::closed(-25.0, 25.0));
   check_range(cmd->add_option("--depth-scale", o->depth_scale,
                               "Start: the corners' depth relative to the width's (default 1)"),
               Range::closed(0.75, 4.0 / 3.0));
@@ -302,7 +335,8 @@ Command register_photo_scene(CLI::App& app, const std::string& command_line) {
               Range::closed(-10.0, 10.0));
   cmd->add_flag("--texture", o->texture,
                 "Project the photo onto the settled cloth into DIR/texture.png and use it");
-  check_range(cmd->add_option("--texture-size", o->texture_size, "Texels along the longer side (default 512)"),
+  check_range(cmd->add_option("--texture-size", o->texture_size,
+                              "Texels along the longer side (default 512)"),
               Range::closed(8, 8192));
   cmd->add_option("--out", o->out, "Output folder (default: out/photo_scene)");
   cmd->add_flag("--json", o->json, "Print the summary as JSON");

@@ -19,15 +19,16 @@ namespace weft::app {
 
 struct PhotoSceneOptions {
   std::filesystem::path photo, mask, camera;
-  std::string cloth_size;           // "0.55x0.55" (metres)
-  std::string material_preset;      // empty: the defaults
+  std::string cloth_size;       // "0.55x0.55" (metres)
+  std::string material_preset;  // empty: the defaults
   std::optional<double> density_kg_m2;
-  int resolution = 32;              // vertices along the longer side
-  std::string fit = "depth,tilt";   // comma list of depth, depth-difference, tilt, density; or "none"
+  int resolution = 32;  // vertices along the longer side
+  std::string fit =
+      "depth,tilt";  // comma list of depth, depth-difference, tilt, density; or "none"
   int max_evaluations = 40;
   double tilt_deg = 0.0, depth_scale = 1.0, depth_difference_m = 0.0;  // the start
   bool texture = false;
-  int texture_size = 512;           // texels along the longer side
+  int texture_size = 512;  // texels along the longer side
   std::filesystem::path out = "out/photo_scene";
   bool json = false;
   std::optional<int> threads;

@@ -14,8 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kGravity = 9.81;     // m/s²
-constexpr double kPinDrawTime = 0.05; // s: the right corner reaches its place
+constexpr double kGravity = 9.81;      // m/s²
+constexpr double kPinDrawTime = 0.05;  // s: the right corner reaches its place
 
 double number_at(const nlohmann::json& j, const std::string& file, const std::string& key) {
   if (!j.is_number()) throw InputError(file + ": " + key + ": expected a number");
@@ -42,14 +42,18 @@ render::PinholeIntrinsics weft_intrinsics(const nlohmann::json& camera, const st
   if (camera.contains("position")) {
     for (int i = 0; i < 3; ++i)
       if (!camera["position"][i].is_number() || camera["position"][i].get<double>() != 0.0)
-        throw InputError(file + ": " + where + "position: weft photo-scene's world is the camera's "
+        throw InputError(file + ": " + where +
+                         "position: weft photo-scene's world is the camera's "
                          "frame; give the camera at [0, 0, 0] (or no pose)");
   }
-  if (camera.contains("rotation") && camera["rotation"] != nlohmann::json::parse("[[1,0,0],[0,1,0],[0,0,1]]"))
-    throw InputError(file + ": " + where + "rotation: weft photo-scene's world is the camera's "
+  if (camera.contains("rotation") &&
+      camera["rotation"] != nlohmann::json::parse("[[1,0,0],[0,1,0],[0,0,1]]"))
+    throw InputError(file + ": " + where +
+                     "rotation: weft photo-scene's world is the camera's "
                      "frame; give the identity (or no pose)");
   if (camera.contains("camera_to_world") || camera.contains("world_to_camera"))
-    throw InputError(file + ": " + where + "camera_to_world/world_to_camera: weft photo-scene's "
+    throw InputError(file + ": " + where +
+                     "camera_to_world/world_to_camera: weft photo-scene's "
                      "world is the camera's frame; give no pose");
   return in;
 }
@@ -71,7 +75,8 @@ render::PinholeIntrinsics phi_sft_intrinsics(const nlohmann::json& j, const std:
       const double expect[3] = {0, 0, origin ? 0.0 : 1.0};
       for (int i = 0; i < 3; ++i)
         if (number_at(v.at(i), file, key) != expect[i])
-          throw InputError(file + ": " + key + ": weft photo-scene needs the camera at the "
+          throw InputError(file + ": " + key +
+                           ": weft photo-scene needs the camera at the "
                            "origin looking along +z (its world is the camera's frame)");
     }
   render::PinholeIntrinsics in;
@@ -109,13 +114,16 @@ render::PinholeIntrinsics read_photo_camera(const fs::path& path) {
   }
   render::PinholeIntrinsics k;
   try {
-    if (j.contains("intrinsics")) k = weft_intrinsics(j, file, "");
+    if (j.contains("intrinsics"))
+      k = weft_intrinsics(j, file, "");
     else if (j.contains("render") && j["render"].contains("camera") &&
              j["render"]["camera"].contains("intrinsics"))
       k = weft_intrinsics(j["render"]["camera"], file, "render.camera.");
-    else if (j.contains("focal_lengths")) k = phi_sft_intrinsics(j, file);
+    else if (j.contains("focal_lengths"))
+      k = phi_sft_intrinsics(j, file);
     else
-      throw InputError(file + ": expected a camera: \"intrinsics\" (a weft camera), "
+      throw InputError(file +
+                       ": expected a camera: \"intrinsics\" (a weft camera), "
                        "render.camera.intrinsics (a weft scene) or \"focal_lengths\", "
                        "\"optical_centers\" and \"image_size\" (a φ-SfT scene)");
     render::validate(k);
@@ -179,12 +187,18 @@ nlohmann::json photo_scene_json(const PhotoSceneSetup& s, const Placement& p,
   const render::PinholeIntrinsics& k = s.camera;
   nlohmann::json render = {
       {"size", {s.width_px, s.height_px}},
-      {"camera", {{"intrinsics", {{"fx", k.fx_px}, {"fy", k.fy_px}, {"cx", k.cx_px}, {"cy", k.cy_px},
-                                  {"size", {k.width_px, k.height_px}}}},
-                  {"position", {"0 m", "0 m", "0 m"}},
-                  {"rotation", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}},
+      {"camera",
+       {{"intrinsics",
+         {{"fx", k.fx_px},
+          {"fy", k.fy_px},
+          {"cx", k.cx_px},
+          {"cy", k.cy_px},
+          {"size", {k.width_px, k.height_px}}}},
+        {"position", {"0 m", "0 m", "0 m"}},
+        {"rotation", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}},
       {"light", {{"direction", {0.3, -0.5, -1.0}}, {"intensity", 0.8}, {"ambient", 0.3}}},
-      {"colors", {{"front", {0.85, 0.8, 0.62}}, {"back", {0.7, 0.75, 0.62}}, {"background", {0, 0, 0}}}},
+      {"colors",
+       {{"front", {0.85, 0.8, 0.62}}, {"back", {0.7, 0.75, 0.62}}, {"background", {0, 0, 0}}}},
       {"ground", false},
       {"shading", "lit"},
       {"msaa", 4}};

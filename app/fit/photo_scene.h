@@ -26,10 +26,9 @@
 #include <Eigen/Core>
 #include <array>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "render/camera.h"
 #include "render/image.h"
@@ -54,7 +53,7 @@ struct PhotoSceneSetup {
   int width_px = 0, height_px = 0;   // the photo's (and the scene's render.size)
   double cloth_width_m = 0.0, cloth_height_m = 0.0;
   std::array<int, 2> resolution{32, 32};
-  std::string material_preset;       // empty: weft's defaults (wool_kang_yu)
+  std::string material_preset;                // empty: weft's defaults (wool_kang_yu)
   std::array<Eigen::Vector2d, 2> corners_px;  // top-left, top-right, in the photo's pixels
 };
 
@@ -73,12 +72,14 @@ double depth_from_width(const PhotoSceneSetup& setup,
                         const std::array<Eigen::Vector2d, 2>& shift_px = {Eigen::Vector2d::Zero(),
                                                                           Eigen::Vector2d::Zero()});
 // The held corners' positions (camera frame, m) for a placement: left, right.
-std::array<Eigen::Vector3d, 2> held_corner_positions(const PhotoSceneSetup& setup, const Placement& p);
+std::array<Eigen::Vector3d, 2> held_corner_positions(const PhotoSceneSetup& setup,
+                                                     const Placement& p);
 
 // The runnable scene (step 4) as JSON; `texture_file`, when not empty, is set as
 // render.texture {file, scale: [W, H]} (one repeat spans the piece). `description` goes into the
 // scene's "description".
 nlohmann::json photo_scene_json(const PhotoSceneSetup& setup, const Placement& p,
-                                const std::string& description, const std::string& texture_file = "");
+                                const std::string& description,
+                                const std::string& texture_file = "");
 
 }  // namespace weft::app

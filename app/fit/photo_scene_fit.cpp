@@ -26,7 +26,7 @@ SettleSettings photo_scene_settle() {
 // One freed parameter of the fit: its optimiser coordinate ↔ the placement.
 struct FreedParameter {
   double lo, hi, step;
-  std::function<double(const Placement&)> get;   // optimiser coordinate
+  std::function<double(const Placement&)> get;  // optimiser coordinate
   std::function<void(Placement&, double)> set;
 };
 
@@ -60,10 +60,14 @@ std::vector<FreedParameter> freed_parameters(const PlacementFitSettings& s, doub
 
 std::string nlopt_stop_reason(nlopt::result r) {
   switch (r) {
-    case nlopt::XTOL_REACHED: return "parameter tolerance reached";
-    case nlopt::FTOL_REACHED: return "objective tolerance reached";
-    case nlopt::MAXEVAL_REACHED: return "max_evaluations reached";
-    default: return "stopped (NLopt code " + std::to_string(static_cast<int>(r)) + ")";
+    case nlopt::XTOL_REACHED:
+      return "parameter tolerance reached";
+    case nlopt::FTOL_REACHED:
+      return "objective tolerance reached";
+    case nlopt::MAXEVAL_REACHED:
+      return "max_evaluations reached";
+    default:
+      return "stopped (NLopt code " + std::to_string(static_cast<int>(r)) + ")";
   }
 }
 
@@ -71,14 +75,17 @@ std::string nlopt_stop_reason(nlopt::result r) {
 
 PhotoSceneProblem::PhotoSceneProblem(PhotoSceneSetup setup, render::Mask photo_mask,
                                      std::string source, std::optional<int> threads)
-    : m_setup(std::move(setup)), m_mask(std::move(photo_mask)), m_source(std::move(source)),
+    : m_setup(std::move(setup)),
+      m_mask(std::move(photo_mask)),
+      m_source(std::move(source)),
       m_threads(threads) {}
 
 PhotoSceneProblem::~PhotoSceneProblem() = default;
 
 Scene PhotoSceneProblem::scene_at(const Placement& p, const std::string& texture_file) const {
   Scene scene = parse_scene(
-      photo_scene_json(m_setup, p, "a placement of weft photo-scene", texture_file).dump(), m_source);
+      photo_scene_json(m_setup, p, "a placement of weft photo-scene", texture_file).dump(),
+      m_source);
   apply_threads(scene, m_threads);
   return scene;
 }
@@ -89,10 +96,9 @@ render::Renderer& PhotoSceneProblem::renderer(const Scene& scene) {
 }
 
 render::Mask PhotoSceneProblem::silhouette(const Scene& scene, const sim::Simulator& simulator) {
-  return renderer(scene).render_mask(to_render_mesh(simulator.mesh(), simulator.state().x),
-                                     scene.render,
-                                     obstacle_render_objects(scene.sim.obstacles, scene.render),
-                                     render::Renderer::MaskOf::cloth);
+  return renderer(scene).render_mask(
+      to_render_mesh(simulator.mesh(), simulator.state().x), scene.render,
+      obstacle_render_objects(scene.sim.obstacles, scene.render), render::Renderer::MaskOf::cloth);
 }
 
 render::Image PhotoSceneProblem::render_look(const Scene& scene, const sim::Simulator& simulator) {
@@ -111,8 +117,9 @@ PlacementEvaluation PhotoSceneProblem::evaluate(const Placement& p, Settled* set
     e.iterations = s.iterations;
     const render::Mask mask = silhouette(scene, *s.simulator);
     e.iou = render::silhouette_iou(m_mask, mask);
-    e.chamfer_px = render::moments(mask).area_px > 0 ? render::chamfer_distance(m_mask, mask).symmetric_px
-                                                     : std::hypot(mask.width, mask.height);
+    e.chamfer_px = render::moments(mask).area_px > 0
+                       ? render::chamfer_distance(m_mask, mask).symmetric_px
+                       : std::hypot(mask.width, mask.height);
     if (settled_out) *settled_out = std::move(s);
   } catch (const sim::DivergenceError& error) {
     e.failure = error.what();
@@ -122,9 +129,9 @@ PlacementEvaluation PhotoSceneProblem::evaluate(const Placement& p, Settled* set
   return e;
 }
 
-PlacementFit fit_placement(PhotoSceneProblem& problem, const Placement& start,
-                           const PlacementFitSettings& settings,
-                           const std::function<void(const PlacementEvaluation&, int)>& on_evaluation) {
+PlacementFit fit_placement(
+    PhotoSceneProblem& problem, const Placement& start, const PlacementFitSettings& settings,
+    const std::function<void(const PlacementEvaluation&, int)>& on_evaluation) {
   PlacementFit fit;
   const std::vector<FreedParameter> freed =
       freed_parameters(settings, depth_from_width(problem.setup()) * start.depth_scale);
@@ -158,12 +165,12 @@ PlacementFit fit_placement(PhotoSceneProblem& problem, const Placement& start,
   opt.set_maxeval(settings.max_evaluations);
   opt.set_xtol_rel(1e-3);
   using Objective = std::function<double(const std::vector<double>&)>;
-  Objective objective = [&](const std::vector<double>& v) { return record(problem.evaluate(placement_at(v))); };
-  opt.set_min_objective(
-      [](const std::vector<double>& v, std::vector<double>&, void* data) {
-        return (*static_cast<Objective*>(data))(v);
-      },
-      &objective);
+  Objective objective = [&](const std::vector<double>& v) {
+    return record(problem.evaluate(placement_at(v)));
+  };
+  opt.set_min_objective([](const std::vector<double>& v, std::vector<double>&,
+                           void* data) { return (*static_cast<Objective*>(data))(v); },
+                        &objective);
   double best = 0.0;
   try {
     fit.stop_reason = nlopt_stop_reason(opt.optimize(x, best));
@@ -181,8 +188,9 @@ render::PhotoTexture settled_photo_texture(const Scene& scene, const sim::Simula
   render::ClothGridShape c;
   c.nu = static_cast<int>(mesh.nu);
   c.nv = static_cast<int>(mesh.nv);
-  const sim::Vec2 size = mesh.material_coords[static_cast<std::size_t>(mesh.index(mesh.nu - 1, mesh.nv - 1))] -
-                         mesh.material_coords[0];
+  const sim::Vec2 size =
+      mesh.material_coords[static_cast<std::size_t>(mesh.index(mesh.nu - 1, mesh.nv - 1))] -
+      mesh.material_coords[0];
   c.width_m = size.x();
   c.height_m = size.y();
   const sim::Matrix3X& x = simulator.state().x;
@@ -190,7 +198,8 @@ render::PhotoTexture settled_photo_texture(const Scene& scene, const sim::Simula
   const render::Camera& camera = scene.render.camera;
   const int w = photo.width(), h = photo.height();
   return render::project_photo_texture(
-      photo, mask, c, [&](const Eigen::Vector3d& p) { return camera.project(p, w, h); }, camera.eye, tw, th);
+      photo, mask, c, [&](const Eigen::Vector3d& p) { return camera.project(p, w, h); }, camera.eye,
+      tw, th);
 }
 
 }  // namespace weft::app

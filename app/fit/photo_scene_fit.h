@@ -67,12 +67,12 @@ struct PlacementFit {
   std::string stop_reason;
 };
 
-// BOBYQA from `start` over the freed parameters (each corner's pixel within ±3 px, depth_scale in [0.75, 1.33] and density in
-// [0.02, 5] kg/m² on log10, depth difference within ±25 % of the depth, tilt within ±25°);
-// `on_evaluation` sees each evaluation and its 1-based number.
-PlacementFit fit_placement(PhotoSceneProblem& problem, const Placement& start,
-                           const PlacementFitSettings& settings,
-                           const std::function<void(const PlacementEvaluation&, int)>& on_evaluation = {});
+// BOBYQA from `start` over the freed parameters (each corner's pixel within ±3 px, depth_scale in
+// [0.75, 1.33] and density in [0.02, 5] kg/m² on log10, depth difference within ±25 % of the depth,
+// tilt within ±25°); `on_evaluation` sees each evaluation and its 1-based number.
+PlacementFit fit_placement(
+    PhotoSceneProblem& problem, const Placement& start, const PlacementFitSettings& settings,
+    const std::function<void(const PlacementEvaluation&, int)>& on_evaluation = {});
 
 // The photo projected onto the settled cloth (a grid) through the scene's camera, tw × th.
 render::PhotoTexture settled_photo_texture(const Scene& scene, const sim::Simulator& simulator,

@@ -24,8 +24,12 @@ double lab_f(double t) {
   return t > delta * delta * delta ? std::cbrt(t) : t / (3.0 * delta * delta) + 4.0 / 29.0;
 }
 
-double to_degrees(double radians) { return radians * 180.0 / base::kPi; }
-double to_radians(double degrees_) { return degrees_ * base::kPi / 180.0; }
+double to_degrees(double radians) {
+  return radians * 180.0 / base::kPi;
+}
+double to_radians(double degrees_) {
+  return degrees_ * base::kPi / 180.0;
+}
 
 // h' of CIEDE2000: atan2(b, a') in [0°, 360°), 0 for a neutral colour.
 double hue_degrees(double b, double a_prime) {
@@ -66,15 +70,19 @@ double ciede2000(const Lab& p, const Lab& q) {
   double dh = 0.0;  // Δh', degrees
   if (cp1 * cp2 != 0.0) {
     dh = h2 - h1;
-    if (dh > 180.0) dh -= 360.0;
-    else if (dh < -180.0) dh += 360.0;
+    if (dh > 180.0)
+      dh -= 360.0;
+    else if (dh < -180.0)
+      dh += 360.0;
   }
   const double dH = 2.0 * std::sqrt(cp1 * cp2) * std::sin(to_radians(dh / 2.0));
   const double l_mean = 0.5 * (p[0] + q[0]), cp_mean = 0.5 * (cp1 + cp2);
   double h_mean = h1 + h2;  // mean hue h̄', degrees
   if (cp1 * cp2 != 0.0) {
-    if (std::abs(h1 - h2) <= 180.0) h_mean = 0.5 * (h1 + h2);
-    else h_mean = h1 + h2 < 360.0 ? 0.5 * (h1 + h2 + 360.0) : 0.5 * (h1 + h2 - 360.0);
+    if (std::abs(h1 - h2) <= 180.0)
+      h_mean = 0.5 * (h1 + h2);
+    else
+      h_mean = h1 + h2 < 360.0 ? 0.5 * (h1 + h2 + 360.0) : 0.5 * (h1 + h2 - 360.0);
   }
   const double t = 1.0 - 0.17 * std::cos(to_radians(h_mean - 30.0)) +
                    0.24 * std::cos(to_radians(2.0 * h_mean)) +
@@ -121,7 +129,8 @@ ColourDifference mask_colour_difference(const Image& photo, const Image& render,
   std::vector<double> de;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (mask.at(x, y)) de.push_back(ciede2000(srgb_to_lab(photo.at(x, y)), srgb_to_lab(render.at(x, y))));
+      if (mask.at(x, y))
+        de.push_back(ciede2000(srgb_to_lab(photo.at(x, y)), srgb_to_lab(render.at(x, y))));
   if (de.empty()) throw std::invalid_argument("colour difference: the mask is empty");
   ColourDifference d;
   d.pixels = static_cast<long>(de.size());
@@ -129,7 +138,8 @@ ColourDifference mask_colour_difference(const Image& photo, const Image& render,
   for (const double v : de) sum += v;
   d.mean = sum / static_cast<double>(de.size());
   // Nearest rank: the smallest value with at least 95 % of the values at or below it.
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(de.size())));
+  const std::size_t rank =
+      static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(de.size())));
   const auto nth = de.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
   std::nth_element(de.begin(), nth, de.end());
   d.p95 = *nth;

@@ -5,10 +5,10 @@
 // - Masked SSIM: the SSIM map of the two luminances (image_diff.h's ssim_map(): Wang et al.
 //   2004, BT.601 luminance, 11 × 11 Gaussian window of σ = 1.5, K1 = 0.01, K2 = 0.03, L = 255)
 //   averaged over the windows that lie wholly inside the mask — the window centres of the mask
-//   eroded by the window's 5-pixel radius (silhouette.h's eroded_mask) (a square erosion, so every pixel a window weighs is
-//   cloth in the photo). The background never enters it, so a render on another background
-//   scores the same; where the render's cloth does not cover the photo's, the render's
-//   background is compared with the photo's cloth and lowers it.
+//   eroded by the window's 5-pixel radius (silhouette.h's eroded_mask) (a square erosion, so every
+//   pixel a window weighs is cloth in the photo). The background never enters it, so a render on
+//   another background scores the same; where the render's cloth does not cover the photo's, the
+//   render's background is compared with the photo's cloth and lowers it.
 // - ΔE2000: the CIEDE2000 colour difference (Sharma, Wu & Dalal 2005, kL = kC = kH = 1) of every
 //   mask pixel, both images read as sRGB (IEC 61966-2-1: its transfer curve and its XYZ matrix)
 //   → CIELAB with the D65 white of that matrix, (Xn, Yn, Zn) = (0.9505, 1, 1.0890), so sRGB

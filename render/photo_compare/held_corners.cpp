@@ -43,8 +43,9 @@ HeldCorners find_held_corners(const Mask& mask, double k) {
   c.px[0] = extremal_point(c.cleaned, [k](int x, int y) { return y + k * x; });
   c.px[1] = extremal_point(c.cleaned, [k](int x, int y) { return y - k * x; });
   if ((c.px[1] - c.px[0]).norm() < 1.0)
-    throw std::invalid_argument("held corners: the top-left and top-right corners of the mask "
-                                "fall on one pixel (is it a cloth held by two corners?)");
+    throw std::invalid_argument(
+        "held corners: the top-left and top-right corners of the mask "
+        "fall on one pixel (is it a cloth held by two corners?)");
   return c;
 }
 

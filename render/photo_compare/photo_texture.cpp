@@ -2,9 +2,9 @@
 
 #include "render/photo_compare/photo_texture.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <Eigen/Geometry>
 #include <deque>
 #include <limits>
 #include <stdexcept>
@@ -16,8 +16,10 @@ namespace {
 // The nearest depth of the cloth's triangles at every photo pixel centre (+∞ where none).
 std::vector<double> cloth_depth_buffer(const std::vector<Eigen::Vector3d>& projected,
                                        const ClothGridShape& c, int w, int h) {
-  std::vector<double> depth(static_cast<std::size_t>(w) * h, std::numeric_limits<double>::infinity());
-  const auto triangle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& d) {
+  std::vector<double> depth(static_cast<std::size_t>(w) * h,
+                            std::numeric_limits<double>::infinity());
+  const auto triangle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                            const Eigen::Vector3d& d) {
     if (a.z() <= 0 || b.z() <= 0 || d.z() <= 0) return;
     const double area = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
     if (std::abs(area) < 1e-12) return;
@@ -56,10 +58,13 @@ Rgb8 photo_bilinear(const Image& img, double u, double v) {
   for (int dy = 0; dy < 2; ++dy)
     for (int dx = 0; dx < 2; ++dx) {
       const double weight = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
-      const Rgb8 p = img.at(std::clamp(x0 + dx, 0, img.width() - 1), std::clamp(y0 + dy, 0, img.height() - 1));
+      const Rgb8 p =
+          img.at(std::clamp(x0 + dx, 0, img.width() - 1), std::clamp(y0 + dy, 0, img.height() - 1));
       rgb[0] += weight * p.r, rgb[1] += weight * p.g, rgb[2] += weight * p.b;
     }
-  const auto byte = [](double v_) { return static_cast<std::uint8_t>(std::clamp(std::lround(v_), 0L, 255L)); };
+  const auto byte = [](double v_) {
+    return static_cast<std::uint8_t>(std::clamp(std::lround(v_), 0L, 255L));
+  };
   return {byte(rgb[0]), byte(rgb[1]), byte(rgb[2])};
 }
 
@@ -94,13 +99,15 @@ PhotoTexture project_photo_texture(const Image& photo, const Mask& mask, const C
   const int w = photo.width(), h = photo.height();
   if (c.nu < 2 || c.nv < 2 || c.positions.size() != static_cast<std::size_t>(c.nu) * c.nv ||
       !(c.width_m > 0) || !(c.height_m > 0))
-    throw std::invalid_argument("photo texture: expected a grid of at least 2 x 2 vertices with a "
-                                "positive size, got " + std::to_string(c.nu) + " x " +
-                                std::to_string(c.nv) + " and " + std::to_string(c.positions.size()) +
-                                " positions");
+    throw std::invalid_argument(
+        "photo texture: expected a grid of at least 2 x 2 vertices with a "
+        "positive size, got " +
+        std::to_string(c.nu) + " x " + std::to_string(c.nv) + " and " +
+        std::to_string(c.positions.size()) + " positions");
   if (mask.width != w || mask.height != h)
     throw std::invalid_argument("photo texture: the mask's size differs from the photo's");
-  if (tw < 1 || th < 1) throw std::invalid_argument("photo texture: the texture size must be positive");
+  if (tw < 1 || th < 1)
+    throw std::invalid_argument("photo texture: the texture size must be positive");
   std::vector<Eigen::Vector3d> projected;
   projected.reserve(c.positions.size());
   for (const auto& p : c.positions) projected.push_back(project(p));
@@ -118,18 +125,21 @@ PhotoTexture project_photo_texture(const Image& photo, const Mask& mask, const C
     for (int x = 0; x < tw; ++x) {
       // Grid coordinates of the texel's material point.
       const double gu = (x + 0.5) / tw * (c.nu - 1), gv = (th - y - 0.5) / th * (c.nv - 1);
-      const int i = std::min(static_cast<int>(gu), c.nu - 2), j = std::min(static_cast<int>(gv), c.nv - 2);
+      const int i = std::min(static_cast<int>(gu), c.nu - 2),
+                j = std::min(static_cast<int>(gv), c.nv - 2);
       const double s = gu - i, t = gv - j;
       const auto& p00 = c.positions[static_cast<std::size_t>(j) * c.nu + i];
       const auto& p10 = c.positions[static_cast<std::size_t>(j) * c.nu + i + 1];
       const auto& p01 = c.positions[static_cast<std::size_t>(j + 1) * c.nu + i];
       const auto& p11 = c.positions[static_cast<std::size_t>(j + 1) * c.nu + i + 1];
-      const Eigen::Vector3d p = (1 - s) * (1 - t) * p00 + s * (1 - t) * p10 + (1 - s) * t * p01 + s * t * p11;
+      const Eigen::Vector3d p =
+          (1 - s) * (1 - t) * p00 + s * (1 - t) * p10 + (1 - s) * t * p01 + s * t * p11;
       const Eigen::Vector3d n = (p11 - p00).cross(p01 - p10);  // warp × weft
       if (n.dot(eye - p) <= 0) continue;
       const Eigen::Vector3d q = project(p);
       if (q.z() <= 0 || q.x() < 0 || q.y() < 0 || q.x() > w - 1 || q.y() > h - 1) continue;
-      const double nearest = depth[static_cast<std::size_t>(std::lround(q.y())) * w + std::lround(q.x())];
+      const double nearest =
+          depth[static_cast<std::size_t>(std::lround(q.y())) * w + std::lround(q.x())];
       if (q.z() > nearest * 1.005 + 0.002) continue;
       if (!inside_mask(q.x(), q.y())) continue;
       out.texture.set(x, y, photo_bilinear(photo, q.x(), q.y()));
@@ -137,8 +147,9 @@ PhotoTexture project_photo_texture(const Image& photo, const Mask& mask, const C
       ++seen;
     }
   if (seen == 0)
-    throw std::invalid_argument("photo texture: no texel of the cloth is seen in the photo (is the "
-                                "cloth in front of the camera, its front facing it?)");
+    throw std::invalid_argument(
+        "photo texture: no texel of the cloth is seen in the photo (is the "
+        "cloth in front of the camera, its front facing it?)");
   out.seen_fraction = static_cast<double>(seen) / (static_cast<double>(tw) * th);
   fill_unseen(out.texture, out.seen);
   return out;

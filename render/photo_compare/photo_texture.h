@@ -33,9 +33,9 @@
 namespace weft::render {
 
 struct ClothGridShape {
-  int nu = 0, nv = 0;                     // vertices along warp, weft (≥ 2 each)
-  double width_m = 0.0, height_m = 0.0;   // the piece's material size W × H
-  std::vector<Eigen::Vector3d> positions; // world, nu·nv
+  int nu = 0, nv = 0;                      // vertices along warp, weft (≥ 2 each)
+  double width_m = 0.0, height_m = 0.0;    // the piece's material size W × H
+  std::vector<Eigen::Vector3d> positions;  // world, nu·nv
 };
 
 // (u, v, Z): the pixel where a world point appears in the photo and its depth (Z ≤ 0 behind).
@@ -43,14 +43,15 @@ using PhotoProjection = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
 
 struct PhotoTexture {
   Image texture;
-  Mask seen;          // texels coloured from the photo (the others filled)
+  Mask seen;  // texels coloured from the photo (the others filled)
   double seen_fraction = 0.0;
 };
 
 // Throws std::invalid_argument when the grid is malformed, the photo and mask differ in size,
 // the texture size is not positive, or no texel is seen.
-PhotoTexture project_photo_texture(const Image& photo, const Mask& mask, const ClothGridShape& cloth,
-                                   const PhotoProjection& project, const Eigen::Vector3d& eye,
-                                   int texture_width, int texture_height);
+PhotoTexture project_photo_texture(const Image& photo, const Mask& mask,
+                                   const ClothGridShape& cloth, const PhotoProjection& project,
+                                   const Eigen::Vector3d& eye, int texture_width,
+                                   int texture_height);
 
 }  // namespace weft::render

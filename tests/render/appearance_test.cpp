@@ -1,13 +1,14 @@
 // Appearance inside the cloth mask (render/photo_compare/appearance.h): masked SSIM against
 // analytic values and the mask restriction; CIEDE2000 against the 34 pairs of Sharma, Wu &
 // Dalal (2005), Table 1; sRGB → CIELAB at known colours; ΔE2000 mean and 95th percentile.
+#include "render/photo_compare/appearance.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 
 #include "render/image_diff.h"
-#include "render/photo_compare/appearance.h"
 
 namespace {
 
@@ -114,7 +115,8 @@ TEST(Appearance, MaskedSsimOfIdenticalImagesIsOne) {
   const int w = 64, h = 48;
   const Mask m = rectangle(w, h, 8, 6, 50, 40);
   std::vector<double> a(static_cast<std::size_t>(w) * h);
-  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 128 + 100 * std::sin(0.37 * static_cast<double>(i));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    a[i] = 128 + 100 * std::sin(0.37 * static_cast<double>(i));
   const auto s = masked_ssim(a, a, w, h, m);
   ASSERT_TRUE(s);
   EXPECT_NEAR(s->mean, 1.0, 1e-12);
@@ -134,7 +136,9 @@ TEST(Appearance, MaskedSsimOfConstantPatchesIsTheLuminanceTermAndIgnoresTheOutsi
   EXPECT_NEAR(s1->mean, expected, 1e-9);
   EXPECT_EQ(s1->mean, s2->mean) << "pixels outside the mask never enter";
   // The plain SSIM over the whole image sees the outside and differs.
-  EXPECT_GT(std::abs(ssim(constant_inside(m, ma, 1.0), constant_inside(m, mb, 3.0), w, h) - expected), 0.01);
+  EXPECT_GT(
+      std::abs(ssim(constant_inside(m, ma, 1.0), constant_inside(m, mb, 3.0), w, h) - expected),
+      0.01);
   // No window fits in a 10 px wide mask: no value.
   EXPECT_FALSE(masked_ssim(constant_inside(m, ma, 1.0), constant_inside(m, ma, 1.0), w, h,
                            rectangle(w, h, 5, 5, 15, 35)));
@@ -147,8 +151,8 @@ TEST(Appearance, ColourDifferenceMeanAndPercentileOverTheMask) {
   Image photo(w, h, a), render(w, h, a);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      if (x >= 20) photo.set(x, y, {0, 0, 0});        // outside the mask: ignored
-      if (x >= 10 || y < 2) render.set(x, y, b);      // inside: 200 + 20 px differ
+      if (x >= 20) photo.set(x, y, {0, 0, 0});    // outside the mask: ignored
+      if (x >= 10 || y < 2) render.set(x, y, b);  // inside: 200 + 20 px differ
     }
   const double de = ciede2000(srgb_to_lab(a), srgb_to_lab(b));
   const ColourDifference d = mask_colour_difference(photo, render, m);

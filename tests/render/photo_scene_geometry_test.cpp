@@ -21,7 +21,8 @@ Mask quad_mask(int w, int h, const std::array<Eigen::Vector2d, 4>& q) {
     for (int x = 0; x < w; ++x) {
       bool inside = true;
       for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector2d e = q[static_cast<std::size_t>((k + 1) % 4)] - q[static_cast<std::size_t>(k)];
+        const Eigen::Vector2d e =
+            q[static_cast<std::size_t>((k + 1) % 4)] - q[static_cast<std::size_t>(k)];
         const Eigen::Vector2d p = Eigen::Vector2d(x, y) - q[static_cast<std::size_t>(k)];
         if (e.x() * p.y() - e.y() * p.x() < 0) inside = false;
       }
@@ -32,8 +33,9 @@ Mask quad_mask(int w, int h, const std::array<Eigen::Vector2d, 4>& q) {
 
 TEST(HeldCorners, TopCornersOfAHangingQuadrilateral) {
   // Top corners at (40.2, 30.6) and (150.7, 34.1), the sides widening a little downwards.
-  const std::array<Eigen::Vector2d, 4> q = {Eigen::Vector2d(40.2, 30.6), Eigen::Vector2d(150.7, 34.1),
-                                            Eigen::Vector2d(153.0, 140.0), Eigen::Vector2d(37.0, 138.0)};
+  const std::array<Eigen::Vector2d, 4> q = {
+      Eigen::Vector2d(40.2, 30.6), Eigen::Vector2d(150.7, 34.1), Eigen::Vector2d(153.0, 140.0),
+      Eigen::Vector2d(37.0, 138.0)};
   const HeldCorners c = find_held_corners(quad_mask(200, 160, q));
   EXPECT_LT((c.px[0] - q[0]).norm(), 1.5) << c.px[0].transpose();
   EXPECT_LT((c.px[1] - q[1]).norm(), 1.5) << c.px[1].transpose();
@@ -45,10 +47,10 @@ TEST(HeldCorners, IgnoresSpecksFibresAndHoles) {
   Mask m = quad_mask(320, 260, q);
   std::mt19937 random(7);
   std::uniform_int_distribution<int> px(0, 319), py(0, 259);
-  for (int k = 0; k < 300; ++k) m.set(px(random), py(random), true);   // specks around
+  for (int k = 0; k < 300; ++k) m.set(px(random), py(random), true);       // specks around
   for (int k = 0; k < 200; ++k) m.set(100 + k % 20, 100 + k / 20, false);  // a hole inside
   for (int k = 1; k <= 12; ++k) m.set(60 - k, 40 - k, true);               // a fibre off the corner
-  for (int y = 5; y < 9; ++y)                                                // a blob above
+  for (int y = 5; y < 9; ++y)                                              // a blob above
     for (int x = 150; x < 154; ++x) m.set(x, y, true);
   const HeldCorners c = find_held_corners(m);
   EXPECT_LT((c.px[0] - q[0]).norm(), 2.5) << c.px[0].transpose();
@@ -108,8 +110,8 @@ SyntheticPhoto synthetic_photo(double bulge) {
 TEST(PhotoTexture, RecoversThePatternOfAFlatAndABentCloth) {
   for (const double bulge : {0.0, 0.08}) {
     const SyntheticPhoto s = synthetic_photo(bulge);
-    const PhotoTexture t = project_photo_texture(s.photo, s.mask, s.cloth, pinhole,
-                                                 Eigen::Vector3d::Zero(), 80, 60);
+    const PhotoTexture t =
+        project_photo_texture(s.photo, s.mask, s.cloth, pinhole, Eigen::Vector3d::Zero(), 80, 60);
     EXPECT_GT(t.seen_fraction, 0.85) << "bulge " << bulge;
     double sum = 0.0;
     long n = 0;
@@ -136,12 +138,14 @@ TEST(PhotoTexture, BackFacingAndHiddenTexelsAreNotSeen) {
   // Turned around (warp to the left): the camera sees its back; nothing is seen.
   ClothGridShape back = s.cloth;
   for (auto& p : back.positions) p.x() = -p.x();
-  EXPECT_THROW(project_photo_texture(s.photo, s.mask, back, pinhole, Eigen::Vector3d::Zero(), 80, 60),
-               std::invalid_argument);
+  EXPECT_THROW(
+      project_photo_texture(s.photo, s.mask, back, pinhole, Eigen::Vector3d::Zero(), 80, 60),
+      std::invalid_argument);
   // The left half of the mask removed: only the right half is seen.
   for (int y = 0; y < 240; ++y)
     for (int x = 0; x < 160; ++x) s.mask.set(x, y, false);
-  const PhotoTexture t = project_photo_texture(s.photo, s.mask, s.cloth, pinhole, Eigen::Vector3d::Zero(), 80, 60);
+  const PhotoTexture t =
+      project_photo_texture(s.photo, s.mask, s.cloth, pinhole, Eigen::Vector3d::Zero(), 80, 60);
   EXPECT_FALSE(t.seen.at(10, 30));
   EXPECT_TRUE(t.seen.at(70, 30));
   EXPECT_NEAR(t.seen_fraction, 0.5, 0.05);
