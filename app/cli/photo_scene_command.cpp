@@ -106,6 +106,32 @@ render::Image corners_picture(const render::Image& photo, const render::HeldCorn
   return out;
 }
 
+// The mask at another image size with the same aspect ratio, nearest pixel (pixel centres
+// mapped as the camera's intrinsics are: u' = s (u + ½) − ½).
+render::Mask mask_at_size(const render::Mask& mask, int width, int height) {
+  render::Mask out(width, height);
+  const double sx = static_cast<double>(mask.width) / width, sy = static_cast<double>(mask.height) / height;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      out.set(x, y, mask.at(std::min(mask.width - 1, static_cast<int>(sx * (x + 0.5))),
+                            std::min(mask.height - 1, static_cast<int>(sy * (y + 0.5)))));
+  return out;
+}
+
+// The texture of the settled cloth from the photo, or from --texture-photo.
+render::PhotoTexture texture_of(const PhotoSceneOptions& o, const Scene& scene,
+                                const sim::Simulator& simulator, const render::Image& photo,
+                                const render::Mask& photo_mask, int tw, int th) {
+  if (!o.texture_photo) return settled_photo_texture(scene, simulator, photo, photo_mask, tw, th);
+  const render::Image big = read_checked(*o.texture_photo, "--texture-photo");
+  try {
+    return settled_photo_texture(scene, simulator, big, mask_at_size(photo_mask, big.width(), big.height()),
+                                 tw, th);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--texture-photo " + o.texture_photo->string() + ": " + e.what());
+  }
+}
+
 std::string placement_text(const Placement& p) {
   char text[256];
   std::snprintf(
@@ -141,7 +167,9 @@ nlohmann::json placement_json(const PhotoSceneSetup& setup, const PlacementEvalu
 int run_photo_scene(const PhotoSceneOptions& o) {
   const auto [cloth_w, cloth_h] = parse_cloth_size(o.cloth_size);
   const PlacementFitSettings fit_settings = parse_fit(o.fit, o.max_evaluations);
-  refuse_overwriting_inputs(o.out, photo_scene_outputs, {o.photo, o.mask, o.camera});
+  std::vector<fs::path> inputs{o.photo, o.mask, o.camera};
+  if (o.texture_photo) inputs.push_back(*o.texture_photo);
+  refuse_overwriting_inputs(o.out, photo_scene_outputs, inputs);
   const render::Image photo = read_checked(o.photo, "photo");
   const render::Image mask_image = read_checked(o.mask, "--mask");
   if (mask_image.width() != photo.width() || mask_image.height() != photo.height())
@@ -226,7 +254,7 @@ int run_photo_scene(const PhotoSceneOptions& o) {
     const int tw = std::max(2, static_cast<int>(std::lround(o.texture_size * cloth_w / longer)));
     const int th = std::max(2, static_cast<int>(std::lround(o.texture_size * cloth_h / longer)));
     const render::PhotoTexture t =
-        settled_photo_texture(scene, *settled.simulator, photo, photo_mask, tw, th);
+        texture_of(o, scene, *settled.simulator, photo, photo_mask, tw, th);
     render::write_png(t.texture, o.out / "texture.png");
     texture_file = "texture.png";
     seen_fraction = t.seen_fraction;
@@ -335,6 +363,9 @@ Command register_photo_scene(CLI::App& app, const std::string& command_line) {
               Range::closed(-10.0, 10.0));
   cmd->add_flag("--texture", o->texture,
                 "Project the photo onto the settled cloth into DIR/texture.png and use it");
+  cmd->add_option("--texture-photo", o->texture_photo,
+                  "Take the texture from this photo instead: the same view at another size with "
+                  "the same aspect ratio (e.g. the full-size frame); its mask is --mask scaled");
   check_range(cmd->add_option("--texture-size", o->texture_size,
                               "Texels along the longer side (default 512)"),
               Range::closed(8, 8192));

@@ -29,6 +29,9 @@ struct PhotoSceneOptions {
   double tilt_deg = 0.0, depth_scale = 1.0, depth_difference_m = 0.0;  // the start
   bool texture = false;
   int texture_size = 512;  // texels along the longer side
+  // The same view at another size (e.g. the full-size frame of a downscaled photo), to take the
+  // texture from; its mask is --mask scaled to it (nearest pixel).
+  std::optional<std::filesystem::path> texture_photo;
   std::filesystem::path out = "out/photo_scene";
   bool json = false;
   std::optional<int> threads;
