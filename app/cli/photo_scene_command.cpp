@@ -56,7 +56,7 @@ std::pair<double, double> parse_cloth_size(const std::string& text) {
 PlacementFitSettings parse_fit(const std::string& text, int max_evaluations) {
   PlacementFitSettings s;
   s.max_evaluations = max_evaluations;
-  s.depth = s.tilt = false;
+  s.corners = s.depth = s.depth_difference = s.tilt = s.density = false;
   if (text == "none") return s;
   std::stringstream items(text);
   std::string item;
@@ -348,9 +348,9 @@ Command register_photo_scene(CLI::App& app, const std::string& command_line) {
       Range::closed(3, 200));
   cmd->add_option("--fit", o->fit,
                   "What to fit to the outline: none, or a comma list of corners (their pixels, "
-                  "within 3 px), depth, depth-difference, tilt, density (default depth,tilt)");
+                  "within 3 px), depth, depth-difference, tilt, density (default: all five)");
   check_range(
-      cmd->add_option("--max-evaluations", o->max_evaluations, "Fit evaluations (default 40)"),
+      cmd->add_option("--max-evaluations", o->max_evaluations, "Fit evaluations (default 100)"),
       Range::closed(1, 10000));
   check_range(
       cmd->add_option("--tilt", o->tilt_deg, "Start: the camera's pitch, degrees down (default 0)"),

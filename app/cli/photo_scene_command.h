@@ -25,7 +25,7 @@ struct PhotoSceneOptions {
   int resolution = 32;  // vertices along the longer side
   std::string fit =
       "depth,tilt";  // comma list of depth, depth-difference, tilt, density; or "none"
-  int max_evaluations = 40;
+  int max_evaluations = 100;
   double tilt_deg = 0.0, depth_scale = 1.0, depth_difference_m = 0.0;  // the start
   bool texture = false;
   int texture_size = 512;  // texels along the longer side

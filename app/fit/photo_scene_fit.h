@@ -30,8 +30,8 @@ struct PlacementEvaluation {
 
 // Which placement parameters a fit frees (the others stay at the start).
 struct PlacementFitSettings {
-  bool corners = false, depth = true, depth_difference = false, tilt = true, density = false;
-  int max_evaluations = 40;
+  bool corners = true, depth = true, depth_difference = true, tilt = true, density = true;
+  int max_evaluations = 100;
 };
 
 class PhotoSceneProblem {
