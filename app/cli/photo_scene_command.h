@@ -23,8 +23,8 @@ struct PhotoSceneOptions {
   std::string material_preset;  // empty: the defaults
   std::optional<double> density_kg_m2;
   int resolution = 32;  // vertices along the longer side
-  std::string fit =
-      "depth,tilt";  // comma list of depth, depth-difference, tilt, density; or "none"
+  // "none" or a comma list of corners, depth, depth-difference, tilt, density
+  std::string fit = "corners,depth,depth-difference,tilt,density";
   int max_evaluations = 100;
   double tilt_deg = 0.0, depth_scale = 1.0, depth_difference_m = 0.0;  // the start
   bool texture = false;

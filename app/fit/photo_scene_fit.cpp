@@ -15,6 +15,9 @@ namespace weft::app {
 namespace {
 
 constexpr double kDivergedObjective = 1e12;
+constexpr double kTiltDegree = 3.14159265358979323846 / 180.0;
+// The coarse scan of the camera's pitch before the local fit, degrees down.
+constexpr double kTiltScanDeg[] = {-10.0, 10.0, 20.0};
 
 // The settle of every evaluation: dynamic relaxation (the pin path rules out a static solve).
 SettleSettings photo_scene_settle() {
@@ -135,8 +138,9 @@ PlacementFit fit_placement(
   PlacementFit fit;
   const std::vector<FreedParameter> freed =
       freed_parameters(settings, depth_from_width(problem.setup()) * start.depth_scale);
+  Placement from = start;  // where the local fit starts
   const auto placement_at = [&](const std::vector<double>& x) {
-    Placement p = start;
+    Placement p = from;
     for (std::size_t i = 0; i < freed.size(); ++i) freed[i].set(p, x[i]);
     return p;
   };
@@ -151,13 +155,25 @@ PlacementFit fit_placement(
     fit.stop_reason = "nothing to fit";
     return fit;
   }
+  // Depth and tilt trade along a curved valley of the outline (docs/photos.md, "Synthetic
+  // photos"): a local fit from a level start finds a small tilt and a wrong depth. So the tilt
+  // is first scanned coarsely, the local fit starting from the best of the scan.
+  if (settings.tilt) {
+    double best = record(problem.evaluate(start));
+    for (const double t : kTiltScanDeg) {
+      Placement p = start;
+      p.tilt_rad = t * kTiltDegree;
+      const double chamfer = record(problem.evaluate(p));
+      if (chamfer < best) best = chamfer, from = p;
+    }
+  }
   nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(freed.size()));
   std::vector<double> x, lo, hi, step;
   for (const FreedParameter& f : freed) {
     lo.push_back(f.lo);
     hi.push_back(f.hi);
     step.push_back(f.step);
-    x.push_back(std::clamp(f.get(start), f.lo, f.hi));
+    x.push_back(std::clamp(f.get(from), f.lo, f.hi));
   }
   opt.set_lower_bounds(lo);
   opt.set_upper_bounds(hi);
