@@ -107,6 +107,19 @@ double ssim(const std::vector<double>& a, const std::vector<double>& b, int widt
     }
     return ssim_term(ma, mb, va / count, vb / count, cab / count);
   }
+  const std::vector<double> map = ssim_map(a, b, width, height);
+  double sum = 0.0;
+  for (const double v : map) sum += v;
+  return sum / static_cast<double>(map.size());
+}
+
+std::vector<double> ssim_map(const std::vector<double>& a, const std::vector<double>& b, int width,
+                             int height) {
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (width < window || height < window || a.size() != n || b.size() != n)
+    throw std::invalid_argument("ssim_map: expected two luminance images of " +
+                                std::to_string(width) + "x" + std::to_string(height) +
+                                " pixels, at least 11x11");
   std::vector<double> aa(n), bb(n), ab(n);
   for (std::size_t i = 0; i < n; ++i) {
     aa[i] = a[i] * a[i];
@@ -117,11 +130,11 @@ double ssim(const std::vector<double>& a, const std::vector<double>& b, int widt
   const std::vector<double> saa = filter_valid(aa, width, height),
                             sbb = filter_valid(bb, width, height),
                             sab = filter_valid(ab, width, height);
-  double sum = 0.0;
+  std::vector<double> map(ma.size());
   for (std::size_t i = 0; i < ma.size(); ++i)
-    sum += ssim_term(ma[i], mb[i], saa[i] - ma[i] * ma[i], sbb[i] - mb[i] * mb[i],
-                     sab[i] - ma[i] * mb[i]);
-  return sum / static_cast<double>(ma.size());
+    map[i] = ssim_term(ma[i], mb[i], saa[i] - ma[i] * ma[i], sbb[i] - mb[i] * mb[i],
+                       sab[i] - ma[i] * mb[i]);
+  return map;
 }
 
 ImageDifference compare_images(const Image& a, const Image& b, int pixel_threshold) {

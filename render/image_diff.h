@@ -55,6 +55,11 @@ ImageDifference compare_images(const Image& a, const Image& b, int pixel_thresho
 
 // Mean SSIM of two luminance images (width × height, row-major, values 0…255) as above.
 double ssim(const std::vector<double>& a, const std::vector<double>& b, int width, int height);
+// The SSIM of every window wholly inside the image: (width − 10) × (height − 10) values,
+// row-major, value (x, y) that of the window centred on pixel (x + 5, y + 5). Throws
+// std::invalid_argument when the image is smaller than the window or the sizes differ.
+std::vector<double> ssim_map(const std::vector<double>& a, const std::vector<double>& b, int width,
+                             int height);
 
 // BT.601 luminance of every pixel, row-major.
 std::vector<double> luminance(const Image& image);

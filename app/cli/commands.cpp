@@ -10,6 +10,7 @@
 #include "app/cli/folds_command.h"
 #include "app/cli/gallery_command.h"
 #include "app/cli/measure_command.h"
+#include "app/cli/photo_scene_command.h"
 #include "app/cli/render_command.h"
 #include "app/cli/run_command.h"
 #include "app/cli/stability_command.h"
@@ -24,7 +25,7 @@ std::vector<Command> register_commands(CLI::App& app, const std::string& line) {
       register_run(app, line),     register_stability(app, line), register_sweep(app, line),
       register_measure(app, line), register_folds(app, line),     register_turntable(app, line),
       register_diff(app, line),    register_compare(app, line),   register_gallery(app, line),
-      register_fit(app, line),     register_render(app, line),
+      register_fit(app, line),     register_photo_scene(app, line), register_render(app, line),
   };
 }
 

@@ -128,6 +128,9 @@ nlohmann::json result_json(const CompareOptions& o, const Masks& masks, const re
                 {"f_score", c.folds.f_score},
                 {"compared_px", c.folds.compared_px}};
   j["ssim"] = c.ssim;
+  j["ssim_mask"] = c.mask_ssim ? nlohmann::json(c.mask_ssim->mean) : nlohmann::json(nullptr);
+  j["ssim_mask_windows"] = c.mask_ssim ? c.mask_ssim->windows : 0L;
+  j["delta_e2000"] = {{"mean", c.delta_e.mean}, {"p95", c.delta_e.p95}, {"pixels", c.delta_e.pixels}};
   j["out"] = o.out.string();
   return j;
 }
@@ -152,6 +155,14 @@ void print_text(const nlohmann::json& j) {
               j["folds"]["recall"].get<double>(), j["folds"]["sigma_px"].get<double>(),
               j["folds"]["compared_px"].get<long>());
   std::printf("  SSIM (overlap) %.4f\n", j["ssim"].get<double>());
+  if (j["ssim_mask"].is_null())
+    std::printf("  SSIM (mask)    none: no 11x11 window fits inside the photo's mask\n");
+  else
+    std::printf("  SSIM (mask)    %.4f (%ld windows inside the photo's mask)\n",
+                j["ssim_mask"].get<double>(), j["ssim_mask_windows"].get<long>());
+  std::printf("  dE2000 (mask)  mean %.3f, 95th percentile %.3f (%ld px)\n",
+              j["delta_e2000"]["mean"].get<double>(), j["delta_e2000"]["p95"].get<double>(),
+              j["delta_e2000"]["pixels"].get<long>());
 }
 
 std::string warnings_html(const nlohmann::json& warnings) {
@@ -194,6 +205,13 @@ void write_report(const fs::path& path, const nlohmann::json& j) {
           num(j["folds"]["precision"].get<double>(), 3) + ", recall " +
           num(j["folds"]["recall"].get<double>(), 3));
   row("SSIM in the overlap", num(j["ssim"].get<double>(), 4), "luminance, 11x11 Gaussian window");
+  row("SSIM in the photo's mask",
+      j["ssim_mask"].is_null() ? std::string("none") : num(j["ssim_mask"].get<double>(), 4),
+      "mean over the " + std::to_string(j["ssim_mask_windows"].get<long>()) +
+          " windows wholly inside the photo's cloth mask");
+  row("colour difference", "&Delta;E2000 mean " + num(j["delta_e2000"]["mean"].get<double>(), 2) +
+                               ", 95th percentile " + num(j["delta_e2000"]["p95"].get<double>(), 2),
+      "CIEDE2000 (sRGB, D65) over the photo's mask pixels");
   row("alignment", "scale " + num(t["scale"].get<double>(), 4) + ", shift (" +
                        num(t["tx_px"].get<double>(), 2) + ", " + num(t["ty_px"].get<double>(), 2) +
                        ") px, " + num(t["angle_deg"].get<double>(), 2) + " deg",
@@ -303,7 +321,8 @@ Command register_compare(CLI::App& app, const std::string& /*command_line*/) {
   const auto o = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "Compare a render with a photo: segment both, align, print silhouette IoU, Chamfer "
-                 "distance, fold agreement, SSIM; write DIR/overlay.png and DIR/report.html");
+                 "distance, fold agreement, SSIM and CIEDE2000 inside the mask; write "
+                 "DIR/overlay.png and DIR/report.html");
   cmd->add_option("photo", o->photo, "Photo (PNG or JPG, any size)")->required();
   cmd->add_option("render", o->render, "Render (PNG or JPG; resampled onto the photo)")->required();
   cmd->add_option("--mask-photo", o->mask_photo,

@@ -89,6 +89,8 @@ PhotoComparison compare_with_photo(const Image& photo, const Silhouette& photo_s
   const std::vector<double> yp = luminance(photo), yr = luminance(c.render_aligned);
   c.folds = fold_agreement(yp, yr, w, h, c.overlap, fold_sigma_px);
   c.ssim = overlap_ssim(yp, yr, w, h, c.overlap);
+  c.mask_ssim = masked_ssim(yp, yr, w, h, c.photo_mask);
+  c.delta_e = mask_colour_difference(photo, c.render_aligned, c.photo_mask);
   return c;
 }
 

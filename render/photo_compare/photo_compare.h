@@ -10,6 +10,7 @@
 
 #include "render/image.h"
 #include "render/photo_compare/alignment.h"
+#include "render/photo_compare/appearance.h"
 #include "render/photo_compare/metrics.h"
 #include "render/photo_compare/silhouette.h"
 
@@ -42,7 +43,10 @@ struct PhotoComparison {
   double iou = 0.0;
   ChamferDistance chamfer;
   FoldAgreement folds;
-  double ssim = 0.0;        // inside the overlap
+  double ssim = 0.0;        // inside the overlap (metrics.h's overlap_ssim)
+  // Inside the photo's mask (appearance.h): none when no SSIM window fits inside it.
+  std::optional<MaskedSsim> mask_ssim;
+  ColourDifference delta_e;  // ΔE2000 over the photo's mask
   // On the photo's grid:
   Image render_aligned;
   Mask photo_mask, render_mask, overlap;

@@ -190,4 +190,42 @@ SilhouetteMoments moments(const Mask& mask) {
   return m;
 }
 
+namespace {
+
+// How many mask pixels each pixel's (2 radius + 1)² window, clipped to the image, holds; by a
+// summed-area table.
+std::vector<long> window_counts(const Mask& mask, int radius) {
+  const int w = mask.width, h = mask.height;
+  std::vector<long> sat(static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1), 0);
+  const auto at = [&](int x, int y) -> long& { return sat[static_cast<std::size_t>(y) * (w + 1) + x]; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      at(x + 1, y + 1) = (mask.at(x, y) ? 1 : 0) + at(x, y + 1) + at(x + 1, y) - at(x, y);
+  std::vector<long> counts(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int x0 = std::max(0, x - radius), x1 = std::min(w, x + radius + 1);
+      const int y0 = std::max(0, y - radius), y1 = std::min(h, y + radius + 1);
+      counts[static_cast<std::size_t>(y) * w + x] = at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
+    }
+  return counts;
+}
+
+}  // namespace
+
+Mask eroded_mask(const Mask& mask, int radius) {
+  const std::vector<long> counts = window_counts(mask, radius);
+  const long full = static_cast<long>(2 * radius + 1) * (2 * radius + 1);
+  Mask out(mask.width, mask.height);
+  for (std::size_t i = 0; i < counts.size(); ++i) out.in[i] = counts[i] == full;
+  return out;
+}
+
+Mask dilated_mask(const Mask& mask, int radius) {
+  const std::vector<long> counts = window_counts(mask, radius);
+  Mask out(mask.width, mask.height);
+  for (std::size_t i = 0; i < counts.size(); ++i) out.in[i] = counts[i] > 0;
+  return out;
+}
+
 }  // namespace weft::render

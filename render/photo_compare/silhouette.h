@@ -43,6 +43,11 @@ Mask largest_component(const Mask& mask);
 Mask fill_holes(const Mask& mask);
 // Cloth pixels with a 4-neighbour outside the cloth (or outside the image).
 Mask outline(const Mask& mask);
+// Square morphology with a (2 radius + 1)² window: eroded keeps the pixels whose whole window
+// lies inside the mask and the image (so pixels within `radius` of the image edge never stay),
+// dilated sets the pixels whose window (clipped to the image) holds a mask pixel.
+Mask eroded_mask(const Mask& mask, int radius);
+Mask dilated_mask(const Mask& mask, int radius);
 
 struct SilhouetteMoments {
   double area_px = 0.0;          // number of cloth pixels

@@ -68,6 +68,30 @@ TEST_F(CompareCli, ReportsAlignmentAndMetricsAndWritesTheReport) {
   EXPECT_EQ(weft::render::read_image(m_dir / "out" / "overlay.png").width(), 200);
 }
 
+TEST_F(CompareCli, ReportsSsimAndColourDifferenceInsideThePhotosMask) {
+  // The photo against itself: SSIM 1 and ΔE2000 0 in the mask.
+  auto r = run_weft("compare " + path("photo.png") + " " + path("photo.png") + " --json --out " + path("same"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  nlohmann::json j = json_of(r.output);
+  EXPECT_NEAR(j["ssim_mask"].get<double>(), 1.0, 1e-12);
+  EXPECT_GT(j["ssim_mask_windows"].get<long>(), 100);
+  EXPECT_EQ(j["delta_e2000"]["mean"].get<double>(), 0.0);
+  EXPECT_EQ(j["delta_e2000"]["p95"].get<double>(), 0.0);
+  // Against the render left shifted by (9, 4) px (--transform 1,0,0): the folds no longer line
+  // up, and the mask's pixels the render misses show its background.
+  r = run_weft("compare " + path("photo.png") + " " + path("render.png") +
+               " --json --transform 1,0,0 --out " + path("shifted"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  j = json_of(r.output);
+  EXPECT_LT(j["ssim_mask"].get<double>(), 0.9);
+  EXPECT_GT(j["delta_e2000"]["mean"].get<double>(), 1.0);
+  EXPECT_GE(j["delta_e2000"]["p95"].get<double>(), j["delta_e2000"]["mean"].get<double>());
+  // The text output names both.
+  r = run_weft("compare " + path("photo.png") + " " + path("render.png") + " --out " + path("text"));
+  EXPECT_NE(r.output.find("SSIM (mask)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("dE2000 (mask)"), std::string::npos) << r.output;
+}
+
 TEST_F(CompareCli, GivenTransformAndMaskOverride) {
   // The identity transform leaves the 9 px shift in: a lower IoU than aligned.
   const auto r = run_weft("compare " + path("photo.png") + " " + path("render.png") +
