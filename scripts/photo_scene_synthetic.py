@@ -65,7 +65,7 @@ def truth_scene(left, right, size, tilt_deg, density):
                    "camera": dict(CAMERA, position=["0 m", "0 m", "0 m"],
                                   rotation=[[1, 0, 0], [0, 1, 0], [0, 0, 1]]),
                    "texture": {"woven_check": {"stripes": 6}, "scale": ["0.1 m", "0.1 m"]},
-                   "colors": {"background": [0, 0, 0]}, "ground": False, "msaa": 4},
+                   "colors": {"background": [0, 0, 0]}, "ground": False, "supports": False, "msaa": 4},
     }
 
 

@@ -97,7 +97,7 @@ TEST_F(PhotoSceneCli, BadInputIsRefusedNamingTheOptionOrKey) {
 
 // A synthetic photo: weft's own render (and mask) of a 0.4 m square held by two corners at known
 // places 1 m in front of a calibrated camera (unequal focal lengths, off-centre principal
-// point), placed again from the render alone.
+// point; no clips drawn over the corners), placed again from the render alone.
 TEST_F(PhotoSceneCli, RecoversTheCornersOfASyntheticHang) {
   // Truth: corners at (∓0.2, −0.15, 1) m, the cloth 0.4 m wide, so their distance is the width;
   // the cloth hangs in the plane z = 1, warp +x, weft up (−y), its front facing the camera.
@@ -112,7 +112,7 @@ TEST_F(PhotoSceneCli, RecoversTheCornersOfASyntheticHang) {
     "render": {"size": [240, 180],
                "camera": {"intrinsics": {"fx": 320, "fy": 300, "cx": 125.3, "cy": 85.6, "size": [240, 180]},
                           "position": [0, 0, 0], "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]},
-               "colors": {"background": [0, 0, 0]}, "ground": false}})";
+               "colors": {"background": [0, 0, 0]}, "ground": false, "supports": false}})";
   std::ofstream(m_dir / "camera.json")
       << R"({"intrinsics": {"fx": 320, "fy": 300, "cx": 125.3, "cy": 85.6, "size": [240, 180]}})";
   const auto truth = run_weft("run " + (m_dir / "truth.json").string() + " --mask --out " +
