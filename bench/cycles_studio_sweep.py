@@ -13,17 +13,12 @@
 
 import argparse
 import os
-import re
-import resource
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def children_cpu_s():
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
+sys.path.insert(0, HERE)
+from raytrace_ibl_sweep import children_cpu_s, compare  # noqa: E402
 
 
 def cycles(o, samples, out):
@@ -36,15 +31,6 @@ def cycles(o, samples, out):
     return children_cpu_s() - before
 
 
-def compare(o, a, b):
-    p = subprocess.run([o.weft, "diff", a, b, "--report-only"], stdout=subprocess.PIPE,
-                       stderr=subprocess.STDOUT, text=True)
-    m = re.search(r"PSNR ([0-9.inf]+) dB, SSIM ([0-9.]+)", p.stdout)
-    if not m:
-        sys.exit("weft diff said:\n" + p.stdout)
-    return float(m.group(1)), float(m.group(2))
-
-
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mesh", required=True)
@@ -52,7 +38,7 @@ def main():
     parser.add_argument("--weft", default="build/weft")
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--size", default="320x240")
-    parser.add_argument("--samples", default="16,32,64,128,256")
+    parser.add_argument("--samples", default="16,32,64,100,128,256")
     parser.add_argument("--reference-samples", type=int, default=1024)
     parser.add_argument("--work", default="/tmp/weft_cycles_sweep")
     o = parser.parse_args()
