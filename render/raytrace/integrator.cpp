@@ -14,7 +14,8 @@
 // map: at each hit, after the sun, one direction drawn from the map (luminance × sin θ) and one
 // cosine-weighted direction, combined by multiple importance sampling (Veach's power heuristic,
 // β = 2); the cosine direction also continues the path while bounces are left, else it is an
-// occlusion ray to infinity. Camera rays that miss show the map when it is the background.
+// occlusion ray to infinity. At the first hit both directions are stratified over the pixel's
+// samples (stratified_dimensions, sampling.h). Camera rays that miss show the map when it is the background.
 
 
 #include "render/raytrace/integrator.h"

@@ -5,9 +5,11 @@
 //      stay the same (only the vertex buffer is rewritten), objects likewise, the ground is a
 //      square under the camera target as the rasterizer's; commit (BVH build, one thread),
 //   3. a FrameView of the camera, lights and surfaces (integrator.h),
-//   4. the pool's threads (base/thread_pool.h) take 16×16 tiles in order and write their pixels'
-//      bytes; a pixel's value depends on its own samples only, so the image is the same for any
-//      thread count.
+//   4. the pool's threads (base/thread_pool.h) take 16×16 tiles in order and sample their
+//      pixels — with adaptive sampling in two passes, the second deciding each pixel's samples
+//      from the first pass's denoised image (adaptive_sampling.h) — then the denoiser and the
+//      bytes; a pixel's samples depend on its own index and the first pass only, so the image is
+//      the same for any thread count.
 
 #include "render/raytrace/ray_tracer.h"
 
