@@ -227,6 +227,7 @@ class FrameWriter {
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
     row.steps = m_simulator.take_step_statistics();
+    m_eta.add_simulated(frame.sim_s);  // before drawing: the drawing's ETA counts this frame
     // Every simulated frame's state, for weft render (its camera frames them all) or for drawing
     // the frames when the run ends; with remeshing, the mesh of each frame whose steps remeshed
     // the cloth (cloth_mesh_states.h).
@@ -260,7 +261,6 @@ class FrameWriter {
       }
       row.render_ms = milliseconds_since(start);
     }
-    m_eta.add_simulated(frame.sim_s);
     m_stats.write(row);
     m_rows.push_back(row);
     char detail[128];
