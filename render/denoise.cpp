@@ -43,7 +43,7 @@ class AtrousFilter {
     for (int y = 0; y < in.height; ++y) {
       for (int x = 0; x < in.width; ++x) {
         const std::size_t p = index(x, y);
-        m_filtered[p] = in.coverage[p] >= 1.0f;
+        m_filtered[p] = denoised_pixel(in, p);
         const float length = in.normal[p].norm();
         m_normal[p] = length > 0.0f ? Eigen::Vector3f(in.normal[p] / length) : Eigen::Vector3f::Zero();
         m_depth_gradient[p] = depth_gradient(x, y);
@@ -151,10 +151,11 @@ class AtrousFilter {
 }  // namespace
 
 std::vector<Eigen::Vector3f> denoise(const DenoiseInput& in, const DenoiseSettings& s,
-                                     base::ThreadPool* pool) {
+                                     base::ThreadPool* pool, std::vector<float>* variance) {
   const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
   WEFT_CHECK(in.radiance.size() == n && in.variance.size() == n && in.normal.size() == n &&
-                 in.albedo.size() == n && in.depth_m.size() == n && in.coverage.size() == n,
+                 in.albedo.size() == n && in.depth_m.size() == n && in.coverage.size() == n &&
+                 (in.mixed.empty() || in.mixed.size() == n),
              "denoise: every buffer must have width × height pixels");
   // Demodulate: the illumination is radiance / albedo (per channel, where the albedo is not 0).
   const auto safe = [](const Eigen::Vector3f& a) { return a.cwiseMax(Eigen::Vector3f::Constant(1e-3f)); };
@@ -167,6 +168,7 @@ std::vector<Eigen::Vector3f> denoise(const DenoiseInput& in, const DenoiseSettin
     for_rows(in.height, pool, [&](int y) { filter.filter_row(level, next, y, step); });
     std::swap(level, next);
   }
+  if (variance) *variance = level.variance;
   std::vector<Eigen::Vector3f> out(n);
   for (std::size_t p = 0; p < n; ++p)
     out[p] = filter.filtered(p) ? Eigen::Vector3f(level.illumination[p].cwiseProduct(safe(in.albedo[p])))

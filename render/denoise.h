@@ -11,6 +11,7 @@
 // fixed order, so the result is the same bits for any number of threads.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 namespace weft::base {
@@ -32,6 +33,11 @@ struct DenoiseInput {
   // Fraction of the samples that hit a surface: only pixels at 1 are filtered and taken as
   // neighbours (the background and the antialiased silhouette are kept as they are).
   std::vector<float> coverage;
+  // Per pixel (or empty: none), non-zero where the samples' first hits were on different
+  // surfaces or colours (PixelGuide::mixed): such a pixel is kept as it is and is no neighbour,
+  // as a partly covered one — its mean albedo and normal describe neither side, and filtering
+  // its illumination with its neighbours' darkens or lightens the edge.
+  std::vector<std::uint8_t> mixed;
 };
 
 struct DenoiseSettings {
@@ -43,8 +49,14 @@ struct DenoiseSettings {
 };
 
 // The denoised radiance (width × height). Bad input (sizes that do not match) is a bug here:
-// checked with WEFT_CHECK. `pool` may be null (one thread).
+// checked with WEFT_CHECK. `pool` may be null (one thread). `variance`, when given, receives
+// each pixel's variance of its illumination luminance after filtering (the input's where the
+// pixel is not filtered): what adaptive sampling asks of it.
 std::vector<Eigen::Vector3f> denoise(const DenoiseInput& input, const DenoiseSettings& settings,
-                                     base::ThreadPool* pool);
+                                     base::ThreadPool* pool, std::vector<float>* variance = nullptr);
+// Whether pixel p is filtered (and a neighbour): all its samples hit, none mixed.
+inline bool denoised_pixel(const DenoiseInput& in, std::size_t p) {
+  return in.coverage[p] >= 1.0f && (in.mixed.empty() || in.mixed[p] == 0);
+}
 
 }  // namespace weft::render

@@ -28,6 +28,15 @@ const RenderMesh& wireframe_mesh(const RenderMesh& mesh, RenderMesh& storage) {
   return storage;
 }
 
+// The frame progress reports of a back-end: the ray tracer's tiles; the rasterizer has none.
+template <class Backend>
+void forward_frame_progress(Backend&, Renderer::FrameProgress) {}
+#ifdef WEFT_WITH_EMBREE_RT
+void forward_frame_progress(RayTracer& tracer, Renderer::FrameProgress progress) {
+  tracer.set_frame_progress(std::move(progress));
+}
+#endif
+
 // Either back-end behind the interface, the cloth's rendering aids (subdivision, thickness;
 // render/cloth_surface.h) applied first, then the wireframe overlay over the frame and the
 // strain legend last.
@@ -54,6 +63,9 @@ class WithClothSurface final : public Renderer {
                                  settings, objects, which == MaskOf::cloth);
   }
   std::string description() const override { return m_backend.description(); }
+  void set_frame_progress(FrameProgress progress) override {
+    forward_frame_progress(m_backend, std::move(progress));
+  }
 
  private:
   Backend m_backend;

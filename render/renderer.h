@@ -6,6 +6,7 @@
 // (render/cloth_surface.h: subdivision, thickness shell). app/ includes this header and the
 // contract only, never a back-end's.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,11 @@ class Renderer {
   virtual Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
                            const std::vector<RenderObject>& objects, MaskOf which) = 0;
   virtual std::string description() const = 0;
+  // Called during render() with the share of the frame done so far (0..1, increasing; from the
+  // renderer's worker threads, one call at a time): the ray tracer reports its tiles, the
+  // rasterizer nothing. An empty function stops the reports.
+  using FrameProgress = std::function<void(double done)>;
+  virtual void set_frame_progress(FrameProgress progress) { (void)progress; }
 };
 
 // The renderer settings.renderer names; the rasterizer gets the GL context settings.gl names

@@ -69,7 +69,9 @@ void add_render_options(CLI::App& command, std::vector<Setting>& overrides) {
                       "occlusion, sheen; overrides render.renderer)");
   command.get_option("--renderer")->check(CLI::IsMember(render::renderer_choices()));
   add_override_option(command, "--samples", "render.raytrace.samples", overrides,
-                      "Ray tracer samples per pixel (overrides render.raytrace.samples)", "INT");
+                      "Ray tracer samples per pixel, the most with adaptive sampling (overrides "
+                      "render.raytrace.samples)",
+                      "INT");
   add_override_option(command, "--denoise", "render.raytrace.denoise", overrides,
                       "on (the default) or off: the ray tracer's edge-aware denoiser (overrides "
                       "render.raytrace.denoise)", "on|off");

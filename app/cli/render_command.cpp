@@ -12,6 +12,7 @@
 #include "app/run/frame_painter.h"
 #include "app/scene/json_reader.h"
 #include "app/io/progress.h"
+#include "app/run/run_eta.h"
 #include "app/run/renderer_choice.h"
 #include "app/run/saved_states.h"
 #include "app/scene/scene.h"
@@ -119,10 +120,14 @@ int run_render(const RenderOptions& options) {
   fs::create_directories(out);
   FramePainter painter(scene, *renderer, frame_mesh);
   Progress progress(stderr, static_cast<int>(selected.size()), "frame");
+  RunEta eta;
   for (std::size_t i = 0; i < selected.size(); ++i) {
     if (remeshed) frame_mesh = meshes.at(selected[i]);
+    const int left = static_cast<int>(selected.size() - i) - 1;
+    const FrameDrawingReport report(*renderer, progress, eta, static_cast<int>(i), selected[i], 0, left);
     painter.paint(selected[i], states[i], state_time_s(scene, selected[i]), out);
-    progress.update(static_cast<int>(i + 1));
+    eta.add_drawn(report.seconds());
+    progress.update(static_cast<int>(i + 1), {}, eta.seconds_left(0, left));
   }
   progress.finish();
   std::fprintf(stderr, "weft: rendered %zu frame%s (%d–%d every %d) from %s into %s\n",

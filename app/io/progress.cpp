@@ -27,9 +27,14 @@ double Progress::elapsed_s() const {
 
 void Progress::update(int done, const std::string& detail) {
   const double elapsed = elapsed_s();
-  const double eta = done > 0 ? elapsed * (m_total - done) / done : 0.0;
-  const std::string times = "elapsed " + format_duration(elapsed) +
-                            (done < m_total ? ", ETA " + format_duration(eta) : "");
+  update(done, detail, done > 0 ? elapsed * (m_total - done) / done : 0.0);
+}
+
+void Progress::update(int done, const std::string& detail, double eta) {
+  const double elapsed = elapsed_s();
+  const std::string times =
+      "elapsed " + format_duration(elapsed) +
+      (done < m_total ? ", ETA " + (eta >= 0.0 ? format_duration(eta) : std::string("?")) : "");
   if (m_terminal) {
     constexpr int width = 30;
     const int filled = m_total > 0 ? width * done / m_total : width;

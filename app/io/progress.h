@@ -14,6 +14,9 @@ class Progress {
   Progress(std::FILE* stream, int total, std::string label);
   // Reports that `done` of `total` items are finished; `detail` is appended (e.g. "t = 1.2 s").
   void update(int done, const std::string& detail = {});
+  // The same with the caller's estimate of the seconds left (negative: not known yet), for
+  // items of unequal cost (app/run/run_eta.h); may be called within an item, `done` unchanged.
+  void update(int done, const std::string& detail, double eta_s);
   // Ends the bar's line (on a terminal).
   void finish();
   double elapsed_s() const;

@@ -26,6 +26,7 @@
 #include "app/io/run_checkpoint.h"
 #include "app/report/run_report.h"
 #include "app/run/renderer_choice.h"
+#include "app/run/run_eta.h"
 #include "app/run/saved_states.h"
 #include "app/scene/scene.h"
 #include "app/scene/scene_inputs.h"
@@ -227,6 +228,7 @@ class FrameWriter {
     row.frame = frame.index;
     row.sim_ms = 1e3 * frame.sim_s;
     row.steps = m_simulator.take_step_statistics();
+    m_eta.add_simulated(frame.sim_s);  // before drawing: the drawing's ETA counts this frame
     // Every simulated frame's state, for weft render (its camera frames them all) or for drawing
     // the frames when the run ends; with remeshing, the mesh of each frame whose steps remeshed
     // the cloth (cloth_mesh_states.h).
@@ -252,8 +254,12 @@ class FrameWriter {
       extend_box(m_cloth_box, m_simulator.state().x);  // drawn by draw_kept_frames
     } else {
       const auto start = std::chrono::steady_clock::now();
-      if (m_options.selection.selects(frame.index, m_scene.frames))
+      if (m_options.selection.selects(frame.index, m_scene.frames)) {
+        const FrameDrawingReport report(m_renderer, m_progress, m_eta, frame.index - 1, frame.index,
+                                        m_scene.frames - frame.index, draws_after(frame.index));
         render_frame(*m_painter, frame.index, m_simulator.state().x, m_simulator.state().time_s);
+        m_eta.add_drawn(report.seconds());
+      }
       row.render_ms = milliseconds_since(start);
     }
     m_stats.write(row);
@@ -262,7 +268,8 @@ class FrameWriter {
     std::snprintf(detail, sizeof detail, "t = %.2f s, max strain %.2f %%%s", row.diagnostics.time_s,
                   100.0 * row.diagnostics.max_strain,
                   row.steps.unconverged_steps ? ", projection missed its tolerance" : "");
-    m_progress.update(frame.index, detail);
+    m_progress.update(frame.index, detail,
+                      m_eta.seconds_left(m_scene.frames - frame.index, draws_after(frame.index)));
     if (m_scene.sim.self_collision.enabled && row.self_intersections > 0) {
       m_crossing_frames.push_back(frame.index);
       if (m_scene.crossings == Scene::CrossingPolicy::error) {
@@ -271,6 +278,13 @@ class FrameWriter {
       }
     }
     return StreamControl::go_on;
+  }
+  // Frames still to draw after frame k while simulating (none when they are drawn later).
+  int draws_after(int k) const {
+    int n = 0;
+    if (m_draw_later) return 0;
+    for (int j = k + 1; j <= m_scene.frames; ++j) n += m_options.selection.selects(j, m_scene.frames);
+    return n;
   }
   // Ends the progress line (unless draw_kept_frames did) and writes the point cache.
   void finish() {
@@ -309,17 +323,23 @@ class FrameWriter {
     for (int k = m_first_kept_frame; k <= m_rows.back().frame; ++k)
       if (m_options.selection.selects(k, m_scene.frames)) selected.push_back(k);
     Progress progress(stderr, static_cast<int>(selected.size()), "draw");
+    RunEta eta;
     for (std::size_t i = 0; i < selected.size(); ++i) {
       const int k = selected[i];
       const auto start = std::chrono::steady_clock::now();
       if (remeshed) frame_mesh = meshes.at(k);
-      render_frame(painter, k, read_state(m_dir, k, frame_mesh.vertex_count()),
-                   state_time_s(m_scene, k));
+      const int left = static_cast<int>(selected.size() - i) - 1;
+      {
+        const FrameDrawingReport report(m_renderer, progress, eta, static_cast<int>(i), k, 0, left);
+        render_frame(painter, k, read_state(m_dir, k, frame_mesh.vertex_count()),
+                     state_time_s(m_scene, k));
+        eta.add_drawn(report.seconds());
+      }
       FrameStats& row = m_rows[static_cast<std::size_t>(k - 1)];
       WEFT_CHECK(row.frame == k, "stats.csv's row " + std::to_string(k) + " is of frame " +
                                      std::to_string(row.frame));
       row.render_ms = milliseconds_since(start);
-      progress.update(static_cast<int>(i + 1));
+      progress.update(static_cast<int>(i + 1), {}, eta.seconds_left(0, left));
     }
     progress.finish();
     m_stats.rewrite(m_rows);
@@ -410,6 +430,7 @@ class FrameWriter {
   std::vector<std::array<sim::Index, 2>> m_edges;
   long m_topology_remeshes = 0;
   Progress m_progress;
+  RunEta m_eta;  // the time left on m_progress's line
   std::vector<FrameStats> m_rows;
   PointCache m_cache;  // --export-cache: the frames so far
   std::vector<int> m_crossing_frames;

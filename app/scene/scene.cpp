@@ -454,6 +454,9 @@ render::Camera read_camera(ObjectReader r) {
 void read_raytrace(ObjectReader r, render::RayTraceSettings& t) {
   t.samples_per_pixel =
       static_cast<int>(r.integer("samples", t.samples_per_pixel, Range::closed(1, 65536)));
+  t.adaptive_error = r.number("adaptive_error", t.adaptive_error, Range::closed(0.0, 255.0));
+  t.adaptive_round =
+      static_cast<int>(r.integer("adaptive_round", t.adaptive_round, Range::closed(1, 65536)));
   t.bounces = static_cast<int>(r.integer("bounces", t.bounces, Range::closed(0, 64)));
   t.ao_samples = static_cast<int>(r.integer("ao_samples", t.ao_samples, Range::closed(0, 1024)));
   t.ao_distance_m = r.quantity("ao_distance", Quantity::length, t.ao_distance_m, Range::gt(0.0));

@@ -14,7 +14,8 @@
 // map: at each hit, after the sun, one direction drawn from the map (luminance × sin θ) and one
 // cosine-weighted direction, combined by multiple importance sampling (Veach's power heuristic,
 // β = 2); the cosine direction also continues the path while bounces are left, else it is an
-// occlusion ray to infinity. Camera rays that miss show the map when it is the background.
+// occlusion ray to infinity. At the first hit both directions are stratified over the pixel's
+// samples (stratified_dimensions, sampling.h). Camera rays that miss show the map when it is the background.
 
 
 #include "render/raytrace/integrator.h"
@@ -25,6 +26,7 @@
 #include <limits>
 
 #include "base/constants.h"
+#include "render/raytrace/adaptive_sampling.h"
 #include "render/raytrace/sampling.h"
 #include "render/raytrace/shading.h"
 
@@ -210,16 +212,15 @@ Eigen::Vector3f brdf(const FrameView& view, const Hit& hit, const Eigen::Vector3
   return f;
 }
 
-// The environment's light sample at `hit`: a direction drawn from the map, its shadow ray,
-// weighted against cosine sampling.
+// The environment's light sample at `hit` from u = (u1, u2) ∈ [0, 1)²: a direction drawn from
+// the map, its shadow ray, weighted against cosine sampling.
 Eigen::Vector3f environment_light(const FrameView& view, const Hit& hit,
-                                  const Eigen::Vector3f& to_viewer, Pcg32& rng,
+                                  const Eigen::Vector3f& to_viewer, const Eigen::Vector2f& u,
                                   RayCounts& counts) {
-  const float u1 = rng.next_float(), u2 = rng.next_float();  // drawn always: fixed stream use
   const EnvironmentLight& environment = *view.environment;
   if (!environment.map().samplable() || !(environment.intensity() > 0.0f))
     return Eigen::Vector3f::Zero();
-  const EnvironmentMap::Sample s = environment.sample(u1, u2);
+  const EnvironmentMap::Sample s = environment.sample(u.x(), u.y());
   const float cosine = hit.normal.dot(s.direction);
   if (!(s.pdf > 0.0f) || !(cosine > 0.0f) || !(s.direction.dot(hit.geometric) > 0.0f))
     return Eigen::Vector3f::Zero();
@@ -232,17 +233,20 @@ Eigen::Vector3f environment_light(const FrameView& view, const Hit& hit,
 }
 
 // Steps 2–3 under an environment map (see the top): radiance towards the camera from its first
-// hit.
+// hit. The first hit's map and cosine directions come from `strata` (stratified over the
+// pixel's samples, sampling.h), later hits' from `rng`; the stream's use is the same either way.
 Eigen::Vector3f environment_path(const FrameView& view, Hit hit, Eigen::Vector3f to_viewer,
-                                 Pcg32& rng, RayCounts& counts) {
+                                 const Eigen::Vector4f& strata, Pcg32& rng, RayCounts& counts) {
   const EnvironmentLight& environment = *view.environment;
   Eigen::Vector3f radiance = Eigen::Vector3f::Zero();
   Eigen::Vector3f throughput = Eigen::Vector3f::Ones();
   for (int depth = 0;; ++depth) {
     radiance += throughput.cwiseProduct(sun_light(view, hit, to_viewer, rng, counts));
-    radiance += throughput.cwiseProduct(environment_light(view, hit, to_viewer, rng, counts));
-    const float u1 = rng.next_float(), u2 = rng.next_float();
-    const Eigen::Vector3f next = cosine_hemisphere(hit.normal, u1, u2);
+    Eigen::Vector4f u;
+    for (int i = 0; i < 4; ++i) u[i] = rng.next_float();
+    if (depth == 0) u = strata;
+    radiance += throughput.cwiseProduct(environment_light(view, hit, to_viewer, u.head<2>(), counts));
+    const Eigen::Vector3f next = cosine_hemisphere(hit.normal, u[2], u[3]);
     const float cosine = hit.normal.dot(next);
     if (!(next.dot(hit.geometric) > 0.0f) || !(cosine > 0.0f)) break;
     // BRDF · cos / pdf, with pdf = cos / π, and the MIS weight against the map's sampling.
@@ -313,16 +317,10 @@ Eigen::Vector3f camera_direction(const FrameView& view, float px, float py) {
          (2.0f * py / static_cast<float>(view.height) - 1.0f) * view.up;
 }
 
-// What a camera sample met first, for the denoiser's guides.
-struct FirstHit {
-  bool hit = false;
-  Eigen::Vector3f normal, albedo;
-  float depth_m = 0.0f;
-};
-
 // Linear radiance of one camera sample through image point (px, py).
-Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& rng,
-                              RayCounts& counts, FirstHit& first) {
+Eigen::Vector3f render_sample(const FrameView& view, float px, float py,
+                              const Eigen::Vector4f& strata, Pcg32& rng, RayCounts& counts,
+                              FirstHit& first) {
   const Eigen::Vector3f direction = camera_direction(view, px, py);
   ++counts.camera;
   Hit hit;
@@ -343,9 +341,10 @@ Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& 
     hit.reflectance *= line_factor;
   }
   first.albedo = hit.reflectance;
+  first.surface = hit.surface;
 
   const Eigen::Vector3f radiance = view.environment
-                                      ? environment_path(view, hit, to_viewer, rng, counts)
+                                      ? environment_path(view, hit, to_viewer, strata, rng, counts)
                                       : sky_path(view, hit, to_viewer, rng, counts);
   if (!(background_weight > 0.0f)) return radiance;
   return (1.0f - background_weight) * radiance + background_weight * background(view, direction);
@@ -353,54 +352,66 @@ Eigen::Vector3f render_sample(const FrameView& view, float px, float py, Pcg32& 
 
 }  // namespace
 
-Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts,
-                             PixelGuide* guide) {
+void PixelState::add(const Eigen::Vector3f& radiance, const FirstHit& first) {
+  double l = luminance(radiance);
+  samples.add(radiance, l);
+  if (first.hit) {
+    // Another surface, or the other side or colour of it (by more than the denoiser's
+    // sigma_albedo): a pixel of an edge.
+    if (!first_surface) {
+      first_surface = first.surface;
+      first_albedo = first.albedo;
+    } else if (first.surface != first_surface ||
+               (first.albedo - first_albedo).cwiseAbs().maxCoeff() > 0.1f) {
+      guide_sums.mixed = true;
+    }
+    guide_sums.normal += first.normal;
+    guide_sums.albedo += first.albedo;
+    guide_sums.depth_m += first.depth_m;
+    guide_sums.coverage += 1.0f;
+    l /= std::max(luminance(first.albedo), 1e-3);
+  }
+  illumination_sum += l;
+  illumination_squares += l * l;
+}
+
+PixelGuide PixelState::guide() const {
+  PixelGuide g = guide_sums;
+  if (g.coverage > 0.0f) {
+    g.normal /= g.coverage;
+    g.albedo /= g.coverage;
+    g.depth_m /= g.coverage;
+  }
+  const auto n = static_cast<double>(samples.count());
+  if (n > 0.0) g.coverage /= static_cast<float>(n);
+  // Variance of the mean: the samples' unbiased variance over their count.
+  if (n > 1.0)
+    g.variance = static_cast<float>(
+        std::max(0.0, (illumination_squares - illumination_sum * illumination_sum / n) / (n - 1.0)) / n);
+  return g;
+}
+
+void add_pixel_samples(const FrameView& view, int x, int y, int count, PixelState& state,
+                       RayCounts& counts) {
   const std::uint64_t pixel_index =
       static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(view.width) +
       static_cast<std::uint64_t>(x);
-  // The pixel's own rotation of the sub-pixel pattern.
+  // The pixel's own rotations of the sub-pixel pattern and of the first hit's light samples.
   Pcg32 pixel_rng = sample_generator(pixel_index, 0xFFFFFFFFu, view.seed);
   const Eigen::Vector2f rotation(pixel_rng.next_float(), pixel_rng.next_float());
-
-  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-  PixelGuide g;
-  double l_sum = 0.0, l_squares = 0.0;  // the samples' illumination luminance (denoise.h)
-  for (int k = 0; k < view.samples_per_pixel; ++k) {
-    const auto sample = static_cast<std::uint32_t>(k);
-    const Eigen::Vector2f offset =
-        view.samples_per_pixel == 1 ? Eigen::Vector2f(0.5f, 0.5f) : pixel_offset(sample, rotation);
+  Eigen::Vector4f strata_rotation;
+  for (int i = 0; i < 4; ++i) strata_rotation[i] = pixel_rng.next_float();
+  for (int r = 0; r < count; ++r) {
+    const auto sample = static_cast<std::uint32_t>(state.samples.count());
+    const Eigen::Vector2f offset = view.samples_per_pixel == 1 ? Eigen::Vector2f(0.5f, 0.5f)
+                                                               : pixel_offset(sample, rotation);
     Pcg32 rng = sample_generator(pixel_index, sample, view.seed);
     FirstHit first;
-    const Eigen::Vector3f radiance = render_sample(view, static_cast<float>(x) + offset.x(),
-                                                   static_cast<float>(y) + offset.y(), rng, counts,
-                                                   first);
-    sum += radiance;
-    if (!guide) continue;
-    double l = luminance(radiance);
-    if (first.hit) {
-      g.normal += first.normal;
-      g.albedo += first.albedo;
-      g.depth_m += first.depth_m;
-      g.coverage += 1.0f;
-      l /= std::max(luminance(first.albedo), 1e-3);
-    }
-    l_sum += l;
-    l_squares += l * l;
+    const Eigen::Vector3f radiance = render_sample(
+        view, static_cast<float>(x) + offset.x(), static_cast<float>(y) + offset.y(),
+        stratified_dimensions(sample, strata_rotation), rng, counts, first);
+    state.add(radiance, first);
   }
-  const auto n = static_cast<float>(view.samples_per_pixel);
-  if (guide) {
-    if (g.coverage > 0.0f) {
-      g.normal /= g.coverage;
-      g.albedo /= g.coverage;
-      g.depth_m /= g.coverage;
-    }
-    g.coverage /= n;
-    // Variance of the mean: the samples' unbiased variance over their count.
-    if (view.samples_per_pixel > 1)
-      g.variance = static_cast<float>(std::max(0.0, (l_squares - l_sum * l_sum / n) / (n - 1.0)) / n);
-    *guide = g;
-  }
-  return sum / n;
 }
 
 const SurfaceShading* visible_surface(const FrameView& view, int x, int y) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/environment.h"
+#include "render/raytrace/adaptive_sampling.h"
 #include "render/raytrace/ray_tracer.h"
 #include "render/render_mesh.h"
 #include "render/render_settings.h"
@@ -70,7 +71,8 @@ struct FrameView {
   Eigen::Vector3f ground_center{0.0f, 0.0f, 0.0f};
   float ground_half_size_m = 0.0f;
 
-  int samples_per_pixel = 1, bounces = 0, ao_samples = 0;
+  int samples_per_pixel = 1, bounces = 0, ao_samples = 0;  // samples_per_pixel: the most
+  AdaptiveSampling adaptive;  // when a pixel stops short of samples_per_pixel
   float ao_distance_m = 0.0f;
   float sheen = 0.0f, sheen_roughness = 0.5f;
   std::uint32_t seed = 0;
@@ -80,16 +82,40 @@ struct FrameView {
 // What the denoiser (render/denoise.h) needs of a pixel, from its camera samples: the means of
 // the first hits' shading normal, reflectance (with the ground's grid lines) and distance over
 // the samples that hit, the fraction that hit, and the variance of the mean of the samples'
-// illumination luminance (radiance luminance / reflectance luminance; 0 with one sample).
+// illumination luminance (radiance luminance / reflectance luminance; 0 with one sample);
+// `mixed` when the samples' first hits are on different surfaces, or on different sides or
+// colours of one (a silhouette against the ground, a fold's edge, a texture's edge).
 struct PixelGuide {
   Eigen::Vector3f normal = Eigen::Vector3f::Zero(), albedo = Eigen::Vector3f::Zero();
   float depth_m = 0.0f, coverage = 0.0f, variance = 0.0f;
+  bool mixed = false;
 };
 
-// Mean linear radiance (RGB) of pixel (x, y) over its samples; adds the rays it traced. Fills
-// `guide` when given (the radiance is the same bits either way).
-Eigen::Vector3f render_pixel(const FrameView& view, int x, int y, RayCounts& counts,
-                             PixelGuide* guide = nullptr);
+// What a camera sample met first, for the denoiser's guides.
+struct FirstHit {
+  bool hit = false;
+  const SurfaceShading* surface = nullptr;
+  Eigen::Vector3f normal, albedo;
+  float depth_m = 0.0f;
+};
+
+// A pixel's camera samples so far (kept between adaptive sampling's passes): their radiance
+// and the sums behind its PixelGuide.
+struct PixelState {
+  PixelSamples samples;
+  PixelGuide guide_sums;  // sums over the samples that hit; `mixed` as it is
+  double illumination_sum = 0.0, illumination_squares = 0.0;  // radiance / albedo luminance
+  const SurfaceShading* first_surface = nullptr;  // the first sample's first hit
+  Eigen::Vector3f first_albedo = Eigen::Vector3f::Zero();
+
+  void add(const Eigen::Vector3f& radiance, const FirstHit& first);
+  PixelGuide guide() const;  // the means over the samples so far
+};
+
+// Adds `count` camera samples to pixel (x, y), continuing its own sequence of samples (sample
+// k of a pixel is the same whether taken in one pass or two); adds the rays it traced.
+void add_pixel_samples(const FrameView& view, int x, int y, int count, PixelState& state,
+                       RayCounts& counts);
 
 // The surface the camera ray through the centre of pixel (x, y) meets first; nullptr when it
 // meets none, or the ground where its rim has faded at least half into the background (the

@@ -5,15 +5,21 @@
 //      stay the same (only the vertex buffer is rewritten), objects likewise, the ground is a
 //      square under the camera target as the rasterizer's; commit (BVH build, one thread),
 //   3. a FrameView of the camera, lights and surfaces (integrator.h),
-//   4. the pool's threads (base/thread_pool.h) take 16×16 tiles in order and write their pixels'
-//      bytes; a pixel's value depends on its own samples only, so the image is the same for any
-//      thread count.
+//   4. the pool's threads (base/thread_pool.h) take 16×16 tiles in order and sample their
+//      pixels — with adaptive sampling in two passes, the second deciding each pixel's samples
+//      from the first pass's denoised image (adaptive_sampling.h) — then the denoiser and the
+//      bytes; a pixel's samples depend on its own index and the first pass only, so the image is
+//      the same for any thread count.
 
 #include "render/raytrace/ray_tracer.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -21,6 +27,7 @@
 #include "base/constants.h"
 #include "base/thread_pool.h"
 #include "render/denoise.h"
+#include "render/environment.h"
 #include "render/primitives.h"
 #include "render/raytrace/embree_scene.h"
 #include "render/raytrace/integrator.h"
@@ -40,6 +47,10 @@ void validate_raytrace(const RayTraceSettings& r) {
   };
   if (r.samples_per_pixel < 1 || r.samples_per_pixel > 65536)
     fail("samples_per_pixel must be in 1..65536, got " + std::to_string(r.samples_per_pixel));
+  if (!(r.adaptive_error >= 0.0 && r.adaptive_error <= 255.0))
+    fail("adaptive_error must be in [0, 255] display levels");
+  if (r.adaptive_round < 1 || r.adaptive_round > 65536)
+    fail("adaptive_round must be in 1..65536, got " + std::to_string(r.adaptive_round));
   if (r.bounces < 0 || r.bounces > 64)
     fail("bounces must be in 0..64, got " + std::to_string(r.bounces));
   if (r.ao_samples < 0 || r.ao_samples > 1024)
@@ -133,6 +144,8 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
       Eigen::Vector3d(s.camera.target.x(), s.camera.target.y(), s.ground_z_m).cast<float>();
   view.ground_half_size_m = static_cast<float>(s.ground_half_size_m);
   view.samples_per_pixel = s.raytrace.samples_per_pixel;
+  view.adaptive.max_error = static_cast<float>(s.raytrace.adaptive_error);
+  view.adaptive.round_samples = s.raytrace.adaptive_round;
   view.bounces = s.raytrace.bounces;
   view.ao_samples = s.raytrace.ao_samples;
   view.ao_distance_m = static_cast<float>(s.raytrace.ao_distance_m);
@@ -141,74 +154,147 @@ void set_lighting(const RenderSettings& s, rt::FrameView& view) {
   view.seed = s.raytrace.seed;
 }
 
-void resize_denoise_input(DenoiseInput& in, int width, int height) {
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+// The denoiser's input from the pixels' samples so far.
+DenoiseInput denoise_input(const std::vector<rt::PixelState>& pixels, int width, int height) {
+  DenoiseInput in;
   in.width = width;
   in.height = height;
+  const std::size_t n = pixels.size();
   in.radiance.resize(n);
   in.normal.resize(n);
   in.albedo.resize(n);
   in.depth_m.resize(n);
   in.coverage.resize(n);
   in.variance.resize(n);
+  in.mixed.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const rt::PixelGuide g = pixels[p].guide();
+    in.radiance[p] = pixels[p].samples.mean();
+    in.normal[p] = g.normal;
+    in.albedo[p] = g.albedo;
+    in.depth_m[p] = g.depth_m;
+    in.coverage[p] = g.coverage;
+    in.variance[p] = g.variance;
+    in.mixed[p] = g.mixed ? 1 : 0;
+  }
+  return in;
 }
 
-// Step 4: the pool's threads take the 16×16 tiles in order, one task per tile, and write their
-// pixels' bytes into `image` — through the denoiser (render/denoise.h) when the settings ask,
-// the tiles then filling its input first; returns the rays traced, counted per tile and summed
-// in tile order. The exception of the lowest failing tile is rethrown.
-// `pool` is made (again) when it does not have the threads the settings ask for.
-RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Image& image,
-                      std::unique_ptr<base::ThreadPool>& pool) {
-  const int width = image.width(), height = image.height();
-  const int tiles_x = (width + tile_side - 1) / tile_side;
-  const int tiles_y = (height + tile_side - 1) / tile_side;
-  const int tiles = tiles_x * tiles_y;
-  std::vector<RayCounts> counts(static_cast<std::size_t>(tiles));
-  std::uint8_t* const bytes = image.data();
-  const int threads = thread_count(r, tiles);
-  if (!pool || pool->size() != static_cast<std::size_t>(threads))
-    pool = std::make_unique<base::ThreadPool>(threads);
-  // Noise-free shading (normals) and single samples have nothing to denoise.
-  const bool denoised = r.denoise && view.samples_per_pixel > 1 && view.shading != Shading::normals;
-  DenoiseInput in;
-  if (denoised) resize_denoise_input(in, width, height);
-  pool->run(counts.size(), [&](std::size_t k) {
-    const int tile = static_cast<int>(k);
-    const int x0 = (tile % tiles_x) * tile_side, y0 = (tile / tiles_x) * tile_side;
-    const int x1 = std::min(x0 + tile_side, width), y1 = std::min(y0 + tile_side, height);
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        const std::size_t p = static_cast<std::size_t>(y) * width + x;
-        if (denoised) {
-          rt::PixelGuide g;
-          in.radiance[p] = rt::render_pixel(view, x, y, counts[k], &g);
-          in.normal[p] = g.normal;
-          in.albedo[p] = g.albedo;
-          in.depth_m[p] = g.depth_m;
-          in.coverage[p] = g.coverage;
-          in.variance[p] = g.variance;
-          continue;
-        }
-        const Eigen::Vector3f radiance = rt::render_pixel(view, x, y, counts[k]);
-        for (int c = 0; c < 3; ++c) bytes[3 * p + c] = rt::encode_channel(radiance[c]);
-      }
+// The 16×16 tiles of an image, run by the pool's threads in order, one task per tile; the
+// exception of the lowest failing tile is rethrown. Rays are counted per tile.
+class Tiles {
+ public:
+  Tiles(int width, int height, base::ThreadPool& pool)
+      : m_width(width), m_height(height), m_x((width + tile_side - 1) / tile_side),
+        m_y((height + tile_side - 1) / tile_side), m_pool(pool),
+        m_counts(static_cast<std::size_t>(m_x * m_y)) {}
+  int count() const { return m_x * m_y; }
+  // pixel(x, y, counts) for every pixel, tile by tile; then done(), one call at a time.
+  template <class Pixel, class Done>
+  void run(const Pixel& pixel, const Done& done) {
+    std::mutex mutex;
+    m_pool.run(m_counts.size(), [&](std::size_t k) {
+      const int tile = static_cast<int>(k);
+      const int x0 = (tile % m_x) * tile_side, y0 = (tile / m_x) * tile_side;
+      const int x1 = std::min(x0 + tile_side, m_width), y1 = std::min(y0 + tile_side, m_height);
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) pixel(x, y, m_counts[k]);
+      const std::lock_guard<std::mutex> lock(mutex);
+      done();
+    });
+  }
+  RayCounts total() const {  // summed in tile order
+    RayCounts t;
+    for (const RayCounts& c : m_counts) {
+      t.camera += c.camera;
+      t.shadow += c.shadow;
+      t.occlusion += c.occlusion;
+      t.bounce += c.bounce;
     }
-  });
-  if (denoised) {
-    const std::vector<Eigen::Vector3f> radiance = denoise(in, DenoiseSettings{}, pool.get());
-    for (std::size_t p = 0; p < radiance.size(); ++p)
-      for (int c = 0; c < 3; ++c) bytes[3 * p + c] = rt::encode_channel(radiance[p][c]);
+    return t;
   }
 
-  RayCounts total;
-  for (const RayCounts& c : counts) {
-    total.camera += c.camera;
-    total.shadow += c.shadow;
-    total.occlusion += c.occlusion;
-    total.bounce += c.bounce;
+ private:
+  int m_width, m_height, m_x, m_y;
+  base::ThreadPool& m_pool;
+  std::vector<RayCounts> m_counts;
+};
+
+// Adaptive sampling's decision (render/raytrace/adaptive_sampling.h): the samples each pixel
+// takes in all, from the first pass's pixels and, when denoising, the variance left after
+// filtering them.
+std::vector<int> samples_needed(const rt::FrameView& view, const std::vector<rt::PixelState>& pixels,
+                                const DenoiseInput* in, const std::vector<Eigen::Vector3f>& denoised,
+                                const std::vector<float>& filtered_variance) {
+  std::vector<int> needed(pixels.size());
+  for (std::size_t p = 0; p < pixels.size(); ++p) {
+    const rt::PixelSamples& samples = pixels[p].samples;
+    float mean = samples.luminance_mean(), error = samples.luminance_standard_error();
+    if (in && denoised_pixel(*in, p)) {
+      const Eigen::Vector3f albedo = in->albedo[p].cwiseMax(Eigen::Vector3f::Constant(1e-3f));
+      mean = static_cast<float>(luminance(denoised[p]));
+      error = std::sqrt(filtered_variance[p]) * static_cast<float>(luminance(albedo));
+    }
+    needed[p] = rt::samples_needed(samples.count(), rt::display_error(mean, error),
+                                   view.adaptive.max_error, view.samples_per_pixel);
   }
-  return total;
+  return needed;
+}
+
+// Step 4: the pool's threads take the tiles (Tiles) and sample their pixels: samples_per_pixel
+// each, or with adaptive sampling a first pass of round_samples and a second pass for the
+// pixels that need more. The bytes go into `image` — through the denoiser (render/denoise.h)
+// when the settings ask. Returns the rays traced. `pool` is made (again) when it does not have
+// the threads the settings ask for. `progress` (when set) hears the share of tiles done (both
+// passes' tiles, with adaptive sampling) after each tile, one call at a time.
+RayCounts trace_tiles(const rt::FrameView& view, const RayTraceSettings& r, Image& image,
+                      std::unique_ptr<base::ThreadPool>& pool,
+                      const std::function<void(double)>& progress) {
+  const int width = image.width(), height = image.height();
+  const int threads = thread_count(r, ((width + tile_side - 1) / tile_side) *
+                                          ((height + tile_side - 1) / tile_side));
+  if (!pool || pool->size() != static_cast<std::size_t>(threads))
+    pool = std::make_unique<base::ThreadPool>(threads);
+  Tiles tiles(width, height, *pool);
+  // Noise-free shading (normals) and single samples have nothing to denoise.
+  const bool denoised = r.denoise && view.samples_per_pixel > 1 && view.shading != Shading::normals;
+  const int first = view.adaptive.max_error > 0.0f
+                        ? std::min(view.samples_per_pixel, std::max(view.adaptive.round_samples, 1))
+                        : view.samples_per_pixel;
+  const int passes = first < view.samples_per_pixel ? 2 : 1;
+  int tiles_done = 0;
+  const auto tile_done = [&] {
+    if (progress) progress(static_cast<double>(++tiles_done) / (passes * tiles.count()));
+  };
+  std::vector<rt::PixelState> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  tiles.run([&](int x, int y, RayCounts& counts) {
+    rt::add_pixel_samples(view, x, y, first, pixels[static_cast<std::size_t>(y) * width + x], counts);
+  }, tile_done);
+  std::vector<float> filtered_variance;
+  DenoiseInput in;
+  std::vector<Eigen::Vector3f> radiance;
+  if (denoised) {
+    in = denoise_input(pixels, width, height);
+    radiance = denoise(in, DenoiseSettings{}, pool.get(), &filtered_variance);
+  }
+  if (passes == 2) {
+    const std::vector<int> needed =
+        samples_needed(view, pixels, denoised ? &in : nullptr, radiance, filtered_variance);
+    tiles.run([&](int x, int y, RayCounts& counts) {
+      const std::size_t p = static_cast<std::size_t>(y) * width + x;
+      rt::add_pixel_samples(view, x, y, needed[p] - pixels[p].samples.count(), pixels[p], counts);
+    }, tile_done);
+    if (denoised) {
+      in = denoise_input(pixels, width, height);
+      radiance = denoise(in, DenoiseSettings{}, pool.get());
+    }
+  }
+  std::uint8_t* const bytes = image.data();
+  for (std::size_t p = 0; p < pixels.size(); ++p) {
+    const Eigen::Vector3f value = denoised ? radiance[p] : pixels[p].samples.mean();
+    for (int c = 0; c < 3; ++c) bytes[3 * p + c] = rt::encode_channel(value[c]);
+  }
+  return tiles.total();
 }
 
 }  // namespace
@@ -220,6 +306,7 @@ struct RayTracer::Impl {
   std::vector<std::unique_ptr<rt::TriangleGeometry>> object_geometries;
   RayCounts last_counts;
   std::unique_ptr<base::ThreadPool> pool;  // the tiles' threads, kept from frame to frame
+  std::function<void(double)> progress;    // hears the tiles done (set_frame_progress)
 
   Image render(const RenderMesh& cloth, const RenderSettings& s,
                const std::vector<RenderObject>& objects);
@@ -298,7 +385,7 @@ Image RayTracer::Impl::render(const RenderMesh& cloth, const RenderSettings& s,
   FrameMeshes meshes;
   const rt::FrameView view = prepare(cloth, s, objects, meshes);
   Image image(s.width, s.height);
-  last_counts = trace_tiles(view, s.raytrace, image, pool);
+  last_counts = trace_tiles(view, s.raytrace, image, pool, progress);
   return image;
 }
 
@@ -339,6 +426,10 @@ Mask RayTracer::render_mask(const RenderMesh& cloth, const RenderSettings& setti
 std::string RayTracer::description() const {
   return "Embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) +
          "." + std::to_string(RTC_VERSION_PATCH) + " ray tracer";
+}
+
+void RayTracer::set_frame_progress(std::function<void(double done)> progress) {
+  m_impl->progress = std::move(progress);
 }
 
 RayCounts RayTracer::last_ray_counts() const {

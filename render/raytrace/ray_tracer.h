@@ -9,6 +9,7 @@
 // sample index, BVHs are built on one thread, so the bytes do not depend on the thread count.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +45,9 @@ class RayTracer {
   Mask render_mask(const RenderMesh& cloth, const RenderSettings& settings,
                    const std::vector<RenderObject>& objects, bool cloth_only);
   std::string description() const;
+  // Called after each 16×16 tile of render() with the share of tiles done (0..1, increasing),
+  // from the worker threads one call at a time; empty: no reports.
+  void set_frame_progress(std::function<void(double done)> progress);
   RayCounts last_ray_counts() const;
   // Embree geometries created for the cloth so far (its topology changed, or the first frame).
   int cloth_geometry_creations() const;

@@ -10,7 +10,15 @@
 namespace weft::render {
 
 struct RayTraceSettings {
-  int samples_per_pixel = 16;  // camera samples per pixel; 1: one ray through the pixel centre
+  // Camera samples per pixel: with adaptive sampling the most a pixel takes; 1: one ray through
+  // the pixel centre.
+  int samples_per_pixel = 256;
+  // Adaptive sampling (render/raytrace/adaptive_sampling.h): every pixel takes adaptive_round
+  // samples, then those whose standard error after denoising is above adaptive_error display
+  // levels (8-bit, of the luminance) take as many more as that error asks, up to
+  // samples_per_pixel; 0: every pixel takes samples_per_pixel.
+  double adaptive_error = 0.5;
+  int adaptive_round = 16;
   // 0: direct sun light + ambient occlusion (AO); N > 0: path tracing with N diffuse bounces
   // (the last vertex still takes the sky through AO).
   int bounces = 0;

@@ -59,6 +59,26 @@ inline Eigen::Vector2f pixel_offset(std::uint32_t k, const Eigen::Vector2f& rota
   return {static_cast<float>(x - std::floor(x)), static_cast<float>(y - std::floor(y))};
 }
 
+// The first hit's light and BSDF sample of camera sample k, (u1, u2, u3, u4) in [0, 1)⁴: the
+// 4-D Kronecker sequence of Roberts (2018), generators 1/φ₄^i with φ₄ the real root of
+// x⁵ = x + 1, shifted by a per-pixel rotation in [0, 1)⁴ (Cranley–Patterson). Any prefix of it
+// covers the square of each pair evenly, so a pixel's light samples are spread over the light
+// (soft shadows, bright spots of a map) rather than clumped, however many samples it takes.
+// Its generators differ from pixel_offset's, so the sub-pixel point and the light sample of one
+// camera sample are not correlated.
+inline Eigen::Vector4f stratified_dimensions(std::uint32_t k, const Eigen::Vector4f& rotation) {
+  constexpr double phi4 = 1.16730397826141868426;
+  Eigen::Vector4f u;
+  double alpha = 1.0;
+  for (int i = 0; i < 4; ++i) {
+    alpha /= phi4;
+    const double x = 0.5 + static_cast<double>(k) * alpha + rotation[i];
+    u[i] = static_cast<float>(x - std::floor(x));
+    if (u[i] >= 1.0f) u[i] = 0.99999994f;  // a float rounding up to 1
+  }
+  return u;
+}
+
 // An orthonormal basis (t, b, n) around a unit n (Duff et al. 2017, "Building an Orthonormal
 // Basis, Revisited", JCGT 6(1)).
 inline void orthonormal_basis(const Eigen::Vector3f& n, Eigen::Vector3f& t, Eigen::Vector3f& b) {

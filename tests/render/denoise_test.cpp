@@ -128,6 +128,38 @@ TEST(Denoise, NoiseFreePixelsAndUncoveredPixelsAreKept) {
   for (std::size_t p = 0; p < out.size(); ++p) ASSERT_EQ(out[p], in.radiance[p]) << p;
 }
 
+TEST(Denoise, MixedEdgePixelsAreKeptAndAreNoNeighbours) {
+  // The two columns at the surface edge are mixed (their samples hit both sides): their mean
+  // albedo and normal describe neither side.
+  const Case c{{0.8f, 0.2f, 0.2f}, {0.2f, 0.2f, 0.8f}, {0, 0, 1}, {1, 0, 0}, 1.0f, 1.0f, 0.2f};
+  DenoiseInput in = make_input(c);
+  in.mixed.assign(in.radiance.size(), 0);
+  for (int y = 0; y < image_side; ++y) {
+    for (const int x : {31, 32}) {
+      const std::size_t p = static_cast<std::size_t>(y * image_side + x);
+      in.mixed[p] = 1;
+      in.albedo[p] = Eigen::Vector3f(0.5f, 0.2f, 0.5f);
+    }
+  }
+  const std::vector<Eigen::Vector3f> out = denoise(in, DenoiseSettings{}, nullptr);
+  // Ten times brighter edge pixels change nothing else: they are nobody's neighbour.
+  DenoiseInput brighter = in;
+  for (std::size_t p = 0; p < in.radiance.size(); ++p)
+    if (in.mixed[p]) brighter.radiance[p] *= 10.0f;
+  const std::vector<Eigen::Vector3f> out_brighter = denoise(brighter, DenoiseSettings{}, nullptr);
+  int filtered = 0;
+  for (std::size_t p = 0; p < out.size(); ++p) {
+    if (in.mixed[p]) {
+      ASSERT_EQ(out[p], in.radiance[p]) << p;
+      ASSERT_EQ(out_brighter[p], brighter.radiance[p]) << p;
+    } else {
+      ASSERT_EQ(out[p], out_brighter[p]) << p;
+      filtered += out[p] != in.radiance[p];
+    }
+  }
+  EXPECT_GT(filtered, image_side * (image_side - 2) * 9 / 10);  // the rest is filtered
+}
+
 TEST(Denoise, SameBitsForAnyThreadCount) {
   const DenoiseInput in =
       make_input({{0.8f, 0.2f, 0.2f}, {0.2f, 0.2f, 0.8f}, {0, 0, 1}, {1, 0, 0}, 1.0f, 0.5f, 0.2f});
