@@ -98,7 +98,7 @@ double edge_mean_squared_error(int n, int i, int j, bool stratified) {
 
 TEST(RayTraceSampling, StratifiedLightSamplesHalveTheErrorOfAShadowEdge) {
   // The pairs the first hit uses: (0, 1) picks the map's direction, (2, 3) the cosine one.
-  for (const auto [i, j] : {std::pair{0, 1}, std::pair{2, 3}}) {
+  for (const auto& [i, j] : {std::pair{0, 1}, std::pair{2, 3}}) {
     for (const int n : {16, 64}) {
       const double random = edge_mean_squared_error(n, i, j, false);
       const double stratified = edge_mean_squared_error(n, i, j, true);
@@ -113,13 +113,13 @@ TEST(RayTraceSampling, StratifiedLightSamplesHalveTheErrorOfAShadowEdge) {
 RenderSettings furnace_settings(int samples, double adaptive_error) {
   RenderSettings s = test::view_from_above(48, 48);
   s.light_intensity = 0.0;
-  s.raytrace.sheen = 0.0;
+  s.cloth_surface.sheen = 0.0;
   s.raytrace.threads = 2;
   s.raytrace.samples_per_pixel = samples;
   s.raytrace.adaptive_error = adaptive_error;
   s.environment.map = std::make_shared<const EnvironmentMap>(
       32, 16, std::vector<Eigen::Vector3f>(32 * 16, Eigen::Vector3f::Constant(0.8f)));
-  s.front_color = s.back_color = Eigen::Vector3f::Constant(std::pow(0.5f, 1.0f / display_gamma));
+  s.front_color = Eigen::Vector3f::Constant(std::pow(0.5f, 1.0f / display_gamma));
   return s;
 }
 
@@ -166,7 +166,9 @@ TEST_F(RayTraceAdaptive, SameBytesForAnyThreadCount) {
     RayTracer tracer;
     images.push_back(tracer.render(cloth, s, {}));
     m_rendered.add("threads_" + std::to_string(threads), images.back());
-    if (threads > 1) EXPECT_EQ(tracer.last_ray_counts().camera, camera) << threads;
+    if (threads > 1) {
+      EXPECT_EQ(tracer.last_ray_counts().camera, camera) << threads;
+    }
     camera = tracer.last_ray_counts().camera;
   }
   EXPECT_GT(camera, 16u * 48 * 48);  // some pixels took more than the first pass
