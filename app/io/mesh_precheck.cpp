@@ -218,21 +218,30 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
       }
 }
 
-// An OBJ "vt" line's numbers must be finite as floats: assimp reads `vt nan 0` and `vt 1e39 0`
-// as `vt 0 0`, silently.
-void check_obj_texture_line(std::string_view line, std::uint64_t number, const std::string& name) {
-  std::istringstream words{std::string(line.substr(2))};
-  for (std::string word; words >> word;) {
+// An OBJ line's numbers from the `first`-th on (0-based, after the keyword) must be finite as
+// floats: assimp reads `vt nan 0` and `vt 1e39 0` as `vt 0 0`, silently, and so a colour or a
+// normal. (A vertex's position, its first three numbers, is checked after the import, for every
+// format.)
+void check_obj_numbers(std::string_view line, std::uint64_t number, const std::string& name,
+                       const char* what, int first) {
+  const std::string text(line);
+  const char* at = text.c_str() + text.find_first_of(" \t");
+  for (int k = 0;; ++k) {
+    while (*at == ' ' || *at == '\t' || *at == '\r') ++at;
+    if (*at == '\0' || *at == '#') return;  // the line's end, or a comment
+    const char* word = at;
+    while (*at != '\0' && *at != ' ' && *at != '\t' && *at != '\r') ++at;
+    if (k < first) continue;
     char* end = nullptr;
-    const double v = std::strtod(word.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
-      fail(name, "line " + std::to_string(number) + ": texture coordinates '" + std::string(line) +
-                     "': '" + word + "' is not a finite number (as a float)");
+    const double v = std::strtod(word, &end);
+    if (end != at || !std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
+      fail(name, "line " + std::to_string(number) + ": " + what + " '" + text + "': '" +
+                     std::string(word, at) + "' is not a finite number (as a float)");
   }
 }
 
-// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit, and checks its texture
-// coordinate ("vt ") lines.
+// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit, and checks the numbers
+// of its texture coordinate ("vt "), normal ("vn ") lines and vertex colours ("v x y z r g b").
 void check_obj_counts(std::string_view bytes, const std::string& name) {
   std::uint64_t v = 0, f = 0, number = 0;
   for (std::size_t at = 0; at < bytes.size();) {
@@ -243,8 +252,13 @@ void check_obj_counts(std::string_view bytes, const std::string& name) {
       v += line[0] == 'v';
       f += line[0] == 'f';
     }
-    if (line.size() > 2 && line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
-      check_obj_texture_line(line, number, name);
+    const auto keyword = [&](std::string_view word) {
+      return line.size() > word.size() && line.substr(0, word.size()) == word &&
+             (line[word.size()] == ' ' || line[word.size()] == '\t');
+    };
+    if (keyword("vt")) check_obj_numbers(line, number, name, "texture coordinates", 0);
+    if (keyword("vn")) check_obj_numbers(line, number, name, "normal", 0);
+    if (keyword("v")) check_obj_numbers(line, number, name, "vertex colour", 3);
     at = end + 1;
   }
   for (const auto& [count, what] : {std::pair{v, "vertices"}, std::pair{f, "faces"}})
