@@ -86,8 +86,9 @@ TEST_F(RenderCli, ARayTracedSequenceDrawnAsFourFrameRangesEqualsTheRunsFrames) {
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
 }
 
-// The script weft render --slurm writes is a bash script: run with SLURM_ARRAY_TASK_ID = 0..3,
-// as Slurm runs its array tasks, it draws the run's frames.
+// The script weft render --slurm writes is a bash script: run with SLURM_ARRAY_TASK_ID = 1..4,
+// as Slurm runs its array tasks (numbered from 1, as sweep's and gallery's), it draws the run's
+// frames; 0 and 5 are no task of it.
 TEST_F(RenderCli, ASlurmArrayScriptOfFourTasksDrawsTheRunsFrames) {
   const fs::path states = run("--renderer raytrace --samples 2");
   const fs::path out = m_dir / "slurm_out";
@@ -96,17 +97,19 @@ TEST_F(RenderCli, ASlurmArrayScriptOfFourTasksDrawsTheRunsFrames) {
                           out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_CONTAINS(r.output, "4 array tasks for 12 frames (not submitted: --dry-run)");
-  EXPECT_CONTAINS(r.output, "#SBATCH --array=0-3");
+  EXPECT_CONTAINS(r.output, "#SBATCH --array=1-4");
   const fs::path script = out / "slurm" / "render.sbatch";
   ASSERT_TRUE(fs::exists(script));
   EXPECT_CONTAINS(file_bytes(script), "'--frames' '10-12'");
   EXPECT_FALSE(fs::exists(out / numbered("frame", 1))) << "--dry-run draws nothing";
-  for (int task = 0; task < 4; ++task)
+  for (int task = 1; task <= 4; ++task)
     EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash " +
                            script.string() + " >/dev/null 2>&1").c_str()), 0) << task;
   for (int k = 1; k <= 12; ++k)
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
-  EXPECT_NE(std::system(("SLURM_ARRAY_TASK_ID=4 bash " + script.string() + " 2>/dev/null").c_str()), 0);
+  for (const char* task : {"0", "5"})
+    EXPECT_NE(std::system(("SLURM_ARRAY_TASK_ID=" + std::string(task) + " bash " + script.string() +
+                           " 2>/dev/null").c_str()), 0) << task;
 }
 
 TEST_F(RenderCli, BadRangesMissingStatesAndSimulationKeysAreRefused) {
