@@ -27,7 +27,8 @@ std::string first_non_finite_number(const Json& document, const std::string& whe
     return where.empty() ? "/" : where;
   if (document.is_object())
     for (const auto& [key, value] : document.items())
-      if (std::string at = first_non_finite_number(value, where + "/" + key); !at.empty()) return at;
+      if (std::string at = first_non_finite_number(value, where + "/" + key); !at.empty())
+        return at;
   if (document.is_array())
     for (std::size_t k = 0; k < document.size(); ++k)
       if (std::string at = first_non_finite_number(document[k], where + "/" + std::to_string(k));

@@ -250,8 +250,8 @@ void keep_weft_formats_only(Assimp::Importer& importer, const std::filesystem::p
 const aiScene* import_mesh(Assimp::Importer& importer, const std::filesystem::path& path,
                            bool triangulate) {
   const std::string name = path.string();
+  precheck_mesh_file(path);  // a missing file, a device or a folder is named as such first
   keep_weft_formats_only(importer, path);
-  precheck_mesh_file(path);
   auto* io = new ConfinedMeshIO(path);
   importer.SetIOHandler(io);  // the importer owns it
   const aiScene* scene = importer.ReadFile(name, 0u);

@@ -2,20 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "app/io/input_error.h"
+#include "base/format.h"
 
 namespace weft::app {
 
 namespace {
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
+std::string number(double value) { return base::format("%.3g", value); }
 
 // The cloth's used vertices: total mass, area, and the farthest from the origin.
 struct ClothExtent {
@@ -51,7 +47,8 @@ void check_energy_scale(const Scene& scene, const ClothExtent& e) {
         " kg/m^2 gives the cloth (" + number(e.area_m2) + " m^2) a mass of " + number(e.mass_kg) +
         " kg and energies up to " + number(energy_J) + " J (gravity " + number(g) +
         " m/s^2 over " + number(reach_m) + " m, speeds up to simulation.max_speed), more than " +
-        number(max_energy_scale_J) + " J, beyond what the simulation can add up; expected at most " +
+        number(max_energy_scale_J) +
+        " J, beyond what the simulation can add up; expected at most " +
         number(max_energy_scale_J / (per_kg * e.area_m2)) + " kg/m^2");
   const sim::Material& m = scene.material;
   const std::pair<const char*, double> stiffnesses[] = {{"stretch_warp", m.stretch_warp_N_m},

@@ -59,9 +59,9 @@ TEST_F(RenderCli, FramesDrawnFromSavedStatesAreTheBytesWeftRunWrote) {
   const fs::path out = m_dir / "render";
   const auto r = run_weft("render " + states.string() + " --frames 3-10 --every 3 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_CONTAINS(r.output, "rendered 3 frames (3–10 every 3)");
+  EXPECT_CONTAINS(r.output, "rendered 4 frames (3–10 every 3)");
   for (int k = 1; k <= 12; ++k) {
-    const bool selected = k == 3 || k == 6 || k == 9;
+    const bool selected = k == 3 || k == 6 || k == 9 || k == 10;  // and the range's last
     EXPECT_EQ(fs::exists(out / numbered("frame", k)), selected) << k;
     if (!selected) continue;
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
@@ -110,6 +110,19 @@ TEST_F(RenderCli, ASlurmArrayScriptOfFourTasksDrawsTheRunsFrames) {
   for (const char* task : {"0", "5"})
     EXPECT_NE(std::system(("SLURM_ARRAY_TASK_ID=" + std::string(task) + " bash " + script.string() +
                            " 2>/dev/null").c_str()), 0) << task;
+}
+
+// Without --out, weft render draws into DIR/render: DIR's own frames are the run's, which a
+// render with other settings used to overwrite.
+TEST_F(RenderCli, WithoutOutTheFramesGoToARenderFolderAndTheRunsStay) {
+  const fs::path states = run("");
+  const std::string before = file_bytes(states / numbered("frame", 2));
+  const auto r = run_weft("render " + states.string() + " --frames 2 --size 48x32");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "into " + (states / "render").string());
+  EXPECT_EQ(file_bytes(states / numbered("frame", 2)), before) << "the run's frame kept";
+  ASSERT_TRUE(fs::exists(states / "render" / numbered("frame", 2)));
+  EXPECT_NE(file_bytes(states / "render" / numbered("frame", 2)), before) << "48x32, not 96x64";
 }
 
 TEST_F(RenderCli, BadRangesMissingStatesAndSimulationKeysAreRefused) {
