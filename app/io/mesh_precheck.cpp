@@ -267,11 +267,43 @@ void check_obj_counts(std::string_view bytes, const std::string& name) {
                      std::to_string(max_mesh_elements) + " (the limit of weft's mesh files)");
 }
 
+// The little-endian uint32 at `at` (the caller checked that 4 bytes are there).
+std::uint32_t glb_word(std::string_view bytes, std::size_t at) {
+  std::uint32_t w = 0;
+  for (int k = 3; k >= 0; --k) w = w << 8 | static_cast<unsigned char>(bytes[at + k]);
+  return w;
+}
+
+// A GLB's header and chunk headers (glTF 2.0, "Binary glTF Layout"): assimp allocates a chunk's
+// declared length before it reads the chunk, so a JSON chunk said to be 2 GB in an 878-byte file
+// took 2 GB and 10 s before failing (found by fuzzing). Every length must fit in the file.
+void check_glb(std::string_view bytes, const std::string& name) {
+  if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF")
+    fail(name, "not a GLB file (it must start with the 12-byte header \"glTF\", version, length)");
+  const std::uint32_t version = glb_word(bytes, 4), length = glb_word(bytes, 8);
+  if (length > bytes.size())
+    fail(name, "the GLB header says " + std::to_string(length) + " bytes, but the file holds " +
+                   std::to_string(bytes.size()) + " (truncated, or a bogus length)");
+  if (version != 2) return;  // glTF 1's binary layout: one content length, checked by assimp
+  int chunk = 0;
+  for (std::size_t at = 12; at < length; ++chunk) {
+    if (length - at < 8)
+      fail(name, "GLB chunk " + std::to_string(chunk) + ": its 8-byte header runs past the end");
+    const std::uint32_t chunk_length = glb_word(bytes, at);
+    if (chunk_length > length - at - 8)
+      fail(name, "GLB chunk " + std::to_string(chunk) + " says " + std::to_string(chunk_length) +
+                     " bytes, but the file holds " + std::to_string(length - at - 8) +
+                     " after its header (truncated, or a bogus length)");
+    at += 8 + std::size_t{chunk_length};
+  }
+}
+
 }  // namespace
 
 void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
                          const std::string& name) {
   if (extension == ".obj") check_obj_counts(bytes, name);
+  if (extension == ".glb") check_glb(bytes, name);
   if (extension != ".ply") return;
   const PlyHeader h = read_ply_header(bytes, name);
   check_ply_counts(h, bytes.size() - h.body, name);

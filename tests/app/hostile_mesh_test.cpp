@@ -171,6 +171,30 @@ TEST(HostileMesh, NonFiniteTextureCoordinatesAreRefused) {
   }
 }
 
+// A GLB whose JSON chunk says 2 GB in a file of a few hundred bytes: assimp allocated the 2 GB
+// and took 10 s before failing (found by fuzz_mesh_glb). Refused from its headers, at once.
+TEST(HostileMesh, AGlbChunkLongerThanTheFileIsRefused) {
+  const fs::path d = dir();
+  const auto word = [](std::uint32_t w) {
+    std::string b;
+    for (int k = 0; k < 4; ++k) b += static_cast<char>(w >> (8 * k) & 0xFF);
+    return b;
+  };
+  const std::string json = R"({"asset":{"version":"2.0"}})";
+  const auto glb = [&](std::uint32_t chunk_length, std::uint32_t total) {
+    return std::string("glTF") + word(2) + word(total) + word(chunk_length) + "JSON" + json;
+  };
+  const auto total = static_cast<std::uint32_t>(20 + json.size());
+  write_text(d / "long.glb", glb(2037149844u, total));
+  EXPECT_CONTAINS(load_error(d / "long.glb"), (d / "long.glb").string() +
+                                                  ": GLB chunk 0 says 2037149844 bytes, but the "
+                                                  "file holds 27 after its header");
+  write_text(d / "total.glb", glb(static_cast<std::uint32_t>(json.size()), 1u << 30));
+  EXPECT_CONTAINS(load_error(d / "total.glb"), "the GLB header says 1073741824 bytes, but the file holds 47");
+  write_text(d / "magic.glb", "glTX" + word(2) + word(12));
+  EXPECT_CONTAINS(load_error(d / "magic.glb"), "not a GLB file");
+}
+
 TEST(HostileMesh, ADeviceOrAFolderIsNotAMeshFile) {
   EXPECT_CONTAINS(load_error("/dev/zero"), "/dev/zero: cannot read mesh file: not a regular file");
   EXPECT_CONTAINS(load_error(dir()), "not a regular file");
