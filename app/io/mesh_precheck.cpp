@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/io/gltf_precheck.h"
 #include "app/io/mesh_file.h"
 
 namespace weft::app {
@@ -277,14 +278,16 @@ std::uint32_t glb_word(std::string_view bytes, std::size_t at) {
 // A GLB's header and chunk headers (glTF 2.0, "Binary glTF Layout"): assimp allocates a chunk's
 // declared length before it reads the chunk, so a JSON chunk said to be 2 GB in an 878-byte file
 // took 2 GB and 10 s before failing (found by fuzzing). Every length must fit in the file.
-void check_glb(std::string_view bytes, const std::string& name) {
+// Returns the JSON chunk (the first, glTF 2), or nothing for glTF 1's layout.
+std::string_view check_glb(std::string_view bytes, const std::string& name) {
   if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF")
     fail(name, "not a GLB file (it must start with the 12-byte header \"glTF\", version, length)");
   const std::uint32_t version = glb_word(bytes, 4), length = glb_word(bytes, 8);
   if (length > bytes.size())
     fail(name, "the GLB header says " + std::to_string(length) + " bytes, but the file holds " +
                    std::to_string(bytes.size()) + " (truncated, or a bogus length)");
-  if (version != 2) return;  // glTF 1's binary layout: one content length, checked by assimp
+  if (version != 2) return {};  // glTF 1's binary layout: one content length, checked by assimp
+  std::string_view json;
   int chunk = 0;
   for (std::size_t at = 12; at < length; ++chunk) {
     if (length - at < 8)
@@ -294,8 +297,11 @@ void check_glb(std::string_view bytes, const std::string& name) {
       fail(name, "GLB chunk " + std::to_string(chunk) + " says " + std::to_string(chunk_length) +
                      " bytes, but the file holds " + std::to_string(length - at - 8) +
                      " after its header (truncated, or a bogus length)");
+    if (chunk == 0 && glb_word(bytes, at + 4) == 0x4E4F534Au)  // "JSON"
+      json = bytes.substr(at + 8, chunk_length);
     at += 8 + std::size_t{chunk_length};
   }
+  return json;
 }
 
 }  // namespace
@@ -303,7 +309,8 @@ void check_glb(std::string_view bytes, const std::string& name) {
 void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
                          const std::string& name) {
   if (extension == ".obj") check_obj_counts(bytes, name);
-  if (extension == ".glb") check_glb(bytes, name);
+  if (extension == ".glb") check_gltf_json(check_glb(bytes, name), name);
+  if (extension == ".gltf") check_gltf_json(bytes, name);
   if (extension != ".ply") return;
   const PlyHeader h = read_ply_header(bytes, name);
   check_ply_counts(h, bytes.size() - h.body, name);

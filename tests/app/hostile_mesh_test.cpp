@@ -195,6 +195,26 @@ TEST(HostileMesh, AGlbChunkLongerThanTheFileIsRefused) {
   EXPECT_CONTAINS(load_error(d / "magic.glb"), "not a GLB file");
 }
 
+// glTF accessors and primitives assimp trusts: an accessor of type "VEC7" behind a triangle
+// strip made it ask for 2^32 - 2 faces (64 GB), also when the JSON held bytes that are not UTF-8
+// (found by fuzz_mesh_gltf and fuzz_mesh_glb). Refused from the JSON first, naming the part.
+TEST(HostileMesh, AGltfAccessorOrPrimitiveAssimpWouldTripOnIsRefused) {
+  const fs::path d = dir();
+  const auto gltf = [](const std::string& type, int count, int mode, const std::string& extra) {
+    return R"({"asset":{"version":"2.0"},"accessors":[{"componentType":5126,"count":)" +
+           std::to_string(count) + R"(,"type":")" + type + R"("}],"meshes":[{"primitives":[{"mode":)" +
+           std::to_string(mode) + R"(,"attributes":{"POSITION":0}}]}])" + extra + "}";
+  };
+  write_text(d / "type.gltf", gltf("VEC7", 9, 5, ""));
+  EXPECT_CONTAINS(load_error(d / "type.gltf"), (d / "type.gltf").string() +
+                                                   ": glTF accessors[0]: type must be SCALAR");
+  write_text(d / "strip.gltf", gltf("VEC3", 2, 5, ""));
+  EXPECT_CONTAINS(load_error(d / "strip.gltf"),
+                  "glTF meshes[0].primitives[0]: mode 5 needs at least 3 vertices, got 2");
+  write_text(d / "utf8.gltf", gltf("VEC3", 9, 4, ",\"x\":\"\xe5\xe5\""));
+  EXPECT_CONTAINS(load_error(d / "utf8.gltf"), "glTF document weft cannot read: ");
+}
+
 TEST(HostileMesh, ADeviceOrAFolderIsNotAMeshFile) {
   EXPECT_CONTAINS(load_error("/dev/zero"), "/dev/zero: cannot read mesh file: not a regular file");
   EXPECT_CONTAINS(load_error(dir()), "not a regular file");
