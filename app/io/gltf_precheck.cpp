@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 
 #include "app/io/mesh_file.h"
@@ -51,10 +52,28 @@ void check_primitive(const nlohmann::json& p, const nlohmann::json& accessors,
                        std::to_string(accessors.size()));
     return accessors[index.get<std::size_t>()].value("count", 0LL);
   };
+  // The accessor types glTF 2.0 allows for an attribute or the indices (its "Meshes" section):
+  // assimp reads a POSITION of type VEC2 as three floats a vertex and dereferenced null (SIGSEGV
+  // in the Release build; found by fuzzing).
+  const auto check_type = [&](const nlohmann::json& index, const std::string& what,
+                              std::initializer_list<const char*> allowed) {
+    count_of(index);
+    const std::string type = accessors[index.get<std::size_t>()].value("type", "");
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* t) { return type == t; }))
+      refuse(name, where + ": " + what + " is accessor " + index.dump() + " of type " + type +
+                       ", not one glTF allows there");
+  };
   const auto attributes = p.find("attributes");
   if (attributes == p.end() || !attributes->is_object()) refuse(name, where + ": no attributes");
-  for (const auto& [key, index] : attributes->items()) count_of(index);
+  for (const auto& [key, index] : attributes->items()) {
+    if (key == "POSITION" || key == "NORMAL") check_type(index, key, {"VEC3"});
+    else if (key == "TANGENT") check_type(index, key, {"VEC4"});
+    else if (key.rfind("TEXCOORD_", 0) == 0) check_type(index, key, {"VEC2"});
+    else if (key.rfind("COLOR_", 0) == 0) check_type(index, key, {"VEC3", "VEC4"});
+    else count_of(index);
+  }
   const auto indices = p.find("indices");
+  if (indices != p.end()) check_type(*indices, "indices", {"SCALAR"});
   const long long vertices = indices != p.end() ? count_of(*indices)
                              : attributes->contains("POSITION") ? count_of((*attributes)["POSITION"])
                                                                 : 0;

@@ -108,7 +108,11 @@ TEST_F(HostileValuesCli, NonFiniteObjNormalsAndColoursAndOtherFormatsAreRefused)
   const std::vector<std::pair<std::string, std::string>> files = {
       {"normal.obj", faces + "vn 0 0 nan\nf 1//1 2//1 3//1\n"},
       {"colour.obj", "v 0 0 0 1 1e39 0\nv 0.2 0 0 1 0 0\nv 0 0.2 0 1 0 0\nf 1 2 3\n"},
-      {"cube.dae", "<?xml version=\"1.0\"?><COLLADA></COLLADA>\n"}};
+      {"cube.dae", "<?xml version=\"1.0\"?><COLLADA></COLLADA>\n"},
+      // Positions of type VEC2 crashed assimp (SIGSEGV) as a GLB; refused from the JSON.
+      {"flat.gltf", R"({"asset":{"version":"2.0"},"accessors":[{"componentType":5126,"count":3,)"
+                    R"("type":"VEC2"}],"meshes":[{"primitives":[{"mode":2,"attributes":)"
+                    R"({"POSITION":0}}]}]})"}};
   for (const auto& [name, text] : files) {
     std::ofstream(m_dir / name) << text;
     const fs::path scene = write_scene(
@@ -119,6 +123,7 @@ TEST_F(HostileValuesCli, NonFiniteObjNormalsAndColoursAndOtherFormatsAreRefused)
     const std::string why = name == "normal.obj"
                                 ? "line 4: normal 'vn 0 0 nan': 'nan' is not a finite number"
                             : name == "colour.obj" ? "line 1: vertex colour 'v 0 0 0 1 1e39 0'"
+                            : name == "flat.gltf"  ? "POSITION is accessor 0 of type VEC2"
                                                    : "expected an OBJ, PLY, STL, glTF or FBX file";
     EXPECT_CONTAINS(r.output, why);
     EXPECT_FALSE(fs::exists(m_dir / "o"));
