@@ -213,12 +213,15 @@ TEST(HostileMesh, AGltfAccessorOrPrimitiveAssimpWouldTripOnIsRefused) {
                   "glTF meshes[0].primitives[0]: mode 5 needs at least 3 vertices, got 2");
   write_text(d / "utf8.gltf", gltf("VEC3", 9, 4, ",\"x\":\"\xe5\xe5\""));
   EXPECT_CONTAINS(load_error(d / "utf8.gltf"), "glTF document weft cannot read: ");
-  // Positions of type VEC2 (a line loop through indices in a GLB: SIGSEGV inside assimp, in the
-  // Release build too; found by fuzz_mesh_glb).
-  write_text(d / "vec2.gltf", gltf("VEC2", 9, 2, ""));
+  // Positions of type VEC2 (found by fuzz_mesh_glb beside a line loop: SIGSEGV inside assimp,
+  // in the Release build too).
+  write_text(d / "vec2.gltf", gltf("VEC2", 9, 4, ""));
   EXPECT_CONTAINS(load_error(d / "vec2.gltf"),
                   "glTF meshes[0].primitives[0]: POSITION is accessor 0 of type VEC2, not one "
                   "glTF allows there");
+  // A line loop: assimp read one through indices past its data (SIGSEGV; fuzz_mesh_glb).
+  write_text(d / "loop.gltf", gltf("VEC3", 9, 2, ""));
+  EXPECT_CONTAINS(load_error(d / "loop.gltf"), "mode 2 (a line loop): weft reads triangles");
 }
 
 TEST(HostileMesh, ADeviceOrAFolderIsNotAMeshFile) {

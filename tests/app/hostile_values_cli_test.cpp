@@ -111,7 +111,7 @@ TEST_F(HostileValuesCli, NonFiniteObjNormalsAndColoursAndOtherFormatsAreRefused)
       {"cube.dae", "<?xml version=\"1.0\"?><COLLADA></COLLADA>\n"},
       // Positions of type VEC2 crashed assimp (SIGSEGV) as a GLB; refused from the JSON.
       {"flat.gltf", R"({"asset":{"version":"2.0"},"accessors":[{"componentType":5126,"count":3,)"
-                    R"("type":"VEC2"}],"meshes":[{"primitives":[{"mode":2,"attributes":)"
+                    R"("type":"VEC2"}],"meshes":[{"primitives":[{"mode":4,"attributes":)"
                     R"({"POSITION":0}}]}]})"}};
   for (const auto& [name, text] : files) {
     std::ofstream(m_dir / name) << text;
