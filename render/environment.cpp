@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,66 @@
 #include "render/image.h"
 
 namespace weft::render {
+
+namespace {
+
+// Why stb would make up pixels from a Radiance file's data, or "" when it is whole: stb reads
+// past the end as zeros (a truncated file gives black rows, not an error) and loops forever on
+// a run-length-encoded count of 0. Walks the data as stbi__hdr_load does; what stb refuses
+// itself (a wrong layout, a run too long for its scanline) is left to it.
+std::string radiance_data_problem(const std::string& bytes) {
+  std::size_t at = 0;
+  const auto next_line = [&](std::string& line) {
+    const std::size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) return false;
+    line = bytes.substr(at, end - at);
+    at = end + 1;
+    return true;
+  };
+  std::string line;
+  do {
+    if (!next_line(line)) return "the file ends in its header (a truncated file)";
+  } while (!line.empty());
+  if (!next_line(line)) return "the file ends before its resolution line (a truncated file)";
+  int width = 0, height = 0;
+  if (std::sscanf(line.c_str(), "-Y %d +X %d", &height, &width) != 2 || width <= 0 || height <= 0)
+    return "";
+  const auto truncated = [&](int row) {
+    return "the pixel data ends in scanline " + std::to_string(row + 1) + " of " +
+           std::to_string(height) + " (a truncated file)";
+  };
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(bytes[k]); };
+  const std::size_t flat_bytes = static_cast<std::size_t>(width) * height * 4;
+  if (width < 8 || width >= 32768)  // flat pixels, 4 bytes each
+    return bytes.size() - at < flat_bytes
+               ? truncated(static_cast<int>((bytes.size() - at) / 4 / static_cast<std::size_t>(width)))
+               : "";
+  for (int row = 0; row < height; ++row) {
+    if (bytes.size() - at < 4) return truncated(row);
+    if (byte(at) != 2 || byte(at + 1) != 2 || (byte(at + 2) & 0x80))  // flat pixels from here
+      return bytes.size() - at < flat_bytes ? truncated(row) : "";
+    if ((byte(at + 2) << 8 | byte(at + 3)) != width) return "";
+    at += 4;
+    for (int channel = 0; channel < 4; ++channel) {
+      for (int i = 0; i < width;) {
+        if (at >= bytes.size()) return truncated(row);
+        int count = byte(at++);
+        const bool run = count > 128;
+        if (run) count -= 128;
+        if (count == 0)
+          return "a run-length count of 0 in scanline " + std::to_string(row + 1) + " (corrupt)";
+        if (count > width - i) return "";
+        const std::size_t data = run ? 1 : static_cast<std::size_t>(count);
+        if (bytes.size() - at < data) return truncated(row);
+        at += data;
+        i += count;
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace
 
 double luminance(const Eigen::Vector3f& c) {
   return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
@@ -129,6 +190,8 @@ EnvironmentMap read_environment_map(const std::filesystem::path& path) {
     throw std::runtime_error("read_environment_map: '" + path.string() +
                              "': not a Radiance .hdr file (expected the header \"#?RADIANCE\" "
                              "or \"#?RGBE\"; an 8-bit image holds no radiance)");
+  if (const std::string why = radiance_data_problem(bytes); !why.empty())
+    throw std::runtime_error("read_environment_map: '" + path.string() + "': " + why);
   int width = 0, height = 0, channels = 0;
   std::unique_ptr<float, void (*)(void*)> pixels(
       stbi_loadf_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),

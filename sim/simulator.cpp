@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "base/check.h"
 #include "sim/cloth_remesh.h"
@@ -416,7 +417,8 @@ void Simulator::start_energy_guard() {
 }
 
 // A blow-up that stays finite (a step far above the critical one can swing the cloth to
-// 1000 % strain at bounded speed): the strain limit, and energy a passive cloth cannot gain.
+// 1000 % strain at bounded speed): the strain limit, and energy a passive cloth cannot gain;
+// and energies that overflow at finite positions.
 void Simulator::check_growth() const {
   for (const EdgeConstraint& e : m_warp_weft_edges) {
     const double strain = std::abs(edge_strain(m_state.x.row(e.a), m_state.x.row(e.b), e.rest_m));
@@ -427,8 +429,22 @@ void Simulator::check_growth() const {
       << " %; try a smaller time_step)";
     throw DivergenceError(m_steps, m_state.time_s, q.str());
   }
+  // Energies past what a double holds (a density or stiffness near 1e308) at finite positions:
+  // no non-finite number may reach stats.csv or another output.
+  const Diagnostics now = diagnostics();
+  const std::pair<const char*, double> quantities[] = {
+      {"kinetic energy", now.kinetic_energy_J}, {"elastic energy", now.elastic_energy_J},
+      {"gravity energy", now.gravity_energy_J}, {"total energy", now.total_energy_J()},
+      {"mean strain", now.mean_strain}};
+  for (const auto& [name, value] : quantities) {
+    if (std::isfinite(value)) continue;
+    std::ostringstream q;
+    q << "the " << name << " is " << value << " (beyond what a double holds: is the density or "
+      << "a stiffness absurd?)";
+    throw DivergenceError(m_steps, m_state.time_s, q.str());
+  }
   if (!m_start_energy_J) return;
-  const double gain_J = diagnostics().total_energy_J() - *m_start_energy_J;
+  const double gain_J = now.total_energy_J() - *m_start_energy_J;
   if (gain_J > m_energy_margin_J) {
     Index fastest = 0;
     m_state.v.rowwise().squaredNorm().maxCoeff(&fastest);

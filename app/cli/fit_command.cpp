@@ -73,13 +73,14 @@ int run_fit_command(const FitOptions& options) {
                  e.failure.empty() ? "" : (" diverged: " + e.failure).c_str());
   };
   const FitResult result = run_fit(problem, on_evaluation);
-  // A target no evaluation could be compared with (a point cloud at 1e300 m) used to end with
-  // exit 0, reporting the start as the fit.
-  if (!std::isfinite(result.best.objective))
+  // A target no evaluation could be compared with (a point cloud at 1e300 m), or a scene that
+  // diverged at every evaluation, used to end with exit 0, reporting the start as the fit.
+  if (!result.best.failure.empty())
     throw InputError(spec.source + ": target: none of the " +
                      std::to_string(result.evaluations.size()) +
-                     " evaluations gave a finite objective (is the target in the scene's units "
-                     "and frame?); nothing was fitted (fit.csv lists them)");
+                     " evaluations gave a finite objective (the best: " + result.best.failure +
+                     "; is the target in the scene's units and frame?); nothing was fitted "
+                     "(fit.csv lists them)");
   const FitOutputs outputs = write_fit_outputs(dir, problem, result, options.command_line);
 
   std::printf("weft: fit %s: %s after %zu evaluations (%s)\n", spec.name.c_str(),

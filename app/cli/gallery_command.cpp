@@ -231,7 +231,6 @@ int submit_gallery(const GalleryOptions& options, const std::vector<fs::path>& f
   const fs::path slurm_dir = fs::absolute(options.out / "slurm");
   SlurmArray array;
   array.job_name = "weft-gallery";
-  array.first_index = 1;  // task K renders scene K of the list
   array.log_dir = slurm_dir;
   array.chdir = fs::current_path();
   std::vector<TaskWork> works;

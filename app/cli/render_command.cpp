@@ -14,6 +14,7 @@
 #include "app/io/progress.h"
 #include "app/run/run_eta.h"
 #include "app/run/renderer_choice.h"
+#include "app/run/run_job.h"
 #include "app/run/saved_states.h"
 #include "app/scene/scene.h"
 #include "app/cluster/slurm_job.h"
@@ -91,18 +92,19 @@ int run_render(const RenderOptions& options) {
   const auto vertices_of = [&](int k) {
     return remeshed ? meshes.at(k).vertex_count() : mesh.vertex_count();
   };
-  std::vector<int> selected;
-  for (int k = first; k <= last; k += options.every) selected.push_back(k);
-  const fs::path out = options.out.value_or(options.states);
+  const std::vector<int> selected = every_nth_frames(first, last, options.every);
+  // Not DIR itself: its frames are the run's own (weft run's preview, or the frames it drew),
+  // which a render with other settings used to overwrite.
+  const fs::path out = options.out.value_or(options.states / default_render_folder);
   refuse_overwriting_inputs(out, {{}, {{"frame", "png"}, {"mask", "png"}}}, scene_files(scene));
   if (options.slurm) return submit_render(options, scene, mesh.vertex_count(), selected, out);
   // Each state file is read once: without a camera every frame's, for weft run's framing (the
   // cloth over frames 0..N), keeping the selected ones; otherwise only the selected ones.
   std::vector<sim::Matrix3X> states(selected.size());
   const auto selected_index = [&](int k) {
-    return k >= first && k <= last && (k - first) % options.every == 0
-               ? static_cast<std::size_t>((k - first) / options.every)
-               : selected.size();
+    const auto at = std::lower_bound(selected.begin(), selected.end(), k);
+    return at != selected.end() && *at == k ? static_cast<std::size_t>(at - selected.begin())
+                                            : selected.size();
   };
   if (!scene.camera_given) {
     Eigen::AlignedBox3d box;
@@ -145,9 +147,10 @@ Command register_render(CLI::App& app, const std::string&) {
   cmd->add_option("--scene", o->scene,
                   "The run's scene file (default: DIR/scene.json; give the original where the "
                   "scene names files by relative paths)");
-  cmd->add_option("--out", o->out, "Output folder (default: DIR, beside the states)");
+  cmd->add_option("--out", o->out, "Output folder (default: DIR/render, beside the states; DIR's "
+                                    "own frames are the run's)");
   cmd->add_option("--frames", o->frames, "Frames to draw, A-B or A (default: all)")->type_name("A-B");
-  check_range(cmd->add_option("--every", o->every, "Draw every Nth frame from A"),
+  check_range(cmd->add_option("--every", o->every, "Draw every Nth frame from A, and B"),
               Range::closed(1, 100000));
   add_set_option(*cmd, o->overrides);
   add_size_option(*cmd, o->overrides, "Image size WIDTHxHEIGHT (overrides render.size)");

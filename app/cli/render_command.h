@@ -16,12 +16,15 @@
 
 namespace weft::app {
 
+// The default output folder inside the run's folder: `weft render DIR` writes DIR/render/.
+inline constexpr const char* default_render_folder = "render";
+
 struct RenderOptions {
   std::filesystem::path states;              // the run's output folder
   std::optional<std::filesystem::path> scene;  // default: states/scene.json
-  std::optional<std::filesystem::path> out;    // default: the states' folder
+  std::optional<std::filesystem::path> out;    // default: states/render (default_render_folder)
   std::string frames;                        // "A-B" or "A"; empty: every frame of the scene
-  int every = 1;                             // every Nth frame from A
+  int every = 1;                             // every Nth frame from A, and B
   std::vector<Setting> overrides;            // render.*, output.alpha and output.mask only
   std::optional<int> threads;
   // --slurm: write OUT/slurm/render.sbatch, a job array of `tasks` tasks each drawing one

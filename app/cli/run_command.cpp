@@ -46,7 +46,7 @@ Command register_run(CLI::App& app, const std::string& command_line) {
       cmd->add_option("--end", f.end, "Last frame to render and write (default: the last)"),
       Range::closed(1, 100000));
   CLI::Option* every = check_range(
-      cmd->add_option("--every", f.every, "Render and write every Nth frame from --start"),
+      cmd->add_option("--every", f.every, "Render and write every Nth frame from --start, and the last"),
       Range::closed(1, 100000));
   cmd->add_flag("--last", f.last_only,
                 "Render and write only the final frame (every frame is still simulated)")
@@ -64,13 +64,14 @@ Command register_run(CLI::App& app, const std::string& command_line) {
   cmd->add_option_function<std::string>(
       "--export-cache",
       [o](const std::string& text) { o->export_cache = parse_cache_formats(text, "--export-cache"); },
-      "Also write cloth.obj (frame 1's topology) and every frame as cloth.pc2 / cloth.mdd point "
-      "caches and/or an animated cloth.gltf (morph targets): pc2, mdd, gltf or a list, e.g. "
-      "pc2,gltf (y up; docs/export.md)");
+      "Also write cloth.obj + cloth.mtl (the start, frame 0, in the cloth's colour) and frames "
+      "0..N as cloth.pc2 / cloth.mdd point caches and/or an animated cloth.gltf (morph "
+      "targets): pc2, mdd, gltf or a list, e.g. pc2,gltf (y up; sample k is frame k; "
+      "docs/export.md)");
   cmd->add_option_function<std::string>(
       "--up", [o](const std::string& text) { o->up = parse_up_axis(text, "--up"); },
       "Up axis of the exported OBJ/PLY: y (default; Blender's OBJ import, as glTF) or z (weft's "
-      "frame)")->check(CLI::IsMember({"y", "z"}));
+      "frame; for Blender's PLY import, which turns no axes)")->check(CLI::IsMember({"y", "z"}));
   cmd->add_flag_callback(
       "--mask", [o] { o->overrides.push_back({"output.mask", "true", "--mask"}); },
       "Also write mask_0001.png, ...: the cloth's mask from the renderer's geometry (white = "

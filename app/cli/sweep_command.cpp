@@ -81,7 +81,6 @@ int submit_sweep(const SweepOptions& options, const std::vector<SweepRun>& runs,
   }
   SlurmArray array;
   array.job_name = "weft-sweep";
-  array.first_index = 1;  // task K is run K, the row of sweep.csv
   array.log_dir = slurm_dir;
   array.resources = estimate_resources(works, options.threads.value_or(1));
   for (std::size_t k = 1; k <= runs.size(); ++k)
@@ -222,7 +221,8 @@ Command register_sweep(CLI::App& app, const std::string& command_line) {
   add_threads_option(*cmd, o->threads);
   cmd->add_option("--reference", o->reference,
                   "Run number (row of sweep.csv) the errors are measured against (default: the "
-                  "finished run with the largest wall time, taken as the most accurate)");
+                  "finest finished run: most cloth vertices, then most steps; the first of "
+                  "equals)");
   CLI::Option* slurm = add_slurm_flags(
       *cmd, o->slurm, o->dry_run,
       "Write OUT/slurm/sweep.sbatch (a Slurm job array, one task per point) and "

@@ -85,9 +85,9 @@ std::string shell_quoted(const std::string& word) {
 
 std::string slurm_array_script(const SlurmArray& a) {
   if (a.tasks.empty()) throw std::invalid_argument("slurm_array_script: no tasks");
-  const std::string first = std::to_string(a.first_index);
-  const std::string last = std::to_string(a.first_index + static_cast<int>(a.tasks.size()) - 1);
-  if (a.first_index + static_cast<long>(a.tasks.size()) - 1 > max_slurm_array_index)
+  const std::string first = std::to_string(first_slurm_array_index);
+  const std::string last = std::to_string(first_slurm_array_index + static_cast<int>(a.tasks.size()) - 1);
+  if (first_slurm_array_index + static_cast<long>(a.tasks.size()) - 1 > max_slurm_array_index)
     throw InputError(std::to_string(a.tasks.size()) + " tasks from index " + first +
                      ": more than a Slurm array holds (sbatch's default MaxArraySize of 1001 "
                      "allows indices up to 1000); split the work");
@@ -101,7 +101,7 @@ std::string slurm_array_script(const SlurmArray& a) {
   s += "set -eu\n";
   s += "case \"${SLURM_ARRAY_TASK_ID:?set by Slurm: the task to run}\" in\n";
   for (std::size_t i = 0; i < a.tasks.size(); ++i)
-    s += "  " + std::to_string(a.first_index + static_cast<int>(i)) + ") exec " +
+    s += "  " + std::to_string(first_slurm_array_index + static_cast<int>(i)) + ") exec " +
          command_words(a.tasks[i]) + " ;;\n";
   s += "  *) echo \"weft: no task $SLURM_ARRAY_TASK_ID in this array (" + first + "-" + last +
        ")\" >&2; exit 1 ;;\n";

@@ -19,7 +19,6 @@ namespace weft::app {
 struct SlurmArray {
   std::string job_name;                         // #SBATCH --job-name
   std::vector<std::vector<std::string>> tasks;  // each task's argv (argv[0]: the program)
-  int first_index = 0;                          // task k of `tasks` has array index first_index + k
   std::filesystem::path log_dir;                // task i logs to log_dir/<job_name>_<i>.log
   SlurmResources resources;                     // per task
   std::filesystem::path chdir;                  // #SBATCH --chdir, if not empty
@@ -33,6 +32,9 @@ struct SlurmJob {
   std::filesystem::path chdir;  // #SBATCH --chdir, if not empty
 };
 
+// Array tasks are numbered from 1, as weft numbers frames, runs and scenes: task k (from 1) runs
+// `tasks[k - 1]` (render: the k-th part of the frames, sweep: run k, gallery: scene k).
+inline constexpr int first_slurm_array_index = 1;
 // The largest array index sbatch accepts with Slurm's default MaxArraySize (1001).
 inline constexpr int max_slurm_array_index = 1000;
 

@@ -23,6 +23,18 @@ namespace {
 // The objective of a diverged evaluation: worse than any real one, finite for the optimiser.
 constexpr double kFailedObjective = 1e12;
 
+// An objective or measure past what a double holds (a target far beyond the cloth) fails the
+// evaluation: fit.csv and the report get no non-finite number, and the optimiser a finite one.
+void refuse_non_finite(Evaluation& e) {
+  std::string what = std::isfinite(e.objective) ? "" : "objective";
+  for (const auto& [name, value] : e.measures)
+    if (what.empty() && !std::isfinite(value)) what = name;
+  if (what.empty()) return;
+  if (e.failure.empty()) e.failure = "the " + what + " is not a finite number";
+  e.objective = kFailedObjective;
+  e.measures.clear();
+}
+
 sim::Vec3 mean_position(const sim::Matrix3X& x, const std::vector<sim::Index>& vertices) {
   sim::Vec3 sum = sim::Vec3::Zero();
   for (const sim::Index v : vertices) sum += x.row(v).transpose();
@@ -176,6 +188,7 @@ Evaluation FitProblem::evaluate(const std::vector<double>& values) {
     e.failure = error.what();
     e.objective = kFailedObjective;
   }
+  refuse_non_finite(e);
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return e;
 }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/report/contact_sheet.h"
+#include "app/io/finite_outputs.h"
 #include "app/io/output_files.h"
 #include "app/io/version.h"
 #include "base/html_escape.h"
@@ -236,6 +237,7 @@ FitOutputs write_fit_outputs(const fs::path& dir, FitProblem& problem, const Fit
     outputs.drape_check = check_fitted_drape(problem, r.best.values);
     result["drape_photos"] = fitted_drape_json(*outputs.drape_check);
   }
+  require_finite_json(result, (dir / "fit_result.json").string());
   write_text(dir / "fit_result.json", result.dump(2) + "\n");
   write_text(dir / "fitted_scene.json", problem.scene_at(r.best.values).text);
   write_text(dir / "fit.txt", "weft " + std::string(version()) + "\ncommand: " + command_line +

@@ -2,15 +2,19 @@
 
 #include "app/io/mesh_file.h"
 
+#include <assimp/BaseImporter.h>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -90,13 +94,19 @@ class MeshMerger {
                             std::to_string(mesh_index) + " has texture coordinates (" +
                             std::to_string(t.x()) + ", " + std::to_string(t.y()) +
                             "), not finite numbers");
+      const Eigen::Vector3d colour =
+          mesh.HasVertexColors(0)
+              ? Eigen::Vector3d(mesh.mColors[0][v].r, mesh.mColors[0][v].g, mesh.mColors[0][v].b)
+              : Eigen::Vector3d::Zero();
+      if (!colour.allFinite())  // pins by colour compare it
+        throw MeshFileError(m_name + ": vertex " + std::to_string(v) + " of mesh " +
+                            std::to_string(mesh_index) + " has the colour (" +
+                            std::to_string(colour.x()) + ", " + std::to_string(colour.y()) +
+                            ", " + std::to_string(colour.z()) + "), not finite numbers");
       if (inserted) {
         m_positions.push_back(p);
         m_uv.push_back(t);
-        m_colour.push_back(mesh.HasVertexColors(0)
-                               ? Eigen::Vector3d(mesh.mColors[0][v].r, mesh.mColors[0][v].g,
-                                                 mesh.mColors[0][v].b)
-                               : Eigen::Vector3d::Zero());
+        m_colour.push_back(colour);
       } else if (mesh.HasTextureCoords(0) && m_uv[static_cast<std::size_t>(it->second)] != t &&
                  m_out.uv_seam_vertex < 0) {
         m_out.uv_seam_vertex = it->second;
@@ -158,7 +168,8 @@ void precheck_mesh_file(const std::filesystem::path& path) {
   const std::string why = why_not_a_readable_file(path, max_mesh_file_bytes);
   if (!why.empty()) throw MeshFileError(name + ": cannot read mesh file: " + why);
   const std::string extension = lower_extension(path);
-  if (extension != ".ply" && extension != ".obj") return;
+  if (extension != ".ply" && extension != ".obj" && extension != ".glb" && extension != ".gltf")
+    return;  // STL and FBX: assimp's checks alone
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   precheck_mesh_bytes(bytes, extension, name);
@@ -209,6 +220,29 @@ bool has_polygons(const aiScene& scene) {
   return false;
 }
 
+// Refuses a file whose extension is not one of mesh_file_extensions, and removes from the
+// importer (and deletes: UnregisterLoader does not) every importer that reads none of them.
+void keep_weft_formats_only(Assimp::Importer& importer, const std::filesystem::path& path) {
+  const auto weft_reads = [](const std::string& extension) {
+    return std::any_of(std::begin(mesh_file_extensions), std::end(mesh_file_extensions),
+                       [&](const char* e) { return extension == e; });
+  };
+  const std::string extension = lower_extension(path);
+  if (!weft_reads(extension))
+    throw MeshFileError(path.string() + ": cannot read mesh file: expected an OBJ, PLY, STL, glTF "
+                        "or FBX file (.obj, .ply, .stl, .gltf, .glb or .fbx), got '" +
+                        extension + "'");
+  for (std::size_t k = importer.GetImporterCount(); k-- > 0;) {
+    std::istringstream words(importer.GetImporterInfo(k)->mFileExtensions);
+    bool reads_one = false;
+    for (std::string word; words >> word;) reads_one = reads_one || weft_reads("." + word);
+    if (reads_one) continue;
+    Assimp::BaseImporter* other = importer.GetImporter(k);
+    importer.UnregisterLoader(other);
+    delete other;
+  }
+}
+
 // The file imported and post-processed: checked by precheck_mesh_file first, read through
 // ConfinedMeshIO (no companion outside the file's folder), checked again as imported, then
 // post-processed (validated first; polygons triangulated or not; identical vertices joined
@@ -217,7 +251,8 @@ bool has_polygons(const aiScene& scene) {
 const aiScene* import_mesh(Assimp::Importer& importer, const std::filesystem::path& path,
                            bool triangulate) {
   const std::string name = path.string();
-  precheck_mesh_file(path);
+  precheck_mesh_file(path);  // a missing file, a device or a folder is named as such first
+  keep_weft_formats_only(importer, path);
   auto* io = new ConfinedMeshIO(path);
   importer.SetIOHandler(io);  // the importer owns it
   const aiScene* scene = importer.ReadFile(name, 0u);

@@ -38,6 +38,13 @@ struct TriangleMesh {
 // MeshFileError naming the file and what is wrong.
 TriangleMesh load_triangle_mesh(const std::filesystem::path& path);
 
+// The formats weft reads, by extension (any case): OBJ, PLY, STL, glTF (.gltf, .glb) and FBX.
+// A file of another extension is refused before it is read, and the importer weft uses holds
+// assimp's importers of these formats alone, so that assimp's sniffing of a file's content
+// reaches no other (its 40-odd other readers are not fuzzed: docs/reliability.md).
+inline constexpr const char* mesh_file_extensions[] = {".obj", ".ply", ".stl", ".gltf", ".glb",
+                                                       ".fbx"};
+
 // A mesh read with its polygons as the file gives them (for the cloth: a quad grid is kept as
 // quads), and each vertex's texture coordinates and colour when every mesh of the file has them.
 struct PolygonMesh {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/io/gltf_precheck.h"
 #include "app/io/mesh_file.h"
 
 namespace weft::app {
@@ -218,21 +219,30 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
       }
 }
 
-// An OBJ "vt" line's numbers must be finite as floats: assimp reads `vt nan 0` and `vt 1e39 0`
-// as `vt 0 0`, silently.
-void check_obj_texture_line(std::string_view line, std::uint64_t number, const std::string& name) {
-  std::istringstream words{std::string(line.substr(2))};
-  for (std::string word; words >> word;) {
+// An OBJ line's numbers from the `first`-th on (0-based, after the keyword) must be finite as
+// floats: assimp reads `vt nan 0` and `vt 1e39 0` as `vt 0 0`, silently, and so a colour or a
+// normal. (A vertex's position, its first three numbers, is checked after the import, for every
+// format.)
+void check_obj_numbers(std::string_view line, std::uint64_t number, const std::string& name,
+                       const char* what, int first) {
+  const std::string text(line);
+  const char* at = text.c_str() + text.find_first_of(" \t");
+  for (int k = 0;; ++k) {
+    while (*at == ' ' || *at == '\t' || *at == '\r') ++at;
+    if (*at == '\0' || *at == '#') return;  // the line's end, or a comment
+    const char* word = at;
+    while (*at != '\0' && *at != ' ' && *at != '\t' && *at != '\r') ++at;
+    if (k < first) continue;
     char* end = nullptr;
-    const double v = std::strtod(word.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
-      fail(name, "line " + std::to_string(number) + ": texture coordinates '" + std::string(line) +
-                     "': '" + word + "' is not a finite number (as a float)");
+    const double v = std::strtod(word, &end);
+    if (end != at || !std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
+      fail(name, "line " + std::to_string(number) + ": " + what + " '" + text + "': '" +
+                     std::string(word, at) + "' is not a finite number (as a float)");
   }
 }
 
-// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit, and checks its texture
-// coordinate ("vt ") lines.
+// Counts an OBJ's vertex ("v ") and face ("f ") lines against the limit, and checks the numbers
+// of its texture coordinate ("vt "), normal ("vn ") lines and vertex colours ("v x y z r g b").
 void check_obj_counts(std::string_view bytes, const std::string& name) {
   std::uint64_t v = 0, f = 0, number = 0;
   for (std::size_t at = 0; at < bytes.size();) {
@@ -243,8 +253,13 @@ void check_obj_counts(std::string_view bytes, const std::string& name) {
       v += line[0] == 'v';
       f += line[0] == 'f';
     }
-    if (line.size() > 2 && line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
-      check_obj_texture_line(line, number, name);
+    const auto keyword = [&](std::string_view word) {
+      return line.size() > word.size() && line.substr(0, word.size()) == word &&
+             (line[word.size()] == ' ' || line[word.size()] == '\t');
+    };
+    if (keyword("vt")) check_obj_numbers(line, number, name, "texture coordinates", 0);
+    if (keyword("vn")) check_obj_numbers(line, number, name, "normal", 0);
+    if (keyword("v")) check_obj_numbers(line, number, name, "vertex colour", 3);
     at = end + 1;
   }
   for (const auto& [count, what] : {std::pair{v, "vertices"}, std::pair{f, "faces"}})
@@ -253,11 +268,49 @@ void check_obj_counts(std::string_view bytes, const std::string& name) {
                      std::to_string(max_mesh_elements) + " (the limit of weft's mesh files)");
 }
 
+// The little-endian uint32 at `at` (the caller checked that 4 bytes are there).
+std::uint32_t glb_word(std::string_view bytes, std::size_t at) {
+  std::uint32_t w = 0;
+  for (int k = 3; k >= 0; --k) w = w << 8 | static_cast<unsigned char>(bytes[at + k]);
+  return w;
+}
+
+// A GLB's header and chunk headers (glTF 2.0, "Binary glTF Layout"): assimp allocates a chunk's
+// declared length before it reads the chunk, so a JSON chunk said to be 2 GB in an 878-byte file
+// took 2 GB and 10 s before failing (found by fuzzing). Every length must fit in the file.
+// Returns the JSON chunk (the first, glTF 2), or nothing for glTF 1's layout.
+std::string_view check_glb(std::string_view bytes, const std::string& name) {
+  if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF")
+    fail(name, "not a GLB file (it must start with the 12-byte header \"glTF\", version, length)");
+  const std::uint32_t version = glb_word(bytes, 4), length = glb_word(bytes, 8);
+  if (length > bytes.size())
+    fail(name, "the GLB header says " + std::to_string(length) + " bytes, but the file holds " +
+                   std::to_string(bytes.size()) + " (truncated, or a bogus length)");
+  if (version != 2) return {};  // glTF 1's binary layout: one content length, checked by assimp
+  std::string_view json;
+  int chunk = 0;
+  for (std::size_t at = 12; at < length; ++chunk) {
+    if (length - at < 8)
+      fail(name, "GLB chunk " + std::to_string(chunk) + ": its 8-byte header runs past the end");
+    const std::uint32_t chunk_length = glb_word(bytes, at);
+    if (chunk_length > length - at - 8)
+      fail(name, "GLB chunk " + std::to_string(chunk) + " says " + std::to_string(chunk_length) +
+                     " bytes, but the file holds " + std::to_string(length - at - 8) +
+                     " after its header (truncated, or a bogus length)");
+    if (chunk == 0 && glb_word(bytes, at + 4) == 0x4E4F534Au)  // "JSON"
+      json = bytes.substr(at + 8, chunk_length);
+    at += 8 + std::size_t{chunk_length};
+  }
+  return json;
+}
+
 }  // namespace
 
 void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
                          const std::string& name) {
   if (extension == ".obj") check_obj_counts(bytes, name);
+  if (extension == ".glb") check_gltf_json(check_glb(bytes, name), name);
+  if (extension == ".gltf") check_gltf_json(bytes, name);
   if (extension != ".ply") return;
   const PlyHeader h = read_ply_header(bytes, name);
   check_ply_counts(h, bytes.size() - h.body, name);

@@ -18,7 +18,9 @@ inline constexpr std::uint64_t max_mesh_elements = std::uint64_t{1} << 21;
 
 // Throws MeshFileError "NAME: …" naming what is wrong (the element, face or line) for a PLY or
 // OBJ file (by `extension`, lower case with its dot) whose content is malformed or over the
-// limits; any other extension passes.
+// limits, for a GLB whose header or chunk lengths run past the file, and for a glTF (.gltf, or a
+// .glb's JSON chunk) whose accessors or primitives assimp would trip on (gltf_precheck.h); any
+// other extension passes.
 void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
                          const std::string& name);
 

@@ -11,6 +11,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "app/io/finite_outputs.h"
 #include "app/io/version.h"
 #include "base/atomic_file.h"
 
@@ -41,6 +42,7 @@ void write_through_folder(const fs::path& path, const std::function<void(const f
 }
 
 void write_text(const fs::path& path, const std::string& text) {
+  if (lower_extension(path) == ".csv") require_finite_csv(path.string(), text);
   base::write_file_atomically(path, text);
 }
 

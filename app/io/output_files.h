@@ -21,6 +21,8 @@ namespace weft::app {
 // exclusively, then renamed: a reader sees the old file or the whole new one, never a part, and
 // a link planted at the partial name is not followed); throws std::runtime_error naming the
 // path when it cannot, leaving no partial file. render::write_png does the same for images.
+// A .csv file's cells must be finite numbers where they are numbers (require_finite_csv,
+// app/io/finite_outputs.h): a non-finite one throws before anything is written.
 void write_text(const std::filesystem::path& path, const std::string& text);
 
 // Writes `path` atomically for a writer that opens files itself (ffmpeg, assimp): a fresh

@@ -43,7 +43,7 @@ std::string pc2_bytes(const std::vector<std::vector<Eigen::Vector3f>>& frames) {
   bytes.push_back('\0');
   put(bytes, std::int32_t{1}, false);  // version
   put(bytes, static_cast<std::int32_t>(frames.front().size()), false);
-  put(bytes, 1.0f, false);  // start frame: weft's frame 1
+  put(bytes, 0.0f, false);  // start frame: weft's frame 0, the start (sample k is frame k)
   put(bytes, 1.0f, false);  // one sample per frame
   put(bytes, static_cast<std::int32_t>(frames.size()), false);
   for (const auto& frame : frames) put_points(bytes, frame, false);
@@ -60,11 +60,11 @@ std::string mdd_bytes(const std::vector<std::vector<Eigen::Vector3f>>& frames,
   return bytes;
 }
 
-std::string obj_text(const render::RenderMesh& m) {
+std::string obj_text(const render::RenderMesh& m, const std::string& mtl_name) {
   std::ostringstream out;
   out.precision(9);
-  out << "# weft: the cloth's rest topology (frame 1), y up; animate it with the .pc2/.mdd beside it\n"
-         "o cloth\n";
+  out << "# weft: the cloth at the start (frame 0), y up; animate it with the .pc2/.mdd beside it\n"
+         "mtllib " << mtl_name << "\no cloth\nusemtl cloth\n";
   for (const Eigen::Vector3f& p : m.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
   const bool uvs = m.uvs.size() == m.positions.size();
   for (const Eigen::Vector2f& t : m.uvs) out << "vt " << t.x() << ' ' << t.y() << '\n';
@@ -76,6 +76,15 @@ std::string obj_text(const render::RenderMesh& m) {
     }
     out << '\n';
   }
+  return out.str();
+}
+
+// The OBJ's material: the cloth's front colour (linear), not shiny.
+std::string mtl_text(const Eigen::Vector3f& colour) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "# weft: the cloth's colour (render.colors.front)\nnewmtl cloth\nKd " << colour.x() << ' '
+      << colour.y() << ' ' << colour.z() << "\nKa 0 0 0\nKs 0 0 0\nNs 1\nillum 1\n";
   return out.str();
 }
 
@@ -135,13 +144,15 @@ std::vector<float> flat(const std::vector<Eigen::Vector3f>& points,
   return out;
 }
 
-// The animated glTF: frame 1 as the base mesh, frame k > 1 as morph target k − 2 (positions and
-// normals relative to frame 1), weights stepping from target to target at the frames' times.
+// The animated glTF: frame 0 (the start) as the base mesh, frame k > 0 as morph target k − 1
+// (positions and normals relative to frame 0), weights stepping from target to target at the
+// frames' times; one material of the cloth's colour.
 std::pair<std::string, std::string> gltf_files(const render::RenderMesh& topology,
                                                const std::vector<std::vector<Eigen::Vector3f>>& positions,
                                                const std::vector<std::vector<Eigen::Vector3f>>& normals,
                                                const std::vector<double>& times_s,
-                                               const std::string& bin_name) {
+                                               const std::string& bin_name,
+                                               const Eigen::Vector3f& colour) {
   GltfBuilder b;
   nlohmann::json attributes = {{"POSITION", b.add_floats(flat(positions[0]), 3, true)},
                                {"NORMAL", b.add_floats(flat(normals[0]), 3)}};
@@ -150,7 +161,9 @@ std::pair<std::string, std::string> gltf_files(const render::RenderMesh& topolog
     for (const Eigen::Vector2f& t : topology.uvs) uvs.insert(uvs.end(), {t.x(), t.y()});
     attributes["TEXCOORD_0"] = b.add_floats(uvs, 2);
   }
-  nlohmann::json primitive = {{"attributes", attributes}, {"indices", b.add_indices(topology.triangles)}};
+  nlohmann::json primitive = {{"attributes", attributes},
+                               {"indices", b.add_indices(topology.triangles)},
+                               {"material", 0}};
   nlohmann::json mesh = {{"name", "cloth"}};
   const std::size_t frames = positions.size(), targets = frames - 1;
   if (targets > 0) {
@@ -160,7 +173,7 @@ std::pair<std::string, std::string> gltf_files(const render::RenderMesh& topolog
           {{"POSITION", b.add_floats(flat(positions[k], &positions[0]), 3, true)},
            {"NORMAL", b.add_floats(flat(normals[k], &normals[0]), 3)}});
       char name[32];
-      std::snprintf(name, sizeof name, "frame_%04zu", k + 1);
+      std::snprintf(name, sizeof name, "frame_%04zu", k);
       names.emplace_back(name);
     }
     mesh["weights"] = std::vector<float>(targets, 0.0f);
@@ -187,6 +200,10 @@ std::pair<std::string, std::string> gltf_files(const render::RenderMesh& topolog
   j["scenes"] = nlohmann::json::array({{{"nodes", {0}}}});
   j["nodes"] = nlohmann::json::array({{{"name", "cloth"}, {"mesh", 0}}});
   j["meshes"] = nlohmann::json::array({mesh});
+  nlohmann::json pbr = {{"baseColorFactor", {colour.x(), colour.y(), colour.z(), 1.0f}},
+                        {"metallicFactor", 0.0f},
+                        {"roughnessFactor", 1.0f}};
+  j["materials"] = nlohmann::json::array({{{"name", "cloth"}, {"pbrMetallicRoughness", pbr}}});
   j["buffers"] = nlohmann::json::array({{{"uri", bin_name}, {"byteLength", b.bin().size()}}});
   return {j.dump(1) + "\n", b.bin()};
 }
@@ -216,9 +233,9 @@ void PointCache::add(const render::RenderMesh& frame, double time_s) {
     m_topology.uvs = frame.uvs;
     for (const Eigen::Vector3f& p : frame.positions) m_topology.positions.push_back(y_up(p));
   } else if (frame.positions.size() != m_topology.positions.size()) {
-    throw std::invalid_argument("PointCache: frame " + std::to_string(m_times_s.size() + 1) +
+    throw std::invalid_argument("PointCache: frame " + std::to_string(m_times_s.size()) +
                                 " has " + std::to_string(frame.positions.size()) +
-                                " vertices, frame 1 had " +
+                                " vertices, frame 0 had " +
                                 std::to_string(m_topology.positions.size()));
   }
   std::vector<Eigen::Vector3f> positions, normals;
@@ -230,8 +247,8 @@ void PointCache::add(const render::RenderMesh& frame, double time_s) {
   m_times_s.push_back(time_s);
 }
 
-std::vector<fs::path> PointCache::write(const fs::path& stem,
-                                        const std::vector<CacheFormat>& formats) const {
+std::vector<fs::path> PointCache::write(const fs::path& stem, const std::vector<CacheFormat>& formats,
+                                        const Eigen::Vector3f& colour) const {
   std::vector<fs::path> written;
   if (m_times_s.empty()) return written;
   const auto with = [&](const char* extension) { return fs::path(stem.string() + extension); };
@@ -239,14 +256,15 @@ std::vector<fs::path> PointCache::write(const fs::path& stem,
     write_text(path, bytes);
     written.push_back(path);
   };
-  emit(with(".obj"), obj_text(m_topology));
+  emit(with(".mtl"), mtl_text(colour));
+  emit(with(".obj"), obj_text(m_topology, with(".mtl").filename().string()));
   for (const CacheFormat format : formats) {
     switch (format) {
       case CacheFormat::pc2: emit(with(".pc2"), pc2_bytes(m_positions)); break;
       case CacheFormat::mdd: emit(with(".mdd"), mdd_bytes(m_positions, m_times_s)); break;
       case CacheFormat::gltf: {
         const auto [json, bin] = gltf_files(m_topology, m_positions, m_normals, m_times_s,
-                                            with(".bin").filename().string());
+                                            with(".bin").filename().string(), colour);
         emit(with(".bin"), bin);
         emit(with(".gltf"), json);
         break;

@@ -250,6 +250,7 @@ class FrameWriter {
     row.self_intersections =
         sim::count_edge_triangle_crossings(m_simulator.state().x, m_triangles, m_edges);
     row.vertices = m_simulator.mesh().used_vertex_count();
+    add_to_cache();
     if (m_draw_later) {
       extend_box(m_cloth_box, m_simulator.state().x);  // drawn by draw_kept_frames
     } else {
@@ -289,8 +290,10 @@ class FrameWriter {
   // Ends the progress line (unless draw_kept_frames did) and writes the point cache.
   void finish() {
     if (!m_draw_later) m_progress.finish();
-    for (const fs::path& path : m_cache.write(m_dir / "cloth", m_options.export_cache))
-      std::fprintf(stderr, "weft: wrote %s (%d frames)\n", path.c_str(), m_cache.frame_count());
+    for (const fs::path& path :
+         m_cache.write(m_dir / "cloth", m_options.export_cache, m_scene.render.front_color))
+      std::fprintf(stderr, "weft: wrote %s (frames 0-%d: the start, then every simulated frame)\n",
+                   path.c_str(), m_cache.frame_count() - 1);
   }
   // Goes on after the frames of a checkpoint: their rows and crossings, the folder as it is.
   void resume(const RunCheckpoint& checkpoint) {
@@ -381,10 +384,19 @@ class FrameWriter {
   void render_frame(FramePainter& painter, int index, const sim::Matrix3X& x, double time_s) {
     const render::RenderMesh cloth = painter.paint(index, x, time_s, m_dir);
     ++m_frames_drawn;
-    if (!m_options.export_cache.empty()) m_cache.add(cloth, time_s);
     if (const auto format = m_options.export_meshes)
       export_mesh(cloth, *format, m_dir / mesh_name(index, *format),
                   mesh_export_options(m_scene, m_options));
+  }
+
+  // --export-cache: the frame just simulated, after frame 0 (the start) when it is the first;
+  // every simulated frame, whichever are drawn (--every), so that sample k is frame k.
+  void add_to_cache() {
+    if (m_options.export_cache.empty()) return;
+    if (m_cache.frame_count() == 0)
+      m_cache.add(to_render_mesh(m_simulator.mesh(), m_initial_x), state_time_s(m_scene, 0));
+    m_cache.add(to_render_mesh(m_simulator.mesh(), m_simulator.state().x),
+                m_simulator.state().time_s);
   }
 
   // The box of frames 0..k of a run resumed from the checkpoint of frame k. An interrupted run

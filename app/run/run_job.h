@@ -14,8 +14,20 @@
 
 namespace weft::app {
 
+// Every `every`-th frame from `first` to `last`, and `last` itself: --every 24 over 96 frames
+// is 1, 25, 49, 73 and 96 (the last frame, the cloth at rest, used to be left out).
+inline bool every_nth_selects(int frame, int first, int last, int every) {
+  return frame >= first && frame <= last && ((frame - first) % every == 0 || frame == last);
+}
+inline std::vector<int> every_nth_frames(int first, int last, int every) {
+  std::vector<int> frames;
+  for (int k = first; k <= last; ++k)
+    if (every_nth_selects(k, first, last, every)) frames.push_back(k);
+  return frames;
+}
+
 // Which frames weft run renders and writes (every frame is simulated and has its stats.csv row):
-// --start, --end, --every N, --last.
+// --start, --end, --every N (with the last of the range), --last.
 struct FrameSelection {
   int start = 1;
   std::optional<int> end;  // none: the last frame
@@ -23,7 +35,7 @@ struct FrameSelection {
   bool last_only = false;  // --last: only the final frame
   bool selects(int frame, int frames) const {
     if (last_only) return frame == frames;
-    return frame >= start && frame <= end.value_or(frames) && (frame - start) % every == 0;
+    return every_nth_selects(frame, start, end.value_or(frames), every);
   }
 };
 

@@ -2,6 +2,7 @@
 // by key, in docs/scene.md; keep the two in step.
 
 #include "app/scene/scene.h"
+
 #include "app/scene/scene_inputs.h"
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "app/scene/environment_scene.h"
 #include "app/scene/json_reader.h"
 #include "app/io/mesh_file.h"
+#include "app/scene/scene_bounds.h"
 #include "app/scene/scene_cloth.h"
 #include "app/scene/units.h"
 #include "base/constants.h"
@@ -249,7 +251,7 @@ sim::RemeshSettings read_remesh(ObjectReader r) {
   m.c_m = r.quantity("c", Quantity::length, m.c_m, Range::gt(0.0));
   m.h_min_m = r.quantity("h_min", Quantity::length, m.h_min_m, Range::gt(0.0));
   m.h_max_m = r.quantity("h_max", Quantity::length, m.h_max_m, Range::gt(0.0));
-  m.max_vertices = r.integer("max_vertices", m.max_vertices, Range::closed(3, 2e6));
+  m.max_vertices = r.integer("max_vertices", m.max_vertices, Range::closed(3, static_cast<double>(max_remesh_vertices)));
   if (r.has("indicator")) {
     m.indicator = r.number("indicator", std::nullopt, Range::gt(0.0).lt(1e6));
     if (m.indicator <= 1.0)
@@ -583,6 +585,12 @@ Scene load_scene(const std::filesystem::path& given) {
       } catch (const InputError& e) {
         known = std::string("; nor could weft's own scenes be looked in: ") + e.what();
       }
+    } else if (const std::filesystem::path own = find_scene(path.filename());
+               own != path.filename()) {
+      // assets/scenes/X.json typed outside the source tree: weft's own X is found by its name.
+      known = "; weft's own scene " + path.stem().string() + " is " + own.string() +
+              ": give its bare name, " + path.stem().string() + " (as in weft run " +
+              path.stem().string() + ")";
     }
     throw InputError(path.string() + ": cannot read scene file (" + reason + ")" + known);
   };
@@ -665,6 +673,7 @@ std::unique_ptr<sim::Simulator> make_simulator(const Scene& scene) {
       throw InputError(scene.source + ": cloth.material: the automatic time step (from the "
                                       "density and stiffness) " + why);
   }
+  check_scene_bounds(scene, *simulator);
   if (scene.tension_field)
     simulator->set_initial_positions(folded_start(*scene.tension_field, scene.grid, scene.material,
                                                   scene.sim.gravity_m_s2, simulator->mesh())

@@ -69,7 +69,17 @@ void compare_with_reference(std::vector<SweepRun>& runs, std::size_t reference) 
   for (std::size_t k = 0; k < runs.size(); ++k) runs[k].pareto = optimal[k];
 }
 
-// The finished run with the largest wall time, or the user's choice (1-based).
+// Whether run a is taken as more accurate than run b by the reference rule: more cloth vertices
+// (the finer mesh), then more steps (the smaller step over the same frames). Never by time: the
+// slowest run used to be taken, which depends on the machine's load, and was not always the
+// most accurate (implicit Euler's long step damps the motion).
+bool finer(const SweepRun& a, const SweepRun& b) {
+  const long va = a.mesh.used_vertex_count(), vb = b.mesh.used_vertex_count();
+  if (va != vb) return va > vb;
+  return a.steps > b.steps;
+}
+
+// The finest finished run (finer(); the first of equals), or the user's choice (1-based).
 std::size_t choose_reference(const std::vector<SweepRun>& runs, std::optional<int> chosen) {
   if (chosen) {
     const SweepRun& run = runs[static_cast<std::size_t>(*chosen - 1)];
@@ -81,7 +91,7 @@ std::size_t choose_reference(const std::vector<SweepRun>& runs, std::optional<in
   }
   std::size_t best = runs.size();
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    if (finished(runs[k]) && (best == runs.size() || runs[k].wall_s > runs[best].wall_s)) best = k;
+    if (finished(runs[k]) && (best == runs.size() || finer(runs[k], runs[best]))) best = k;
   }
   return best;
 }
@@ -221,7 +231,8 @@ int merge_sweep(std::vector<SweepRun>& runs, const SweepMerge& m) {
   }
   std::printf("weft sweep: errors against run %zu (%s), %s\n", reference + 1,
               label(runs[reference], keys).c_str(),
-              m.reference ? "chosen with --reference" : "the slowest run that finished");
+              m.reference ? "chosen with --reference"
+                          : "the finest run that finished: most vertices, then most steps");
   std::printf("weft sweep: Pareto-optimal settings, fastest first:\n");
   std::vector<std::size_t> front;
   for (std::size_t k = 0; k < runs.size(); ++k)

@@ -1,5 +1,6 @@
-// Frame selection through the real `weft run`: --start, --end, --every and --last choose the
-// frames rendered and written; every frame is still simulated and has its stats.csv row.
+// Frame selection through the real `weft run`: --start, --end, --every (with the range's last
+// frame) and --last choose the frames rendered and written; every frame is still simulated and
+// has its stats.csv row.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -40,9 +41,13 @@ class FrameSelectionCli : public CliDirectoryTest {
 
 TEST_F(FrameSelectionCli, StartEndEveryAndLastChooseTheFrames) {
   EXPECT_EQ(frames_written(""), (std::vector<int>{1, 2, 3, 4}));
-  EXPECT_EQ(frames_written("--every 2"), (std::vector<int>{1, 3}));
+  // --every N from --start, and the last frame of the range too (the cloth at rest, which
+  // --every 24 over 96 frames used to leave out).
+  EXPECT_EQ(frames_written("--every 2"), (std::vector<int>{1, 3, 4}));
+  EXPECT_EQ(frames_written("--every 3"), (std::vector<int>{1, 4}));
   EXPECT_EQ(frames_written("--start 2 --end 3"), (std::vector<int>{2, 3}));
   EXPECT_EQ(frames_written("--start 2 --every 2"), (std::vector<int>{2, 4}));
+  EXPECT_EQ(frames_written("--end 3 --every 4"), (std::vector<int>{1, 3}));
   EXPECT_EQ(frames_written("--last"), (std::vector<int>{4}));
 }
 

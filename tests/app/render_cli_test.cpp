@@ -59,9 +59,9 @@ TEST_F(RenderCli, FramesDrawnFromSavedStatesAreTheBytesWeftRunWrote) {
   const fs::path out = m_dir / "render";
   const auto r = run_weft("render " + states.string() + " --frames 3-10 --every 3 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_CONTAINS(r.output, "rendered 3 frames (3–10 every 3)");
+  EXPECT_CONTAINS(r.output, "rendered 4 frames (3–10 every 3)");
   for (int k = 1; k <= 12; ++k) {
-    const bool selected = k == 3 || k == 6 || k == 9;
+    const bool selected = k == 3 || k == 6 || k == 9 || k == 10;  // and the range's last
     EXPECT_EQ(fs::exists(out / numbered("frame", k)), selected) << k;
     if (!selected) continue;
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
@@ -86,8 +86,9 @@ TEST_F(RenderCli, ARayTracedSequenceDrawnAsFourFrameRangesEqualsTheRunsFrames) {
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
 }
 
-// The script weft render --slurm writes is a bash script: run with SLURM_ARRAY_TASK_ID = 0..3,
-// as Slurm runs its array tasks, it draws the run's frames.
+// The script weft render --slurm writes is a bash script: run with SLURM_ARRAY_TASK_ID = 1..4,
+// as Slurm runs its array tasks (numbered from 1, as sweep's and gallery's), it draws the run's
+// frames; 0 and 5 are no task of it.
 TEST_F(RenderCli, ASlurmArrayScriptOfFourTasksDrawsTheRunsFrames) {
   const fs::path states = run("--renderer raytrace --samples 2");
   const fs::path out = m_dir / "slurm_out";
@@ -96,17 +97,32 @@ TEST_F(RenderCli, ASlurmArrayScriptOfFourTasksDrawsTheRunsFrames) {
                           out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_CONTAINS(r.output, "4 array tasks for 12 frames (not submitted: --dry-run)");
-  EXPECT_CONTAINS(r.output, "#SBATCH --array=0-3");
+  EXPECT_CONTAINS(r.output, "#SBATCH --array=1-4");
   const fs::path script = out / "slurm" / "render.sbatch";
   ASSERT_TRUE(fs::exists(script));
   EXPECT_CONTAINS(file_bytes(script), "'--frames' '10-12'");
   EXPECT_FALSE(fs::exists(out / numbered("frame", 1))) << "--dry-run draws nothing";
-  for (int task = 0; task < 4; ++task)
+  for (int task = 1; task <= 4; ++task)
     EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash " +
                            script.string() + " >/dev/null 2>&1").c_str()), 0) << task;
   for (int k = 1; k <= 12; ++k)
     EXPECT_TRUE(file_bytes(states / numbered("frame", k)) == file_bytes(out / numbered("frame", k))) << k;
-  EXPECT_NE(std::system(("SLURM_ARRAY_TASK_ID=4 bash " + script.string() + " 2>/dev/null").c_str()), 0);
+  for (const char* task : {"0", "5"})
+    EXPECT_NE(std::system(("SLURM_ARRAY_TASK_ID=" + std::string(task) + " bash " + script.string() +
+                           " 2>/dev/null").c_str()), 0) << task;
+}
+
+// Without --out, weft render draws into DIR/render: DIR's own frames are the run's, which a
+// render with other settings used to overwrite.
+TEST_F(RenderCli, WithoutOutTheFramesGoToARenderFolderAndTheRunsStay) {
+  const fs::path states = run("");
+  const std::string before = file_bytes(states / numbered("frame", 2));
+  const auto r = run_weft("render " + states.string() + " --frames 2 --size 48x32");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "into " + (states / "render").string());
+  EXPECT_EQ(file_bytes(states / numbered("frame", 2)), before) << "the run's frame kept";
+  ASSERT_TRUE(fs::exists(states / "render" / numbered("frame", 2)));
+  EXPECT_NE(file_bytes(states / "render" / numbered("frame", 2)), before) << "48x32, not 96x64";
 }
 
 TEST_F(RenderCli, BadRangesMissingStatesAndSimulationKeysAreRefused) {

@@ -76,7 +76,7 @@ TEST_F(SlurmCli, ARayTracedSequenceAsFourArrayTasksEqualsTheSingleRunsFrames) {
   ASSERT_NE(at, std::string::npos) << submitted.output;
   const std::string job = std::to_string(std::stol(submitted.output.substr(at + 20)));
   wait_for(job);
-  for (int task = 0; task < 4; ++task)
+  for (int task = 1; task <= 4; ++task)  // numbered from 1, as sweep and gallery tasks
     EXPECT_TRUE(fs::exists(out / "slurm" / ("weft-render_" + std::to_string(task) + ".log"))) << task;
   for (int k = 1; k <= 12; ++k) {
     char name[32];

@@ -79,6 +79,11 @@ TEST(SweepCli, GridOfTheDefaultSceneWritesCsvAndPlot) {
     EXPECT_LE(silhouette, 1.0);
   }
   EXPECT_EQ(references, 1);
+  // The reference by the accuracy rule, never by time: the most vertices (12²), then the most
+  // steps (both integrators take the same automatic step), then the first: run 3.
+  EXPECT_EQ(rows[3][column("reference")], "1");
+  EXPECT_CONTAINS(r.output, "errors against run 3 (resolution=[12,12] integrator=symplectic_euler), "
+                            "the finest run that finished");
   EXPECT_GE(pareto, 1);
   EXPECT_EQ(rows[1][1], "[8,8]");  // last key varies fastest
   EXPECT_EQ(rows[2][1], "[8,8]");
