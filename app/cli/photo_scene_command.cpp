@@ -162,24 +162,27 @@ nlohmann::json placement_json(const PhotoSceneSetup& setup, const PlacementEvalu
   return j;
 }
 
-}  // namespace
+// What the photo, its mask and the camera give: the setup of the placement problem, the held
+// corners found and the silhouette measured against.
+struct PhotoInputs {
+  render::Image photo;
+  PhotoSceneSetup setup;
+  render::HeldCorners corners;
+  render::Mask photo_mask;  // the mask's largest component, holes filled
+};
 
-int run_photo_scene(const PhotoSceneOptions& o) {
-  const auto [cloth_w, cloth_h] = parse_cloth_size(o.cloth_size);
-  const PlacementFitSettings fit_settings = parse_fit(o.fit, o.max_evaluations);
-  std::vector<fs::path> inputs{o.photo, o.mask, o.camera};
-  if (o.texture_photo) inputs.push_back(*o.texture_photo);
-  refuse_overwriting_inputs(o.out, photo_scene_outputs, inputs);
-  const render::Image photo = read_checked(o.photo, "photo");
+PhotoInputs read_photo_inputs(const PhotoSceneOptions& o, double cloth_w, double cloth_h) {
+  PhotoInputs in;
+  in.photo = read_checked(o.photo, "photo");
   const render::Image mask_image = read_checked(o.mask, "--mask");
-  if (mask_image.width() != photo.width() || mask_image.height() != photo.height())
+  if (mask_image.width() != in.photo.width() || mask_image.height() != in.photo.height())
     throw InputError("--mask " + o.mask.string() + ": " + std::to_string(mask_image.width()) + "x" +
                      std::to_string(mask_image.height()) + ", but the photo is " +
-                     std::to_string(photo.width()) + "x" + std::to_string(photo.height()));
-  PhotoSceneSetup setup;
+                     std::to_string(in.photo.width()) + "x" + std::to_string(in.photo.height()));
+  PhotoSceneSetup& setup = in.setup;
   setup.camera = read_photo_camera(o.camera);
-  setup.width_px = photo.width();
-  setup.height_px = photo.height();
+  setup.width_px = in.photo.width();
+  setup.height_px = in.photo.height();
   try {
     (void)setup.camera.scaled_to(setup.width_px, setup.height_px);
   } catch (const std::invalid_argument& e) {
@@ -191,32 +194,21 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   setup.resolution = {std::max(2, static_cast<int>(std::lround(o.resolution * cloth_w / longer))),
                       std::max(2, static_cast<int>(std::lround(o.resolution * cloth_h / longer)))};
   setup.material_preset = o.material_preset;
-  render::HeldCorners corners;
   try {
-    corners = render::find_held_corners(render::mask_from_image(mask_image));
+    in.corners = render::find_held_corners(render::mask_from_image(mask_image));
   } catch (const std::invalid_argument& e) {
     throw InputError("--mask " + o.mask.string() + ": " + e.what());
   }
-  setup.corners_px = corners.px;
-  // The silhouette measured against: the mask's largest component, holes filled.
-  render::Mask photo_mask =
-      render::fill_holes(render::largest_component(render::mask_from_image(mask_image)));
+  setup.corners_px = in.corners.px;
+  in.photo_mask = render::fill_holes(render::largest_component(render::mask_from_image(mask_image)));
+  return in;
+}
 
-  const OutputFolderLock lock(o.out);  // creates the folder
-  const std::string scene_path = (o.out / "scene.json").string();
-  PhotoSceneProblem problem(setup, photo_mask, scene_path, o.threads);
-  Placement start;
-  start.depth_scale = o.depth_scale;
-  start.depth_difference_m = o.depth_difference_m;
-  start.tilt_rad = o.tilt_deg * kDegree;
-  start.density_kg_m2 = o.density_kg_m2;
-  if (fit_settings.density && !start.density_kg_m2)
-    start.density_kg_m2 = problem.scene_at(start).material.density_kg_m2;
-  std::fprintf(stderr,
-               "weft photo-scene: held corners at (%.1f, %.1f) and (%.1f, %.1f) px; depth "
-               "from the %.3f m width %.4f m\n",
-               setup.corners_px[0].x(), setup.corners_px[0].y(), setup.corners_px[1].x(),
-               setup.corners_px[1].y(), cloth_w, depth_from_width(setup));
+// The start placement evaluated, then fitted as --fit asks; every evaluation logged to
+// OUT/placement.csv and stderr. Returns the start's evaluation and the best one.
+std::pair<PlacementEvaluation, PlacementEvaluation> fit_from_start(
+    const PhotoSceneOptions& o, PhotoSceneProblem& problem, const Placement& start,
+    const PlacementFitSettings& fit_settings) {
   std::ofstream csv(o.out / "placement.csv");
   csv << "evaluation,left_du_px,left_dv_px,right_du_px,right_dv_px,depth_scale,depth_difference_m,"
          "tilt_deg,density_kg_m2,iou,chamfer_px,settled,seconds\n";
@@ -240,7 +232,71 @@ int run_photo_scene(const PhotoSceneOptions& o) {
     std::fprintf(stderr, "weft photo-scene: fit %s after %zu evaluations\n",
                  fit.stop_reason.c_str(), fit.evaluations.size());
   }
-  csv.close();
+  return {first, best};
+}
+
+// The written scene's description: where it came from and how well it fits.
+std::string scene_description(const PhotoSceneOptions& o, const PlacementEvaluation& chosen) {
+  return "A cloth held by two corners, placed from the photo " + o.photo.string() +
+         " and its mask " + o.mask.string() + " by weft photo-scene (" + o.command_line +
+         "): " + placement_text(chosen.placement) + "; outline Chamfer " +
+         std::to_string(chosen.chamfer_px) + " px, IoU " + std::to_string(chosen.iou) +
+         " at rest. The world is the camera's frame (x right, y down, z forward).";
+}
+
+// The summary's lines on stdout (--json prints the summary itself).
+void print_summary(const nlohmann::json& j, const PhotoSceneSetup& setup,
+                   const PlacementEvaluation& first, const PlacementEvaluation& chosen,
+                   const render::PhotoComparison& c, const std::string& scene_path) {
+  std::printf("weft photo-scene: %s\n", scene_path.c_str());
+  std::printf("  held corners    (%.1f, %.1f) and (%.1f, %.1f) px\n", setup.corners_px[0].x(),
+              setup.corners_px[0].y(), setup.corners_px[1].x(), setup.corners_px[1].y());
+  for (const char* which : {"start", "chosen"}) {
+    const auto& p = j[which];
+    std::printf(
+        "  %-15s %s: corners (%.4f, %.4f, %.4f) and (%.4f, %.4f, %.4f) m; IoU %.4f, "
+        "Chamfer %.3f px\n",
+        which,
+        placement_text(std::string(which) == "start" ? first.placement : chosen.placement).c_str(),
+        p["held_corners_m"][0][0].get<double>(), p["held_corners_m"][0][1].get<double>(),
+        p["held_corners_m"][0][2].get<double>(), p["held_corners_m"][1][0].get<double>(),
+        p["held_corners_m"][1][1].get<double>(), p["held_corners_m"][1][2].get<double>(),
+        p["iou"].get<double>(), p["chamfer_px"].get<double>());
+  }
+  if (c.mask_ssim) std::printf("  SSIM (mask)     %.4f\n", c.mask_ssim->mean);
+  std::printf("  dE2000 (mask)   mean %.3f, 95th percentile %.3f\n", c.delta_e.mean, c.delta_e.p95);
+  if (j.contains("texture_seen_fraction"))
+    std::printf("  texture         %.1f %% of its texels seen in the photo\n",
+                100.0 * j["texture_seen_fraction"].get<double>());
+}
+
+}  // namespace
+
+int run_photo_scene(const PhotoSceneOptions& o) {
+  const auto [cloth_w, cloth_h] = parse_cloth_size(o.cloth_size);
+  const PlacementFitSettings fit_settings = parse_fit(o.fit, o.max_evaluations);
+  std::vector<fs::path> inputs{o.photo, o.mask, o.camera};
+  if (o.texture_photo) inputs.push_back(*o.texture_photo);
+  refuse_overwriting_inputs(o.out, photo_scene_outputs, inputs);
+  const PhotoInputs in = read_photo_inputs(o, cloth_w, cloth_h);
+  const PhotoSceneSetup& setup = in.setup;
+
+  const OutputFolderLock lock(o.out);  // creates the folder
+  const std::string scene_path = (o.out / "scene.json").string();
+  PhotoSceneProblem problem(setup, in.photo_mask, scene_path, o.threads);
+  Placement start;
+  start.depth_scale = o.depth_scale;
+  start.depth_difference_m = o.depth_difference_m;
+  start.tilt_rad = o.tilt_deg * kDegree;
+  start.density_kg_m2 = o.density_kg_m2;
+  if (fit_settings.density && !start.density_kg_m2)
+    start.density_kg_m2 = problem.scene_at(start).material.density_kg_m2;
+  std::fprintf(stderr,
+               "weft photo-scene: held corners at (%.1f, %.1f) and (%.1f, %.1f) px; depth "
+               "from the %.3f m width %.4f m\n",
+               setup.corners_px[0].x(), setup.corners_px[0].y(), setup.corners_px[1].x(),
+               setup.corners_px[1].y(), cloth_w, depth_from_width(setup));
+  const auto [first, best] = fit_from_start(o, problem, start, fit_settings);
 
   // The chosen placement, settled once more for its pictures (and texture).
   Settled settled;
@@ -251,34 +307,30 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   std::string texture_file;
   double seen_fraction = 0.0;
   if (o.texture) {
+    const double longer = std::max(cloth_w, cloth_h);
     const int tw = std::max(2, static_cast<int>(std::lround(o.texture_size * cloth_w / longer)));
     const int th = std::max(2, static_cast<int>(std::lround(o.texture_size * cloth_h / longer)));
     const render::PhotoTexture t =
-        texture_of(o, scene, *settled.simulator, photo, photo_mask, tw, th);
+        texture_of(o, scene, *settled.simulator, in.photo, in.photo_mask, tw, th);
     render::write_png(t.texture, o.out / "texture.png");
     texture_file = "texture.png";
     seen_fraction = t.seen_fraction;
     scene = problem.scene_at(best.placement, texture_file);
   }
-  const std::string description =
-      "A cloth held by two corners, placed from the photo " + o.photo.string() + " and its mask " +
-      o.mask.string() + " by weft photo-scene (" + o.command_line +
-      "): " + placement_text(best.placement) + "; outline Chamfer " +
-      std::to_string(final_eval.chamfer_px) + " px, IoU " + std::to_string(final_eval.iou) +
-      " at rest. The world is the camera's frame (x right, y down, "
-      "z forward).";
-  write_text(o.out / "scene.json",
-             photo_scene_json(setup, best.placement, description, texture_file).dump(2) + "\n");
+  write_text(o.out / "scene.json", photo_scene_json(setup, best.placement,
+                                                    scene_description(o, final_eval), texture_file)
+                                           .dump(2) +
+                                       "\n");
 
   const render::Mask mask = problem.silhouette(scene, *settled.simulator);
   const render::Image look = problem.render_look(scene, *settled.simulator);
   render::write_png(mask, o.out / "mask.png");
   render::write_png(look, o.out / "render.png");
-  render::write_png(corners_picture(photo, corners), o.out / "corners.png");
-  render::Silhouette ps{photo_mask, true, {}, 0.0}, rs{mask, true, {}, 0.0};
+  render::write_png(corners_picture(in.photo, in.corners), o.out / "corners.png");
+  render::Silhouette ps{in.photo_mask, true, {}, 0.0}, rs{mask, true, {}, 0.0};
   const render::PhotoComparison c =
-      render::compare_with_photo(photo, ps, look, rs, render::Similarity{});
-  render::write_png(render::outline_overlay(photo, c), o.out / "overlay.png");
+      render::compare_with_photo(in.photo, ps, look, rs, render::Similarity{});
+  render::write_png(render::outline_overlay(in.photo, c), o.out / "overlay.png");
 
   nlohmann::json j;
   j["corners_px"] = {{setup.corners_px[0].x(), setup.corners_px[0].y()},
@@ -293,31 +345,8 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   if (o.texture) j["texture_seen_fraction"] = seen_fraction;
   j["scene"] = scene_path;
   write_text(o.out / "summary.json", j.dump(2) + "\n");
-  if (o.json) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return exit_ok;
-  }
-  std::printf("weft photo-scene: %s\n", scene_path.c_str());
-  std::printf("  held corners    (%.1f, %.1f) and (%.1f, %.1f) px\n", setup.corners_px[0].x(),
-              setup.corners_px[0].y(), setup.corners_px[1].x(), setup.corners_px[1].y());
-  for (const char* which : {"start", "chosen"}) {
-    const auto& p = j[which];
-    std::printf(
-        "  %-15s %s: corners (%.4f, %.4f, %.4f) and (%.4f, %.4f, %.4f) m; IoU %.4f, "
-        "Chamfer %.3f px\n",
-        which,
-        placement_text(std::string(which) == "start" ? first.placement : final_eval.placement)
-            .c_str(),
-        p["held_corners_m"][0][0].get<double>(), p["held_corners_m"][0][1].get<double>(),
-        p["held_corners_m"][0][2].get<double>(), p["held_corners_m"][1][0].get<double>(),
-        p["held_corners_m"][1][1].get<double>(), p["held_corners_m"][1][2].get<double>(),
-        p["iou"].get<double>(), p["chamfer_px"].get<double>());
-  }
-  if (c.mask_ssim) std::printf("  SSIM (mask)     %.4f\n", c.mask_ssim->mean);
-  std::printf("  dE2000 (mask)   mean %.3f, 95th percentile %.3f\n", c.delta_e.mean, c.delta_e.p95);
-  if (o.texture)
-    std::printf("  texture         %.1f %% of its texels seen in the photo\n",
-                100.0 * seen_fraction);
+  if (o.json) std::printf("%s\n", j.dump(2).c_str());
+  else print_summary(j, setup, first, final_eval, c, scene_path);
   return exit_ok;
 }
 
