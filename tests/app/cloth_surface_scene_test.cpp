@@ -46,6 +46,38 @@ TEST(ClothSurfaceScene, ReadsSubdivisionThicknessAndAWovenCheck) {
   EXPECT_DOUBLE_EQ(c.texture.repeat_m.y(), 0.1);
 }
 
+// render.weave: off by default; true gives the built-in plain weave at its defaults; an object
+// sets its repeat and depth; bad values name their key.
+TEST(ClothSurfaceScene, ReadsTheWeaveAndTheSheen) {
+  const auto surface = [](const char* render) {
+    return test::parse_json_scene(test::scene_with_render(Json::parse(render))).render.cloth_surface;
+  };
+  EXPECT_FALSE(surface("{}").weave.normal_map);
+  const render::ClothSurface on = surface(R"({"weave": true})");
+  ASSERT_TRUE(on.weave.normal_map);
+  EXPECT_EQ(on.weave.normal_map->width(), 64);
+  EXPECT_DOUBLE_EQ(on.weave.repeat_m.x(), 0.002);
+  EXPECT_DOUBLE_EQ(on.weave.depth, 0.5);
+  const render::ClothSurface set = surface(
+      R"({"weave": {"scale": ["3 mm", "1 mm"], "depth": 0.8}, "sheen": 0.2, "sheen_roughness": 0.7})");
+  ASSERT_TRUE(set.weave.normal_map);
+  EXPECT_DOUBLE_EQ(set.weave.repeat_m.x(), 0.003);
+  EXPECT_DOUBLE_EQ(set.weave.repeat_m.y(), 0.001);
+  EXPECT_DOUBLE_EQ(set.weave.depth, 0.8);
+  EXPECT_DOUBLE_EQ(set.sheen, 0.2);
+  EXPECT_DOUBLE_EQ(set.sheen_roughness, 0.7);
+  EXPECT_FALSE(surface(R"({"weave": false})").weave.normal_map);
+
+  const auto error_of = [](const char* render) {
+    return test::scene_error_of(test::scene_with_render(Json::parse(render)));
+  };
+  EXPECT_CONTAINS(error_of(R"({"weave": {"depth": 1.5}})"), "render.weave.depth");
+  EXPECT_CONTAINS(error_of(R"({"weave": {"scale": [0, 1]}})"), "render.weave.scale");
+  EXPECT_CONTAINS(error_of(R"({"weave": {"file": "nowhere.png"}})"), "render.weave.file");
+  EXPECT_CONTAINS(error_of(R"({"weave": {"threads": 4}})"), "render.weave.threads");
+  EXPECT_CONTAINS(error_of(R"({"sheen": 2})"), "render.sheen");
+}
+
 TEST(ClothSurfaceScene, TextureFileIsRelativeToTheScene) {
   const std::filesystem::path dir = fresh_dir("relative");
   std::filesystem::create_directories(dir / "textures");

@@ -24,14 +24,6 @@ using test_files::write_text;
 
 fs::path dir() { return test_files::fresh_directory(::testing::TempDir(), "weft_hostile_mesh_test"); }
 
-std::string load_error(const fs::path& path) {
-  try {
-    load_triangle_mesh(path);
-  } catch (const MeshFileError& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 const std::string kPlyVertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
 
@@ -66,7 +58,7 @@ TEST(HostileMesh, APlyFaceOutsideTheVerticesIsRefusedNamingTheFace) {
   write_text(d / "b.ply", binary_ply(3, {0, 1, 1000000}));
   write_text(d / "c.ply", binary_ply(3, {0, -1, 2}));
   for (const char* name : {"a.ply", "b.ply", "c.ply"}) {
-    const std::string e = load_error(d / name);
+    const std::string e = test::mesh_load_error(d / name);
     EXPECT_CONTAINS(e, (d / name).string() + ": face 0, vertex_indices: corner ");
     EXPECT_CONTAINS(e, "not one of the file's 3 vertices");
   }
@@ -75,14 +67,14 @@ TEST(HostileMesh, APlyFaceOutsideTheVerticesIsRefusedNamingTheFace) {
 TEST(HostileMesh, APlyListCountPastItsFacesOrAHeaderPastTheFileIsRefused) {
   const fs::path d = dir();
   write_text(d / "count.ply", binary_ply(255, {0, 1, 2}));
-  EXPECT_CONTAINS(load_error(d / "count.ply"), "the file ends before it (truncated, or a bogus count)");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "count.ply"), "the file ends before it (truncated, or a bogus count)");
   write_text(d / "faces.ply", binary_ply(3, {0, 1, 2}, 1000000));
-  EXPECT_CONTAINS(load_error(d / "faces.ply"),
+  EXPECT_CONTAINS(test::mesh_load_error(d / "faces.ply"),
                   "the PLY header says 1000000 face elements, more than its");
   write_text(d / "huge.ply", binary_ply(3, {0, 1, 2}, 10000000));
-  EXPECT_CONTAINS(load_error(d / "huge.ply"), "the PLY header says 10000000 faces, more than 2097152");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "huge.ply"), "the PLY header says 10000000 faces, more than 2097152");
   write_text(d / "ascii.ply", ascii_ply("3 0 1\n"));
-  EXPECT_CONTAINS(load_error(d / "ascii.ply"), "face 0, vertex_indices: the file ends before it");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "ascii.ply"), "face 0, vertex_indices: the file ends before it");
 }
 
 // Found by fuzzing: assimp's PLY reader hung on a misspelt header keyword and leaked on a NUL
@@ -93,9 +85,9 @@ TEST(HostileMesh, APlyHeaderIsReadStrictlyAndAnEmptyElementTakesNoTime) {
   std::string typo = ascii_ply("3 0 1 2\n");
   typo.replace(typo.find("property float x"), 8, "propesty");
   write_text(d / "typo.ply", typo);
-  EXPECT_CONTAINS(load_error(d / "typo.ply"), "PLY header line 4: 'propesty float x' (expected format, "
+  EXPECT_CONTAINS(test::mesh_load_error(d / "typo.ply"), "PLY header line 4: 'propesty float x' (expected format, "
                                               "comment, obj_info, element, property or end_header)");
-  EXPECT_CONTAINS(load_error([&] {
+  EXPECT_CONTAINS(test::mesh_load_error([&] {
                     std::string nul = ascii_ply("3 0 1 2\n");
                     nul.replace(nul.find("face"), 4, std::string("fa\1\0e", 5));
                     write_text(d / "nul.ply", nul);
@@ -112,7 +104,7 @@ TEST(HostileMesh, AnObjOverTheLimitIsRefusedBeforeItIsRead) {
   obj.reserve(8 * (max_mesh_elements + 1));
   for (std::uint64_t k = 0; k <= max_mesh_elements; ++k) obj += "v 0 0 0\n";
   write_text(d / "many.obj", obj);
-  EXPECT_CONTAINS(load_error(d / "many.obj"), "an OBJ of 2097153 vertices, more than 2097152");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "many.obj"), "an OBJ of 2097153 vertices, more than 2097152");
 }
 
 // A glTF whose one buffer (three corners, float32, and three uint16 indices) is at `uri`.
@@ -146,12 +138,12 @@ TEST(HostileMesh, AGltfOrObjReferringOutsideItsFolderIsRefused) {
   write_text(d / "secret.mtl", "newmtl m\nKd 1 0 0\n");
   write_text(d / "mesh" / "up.obj", "mtllib ../secret.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n");
   for (const char* name : {"up.gltf", "link.gltf", "up.obj"}) {
-    const std::string e = load_error(d / "mesh" / name);
+    const std::string e = test::mesh_load_error(d / "mesh" / name);
     EXPECT_CONTAINS(e, (d / "mesh" / name).string() + ": cannot read mesh file: it refers to ");
     EXPECT_CONTAINS(e, "outside the mesh file's folder " + fs::canonical(d / "mesh").string());
   }
   // assimp reads an absolute uri below the file's folder, where there is no such file.
-  EXPECT_CONTAINS(load_error(d / "mesh" / "absolute.gltf"),
+  EXPECT_CONTAINS(test::mesh_load_error(d / "mesh" / "absolute.gltf"),
                   (d / "mesh" / "absolute.gltf").string() + ": cannot read mesh file: it refers to ");
 }
 
@@ -186,13 +178,13 @@ TEST(HostileMesh, AGlbChunkLongerThanTheFileIsRefused) {
   };
   const auto total = static_cast<std::uint32_t>(20 + json.size());
   write_text(d / "long.glb", glb(2037149844u, total));
-  EXPECT_CONTAINS(load_error(d / "long.glb"), (d / "long.glb").string() +
+  EXPECT_CONTAINS(test::mesh_load_error(d / "long.glb"), (d / "long.glb").string() +
                                                   ": GLB chunk 0 says 2037149844 bytes, but the "
                                                   "file holds 27 after its header");
   write_text(d / "total.glb", glb(static_cast<std::uint32_t>(json.size()), 1u << 30));
-  EXPECT_CONTAINS(load_error(d / "total.glb"), "the GLB header says 1073741824 bytes, but the file holds 47");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "total.glb"), "the GLB header says 1073741824 bytes, but the file holds 47");
   write_text(d / "magic.glb", "glTX" + word(2) + word(12));
-  EXPECT_CONTAINS(load_error(d / "magic.glb"), "not a GLB file");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "magic.glb"), "not a GLB file");
 }
 
 // glTF accessors and primitives assimp trusts: an accessor of type "VEC7" behind a triangle
@@ -206,27 +198,27 @@ TEST(HostileMesh, AGltfAccessorOrPrimitiveAssimpWouldTripOnIsRefused) {
            std::to_string(mode) + R"(,"attributes":{"POSITION":0}}]}])" + extra + "}";
   };
   write_text(d / "type.gltf", gltf("VEC7", 9, 5, ""));
-  EXPECT_CONTAINS(load_error(d / "type.gltf"), (d / "type.gltf").string() +
+  EXPECT_CONTAINS(test::mesh_load_error(d / "type.gltf"), (d / "type.gltf").string() +
                                                    ": glTF accessors[0]: type must be SCALAR");
   write_text(d / "strip.gltf", gltf("VEC3", 2, 5, ""));
-  EXPECT_CONTAINS(load_error(d / "strip.gltf"),
+  EXPECT_CONTAINS(test::mesh_load_error(d / "strip.gltf"),
                   "glTF meshes[0].primitives[0]: mode 5 needs at least 3 vertices, got 2");
   write_text(d / "utf8.gltf", gltf("VEC3", 9, 4, ",\"x\":\"\xe5\xe5\""));
-  EXPECT_CONTAINS(load_error(d / "utf8.gltf"), "glTF document weft cannot read: ");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "utf8.gltf"), "glTF document weft cannot read: ");
   // Positions of type VEC2 (found by fuzz_mesh_glb beside a line loop: SIGSEGV inside assimp,
   // in the Release build too).
   write_text(d / "vec2.gltf", gltf("VEC2", 9, 4, ""));
-  EXPECT_CONTAINS(load_error(d / "vec2.gltf"),
+  EXPECT_CONTAINS(test::mesh_load_error(d / "vec2.gltf"),
                   "glTF meshes[0].primitives[0]: POSITION is accessor 0 of type VEC2, not one "
                   "glTF allows there");
   // A line loop: assimp read one through indices past its data (SIGSEGV; fuzz_mesh_glb).
   write_text(d / "loop.gltf", gltf("VEC3", 9, 2, ""));
-  EXPECT_CONTAINS(load_error(d / "loop.gltf"), "mode 2 (a line loop): weft reads triangles");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "loop.gltf"), "mode 2 (a line loop): weft reads triangles");
 }
 
 TEST(HostileMesh, ADeviceOrAFolderIsNotAMeshFile) {
-  EXPECT_CONTAINS(load_error("/dev/zero"), "/dev/zero: cannot read mesh file: not a regular file");
-  EXPECT_CONTAINS(load_error(dir()), "not a regular file");
+  EXPECT_CONTAINS(test::mesh_load_error("/dev/zero"), "/dev/zero: cannot read mesh file: not a regular file");
+  EXPECT_CONTAINS(test::mesh_load_error(dir()), "not a regular file");
 }
 
 }  // namespace

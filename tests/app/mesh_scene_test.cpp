@@ -159,38 +159,30 @@ TEST(MeshFile, EveryFormatGivesTheSameClosedCube) {
   }
 }
 
-std::string load_error(const fs::path& path) {
-  try {
-    load_triangle_mesh(path);
-  } catch (const MeshFileError& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 TEST(MeshFile, ErrorsNameTheFileAndTheReason) {
   const fs::path dir = mesh_scene_dir();
-  const std::string missing = load_error(dir / "no_such_mesh.obj");
+  const std::string missing = test::mesh_load_error(dir / "no_such_mesh.obj");
   EXPECT_CONTAINS(missing, (dir / "no_such_mesh.obj").string() + ": cannot read mesh file: ");
   EXPECT_CONTAINS(missing, "No such file or directory");
 
   write_text(dir / "garbage.bin", std::string("\x01\x02 this is not a mesh \x7f\xff\n", 25));
-  const std::string garbage = load_error(dir / "garbage.bin");
+  const std::string garbage = test::mesh_load_error(dir / "garbage.bin");
   EXPECT_CONTAINS(garbage, (dir / "garbage.bin").string() + ": cannot read mesh file: ");
 
   write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-  const std::string empty = load_error(dir / "points.obj");
+  const std::string empty = test::mesh_load_error(dir / "points.obj");
   EXPECT_CONTAINS(empty, (dir / "points.obj").string());
   EXPECT_CONTAINS(empty, "no triangles");
 
   // A NaN corner used to be joined to whichever vertex the map's broken ordering met (here
   // (0, 1, 0)), a duplicate triangle in place of the file's; 1e39 is infinite as a float.
   write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 1 nan\nf 1 2 3\nf 1 2 4\n");
-  const std::string nan = load_error(dir / "nan.obj");
+  const std::string nan = test::mesh_load_error(dir / "nan.obj");
   EXPECT_CONTAINS(nan, (dir / "nan.obj").string() + ": vertex 3 of mesh 0 is at (");
   EXPECT_CONTAINS(nan, "nan), not a finite position");
   write_text(dir / "huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
-  EXPECT_CONTAINS(load_error(dir / "huge.obj"), "vertex 1 of mesh 0 is at (inf, ");
+  EXPECT_CONTAINS(test::mesh_load_error(dir / "huge.obj"), "vertex 1 of mesh 0 is at (inf, ");
 }
 
 // The scene's "mesh" obstacle: path relative to the scene file, scale, rotate_z, translate.

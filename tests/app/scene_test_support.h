@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "app/io/mesh_file.h"
 #include "app/scene/json_reader.h"
 #include "app/scene/scene.h"
 
@@ -21,6 +22,16 @@ inline constexpr double gram_force = 9.80665e-3;  // N: one gram under standard 
 // Relative comparison at 1e-12.
 inline void expect_close(double actual, double expected) {
   EXPECT_NEAR(actual, expected, 1e-12 * std::fabs(expected)) << "actual " << actual;
+}
+
+// The message load_triangle_mesh throws for `path`, or "no error".
+inline std::string mesh_load_error(const std::filesystem::path& path) {
+  try {
+    load_triangle_mesh(path);
+  } catch (const MeshFileError& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 inline Scene parse_json_scene(const Json& scene) {
