@@ -13,13 +13,15 @@
 //                                     [--cg TOLERANCE] [--quick] [--methods SUBSTRING]
 //                                     [--reuse N] [--threads N] [--frames N] [--no-hold]
 //                                     [--adaptive STRAIN] [--max-step SECONDS]
+//                                     [--block-jacobi | --multigrid]
 // --reuse: fast projection's CG iterations on a reused factorization (0: a factorization per
 // iteration, the paper's); --threads: implicit Euler's CG threads (0: all); --frames: fewer
 // frames for the largest sizes (the rows then cover only that start); --no-hold: project the
 // top edge between the pins instead of holding it (sim/constraints/taut_chains.h), to measure
 // what holding it buys; --adaptive: fast projection with the adaptive step
 // (sim/adaptive_step.h) aiming its prediction's strain at STRAIN, its steps at most --max-step
-// (default 1/24 s; --step is then unused). After the rows, the speed
+// (default 1/24 s; --step is then unused); --block-jacobi, --multigrid: CG's preconditioner
+// (default: "auto", the multigrid from 150² vertices). After the rows, the speed
 // targets for fast projection at tol 1e-2, with the growth exponent.
 #include <algorithm>
 #include <cmath>
@@ -72,6 +74,7 @@ struct Options {
   bool hold_taut_chains = true;
   double adaptive_strain = 0.0;  // > 0: the adaptive step, aiming at this prediction strain
   double max_step_s = 1.0 / 24.0;
+  CgPreconditioner preconditioner = CgPreconditioner::automatic;
 };
 
 Row run(Index n, const Method& method, const Options& options) {
@@ -92,6 +95,7 @@ Row run(Index n, const Method& method, const Options& options) {
   if (options.cg_tolerance > 0.0 && method.projection != ProjectionMethod::none) {
     s.implicit_solve = ImplicitSolve::conjugate_gradient;
     s.implicit_cg_tolerance = options.cg_tolerance;
+    s.implicit_cg_preconditioner = options.preconditioner;
   }
   s.projection.method = method.projection;
   s.projection.tolerance = method.tolerance;
@@ -204,8 +208,10 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) only = argv[++i];
     else if (!std::strcmp(argv[i], "--adaptive") && i + 1 < argc) options.adaptive_strain = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options.max_step_s = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--block-jacobi")) options.preconditioner = CgPreconditioner::block_jacobi;
+    else if (!std::strcmp(argv[i], "--multigrid")) options.preconditioner = CgPreconditioner::multigrid;
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --multigrid]\n", argv[0]);
       return 1;
     }
   }

@@ -107,6 +107,7 @@ struct SimSettings {
   // residual of implicit_cg_tolerance (see ImplicitSolveSettings).
   ImplicitSolve implicit_solve = ImplicitSolve::direct;
   double implicit_cg_tolerance = 1e-4;
+  CgPreconditioner implicit_cg_preconditioner = CgPreconditioner::automatic;
   // Threads of the conjugate gradients' matrix–vector product (0: all hardware threads). Never
   // changes a bit of the result (`weft run --threads`).
   int solver_threads = 0;

@@ -98,6 +98,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_integrator_settings.implicit_solve.backend = settings.sparse_backend;
   m_integrator_settings.implicit_solve.cg_tolerance = settings.implicit_cg_tolerance;
   m_integrator_settings.implicit_solve.threads = settings.solver_threads;
+  m_integrator_settings.implicit_solve.preconditioner = settings.implicit_cg_preconditioner;
   // Dynamic relaxation: one iteration per step of the explicit integrators' step, with
   // fictitious masses stable at it (sim/integrators/dynamic_relaxation.h).
   m_integrator_settings.relaxation_max_step_s = m_time_step_s;
@@ -129,6 +130,8 @@ void Simulator::build_solvers() {
   m_contacts = std::make_unique<ContactsAndConstraints>(m_mesh, m_system.inv_mass, m_settings);
   // The projection's carried tension is one more force term (none before the first projection).
   if (m_contacts->tension_term()) m_system.terms.push_back(m_contacts->tension_term());
+  m_integrator_settings.implicit_solve.grid_nu = m_mesh.nu;  // 0 × 0 for a triangle mesh
+  m_integrator_settings.implicit_solve.grid_nv = m_mesh.nv;
   m_integrator = make_time_integrator(m_settings.integrator, m_system, m_integrator_settings);
 }
 

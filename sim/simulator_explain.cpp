@@ -52,7 +52,9 @@ std::string Simulator::explain_integrate() const {
     if (m_settings.implicit_solve == ImplicitSolve::direct)
       line << ", sparse direct solve (" << sparse_backend_name(m_settings.sparse_backend) << ")";
     else
-      line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance;
+      line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance << " ("
+           << base::enum_name(cg_preconditioner_names, m_settings.implicit_cg_preconditioner)
+           << ")";
   }
   if (const DynamicRelaxation* relaxation = this->relaxation()) {
     const Eigen::ArrayXd ratio =

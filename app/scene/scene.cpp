@@ -337,6 +337,8 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
   s.implicit_solve = r.enumeration("implicit_solver", sim::implicit_solve_names, {s.implicit_solve});
   s.implicit_cg_tolerance =
       r.number("cg_tolerance", s.implicit_cg_tolerance, Range::gt(0.0).lt(1.0));
+  s.implicit_cg_preconditioner = r.enumeration("cg_preconditioner", sim::cg_preconditioner_names,
+                                               {s.implicit_cg_preconditioner});
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));

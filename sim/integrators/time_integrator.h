@@ -54,6 +54,17 @@ enum class ImplicitSolve { direct, conjugate_gradient };
 inline constexpr base::EnumNames<ImplicitSolve, 2> implicit_solve_names{
     {{ImplicitSolve::direct, "direct"}, {ImplicitSolve::conjugate_gradient, "conjugate_gradient"}}};
 
+// Conjugate gradients' preconditioner (sim/linear/block_conjugate_gradient.h): a multigrid
+// V-cycle on the cloth's warp/weft grid (block Jacobi on a mesh without one), block Jacobi, or
+// automatic: the multigrid on grids of at least kMultigridMinVertices vertices, where it was
+// measured to pay (docs/benchmarks.md, "Multigrid for the implicit step"), block Jacobi below.
+enum class CgPreconditioner { automatic, multigrid, block_jacobi };
+inline constexpr base::EnumNames<CgPreconditioner, 3> cg_preconditioner_names{
+    {{CgPreconditioner::automatic, "auto"},
+     {CgPreconditioner::multigrid, "multigrid"},
+     {CgPreconditioner::block_jacobi, "block_jacobi"}}};
+inline constexpr Index kMultigridMinVertices = 150 * 150;
+
 struct ImplicitSolveSettings {
   ImplicitSolve method = ImplicitSolve::direct;
   SparseBackend backend = default_sparse_backend();  // direct
@@ -62,6 +73,9 @@ struct ImplicitSolveSettings {
   // Conjugate gradients: threads of the matrix–vector product (0: all hardware threads). The
   // result is the same bits for any number.
   int threads = 0;
+  CgPreconditioner preconditioner = CgPreconditioner::automatic;
+  // The cloth's warp/weft grid, vertex (i, j) at j·grid_nu + i; 0 × 0: none (a triangle mesh).
+  Index grid_nu = 0, grid_nv = 0;
 };
 
 struct IntegratorSettings {

@@ -10,6 +10,11 @@
 // order, so the product — and with the sequential vector updates and dot products, every
 // iterate — is the same bits for any number of threads.
 //
+// On a warp/weft grid (analyze() given its size) the preconditioner is a geometric multigrid
+// V-cycle instead (grid_multigrid.h), whose iteration count does not grow with the
+// resolution; should its cycle not be positive definite for some matrix (a breakdown), that
+// solve is redone with block Jacobi.
+//
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.
 
@@ -21,6 +26,8 @@
 #include <Eigen/SparseCore>
 
 #include "base/thread_pool.h"
+#include "sim/linear/block_sparse_matrix.h"
+#include "sim/linear/grid_multigrid.h"
 #include "sim/linear/sparse_spd_solver.h"
 
 namespace weft::sim {
@@ -39,28 +46,40 @@ class BlockConjugateGradient {
   ~BlockConjugateGradient();
 
   // The pattern of `lower` (square, 3k rows, lower triangle, compressed). Once per pattern.
-  void analyze(const SparseMatrix& lower);
-  // The values of `lower` (the analysed pattern) and the inverses of its 3×3 diagonal blocks.
+  // grid_nu × grid_nv = k: the vertices form that warp/weft grid (vertex (i, j) is block row
+  // j·grid_nu + i), and the multigrid preconditions where it can (0 × 0: block Jacobi).
+  void analyze(const SparseMatrix& lower, Index grid_nu = 0, Index grid_nv = 0);
+  // The values of `lower` (the analysed pattern), the inverses of its 3×3 diagonal blocks and
+  // the multigrid's coarse matrices.
   void set_matrix(const SparseMatrix& lower);
   // From the initial guess x (resized to b's size and zeroed if its size differs).
   Result solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
                int max_iterations) const;
 
+  // y = A x (y sized like x beforehand).
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  const BlockSparseMatrix& matrix() const { return m_matrix; }
+  // The multigrid's levels, the fine grid's included; 0 without one (block Jacobi).
+  int multigrid_levels() const;
+
  private:
-  using Block = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
-  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;  // y = A x
-  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  // Where a value of the lower triangle goes: an off-diagonal block or a diagonal one, at
+  // `index` (block × 9 + row-major position); index −1: nowhere (a diagonal value's mirror).
+  struct Slot {
+    int index = -1;
+    bool diagonal = false;
+  };
+  Slot slot(int row, int col) const;
+  Result iterate(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                 int max_iterations, bool multigrid) const;
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z, bool multigrid) const;
 
   std::unique_ptr<base::ThreadPool> m_pool;
-  // Block compressed rows: block row p has the blocks m_block_start[p] … m_block_start[p+1]−1,
-  // in block columns m_block_column[…], their values 9 each (row-major) in m_blocks.
-  std::vector<int> m_block_start, m_block_column;
-  std::vector<double> m_blocks;
-  // For each value of the lower triangle, its index in m_blocks, and its mirror's (−1 on the
-  // diagonal).
-  std::vector<int> m_to_block, m_to_mirror;
-  std::vector<int> m_diagonal_block;             // per vertex, its diagonal block's index in m_blocks
+  BlockSparseMatrix m_matrix;
+  // For each value of the lower triangle, its slot and its mirror's.
+  std::vector<Slot> m_to_block, m_to_mirror;
   std::vector<Eigen::Matrix3d> m_block_inverse;  // per vertex
+  std::unique_ptr<GridMultigrid> m_multigrid;
 };
 
 }  // namespace weft::sim

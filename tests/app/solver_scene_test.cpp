@@ -30,6 +30,7 @@ Json solver_scene() {
       "linear_solver": "eigen_ldlt",
       "implicit_solver": "conjugate_gradient",
       "cg_tolerance": 1e-3,
+      "cg_preconditioner": "block_jacobi",
       "constraints": {"method": "fast_projection", "edges": "triangle_edges",
                       "tolerance": 1e-4, "max_iterations": 50},
       "collision_friction": 0.45
@@ -43,6 +44,7 @@ TEST(SolverScene, EveryKeyLandsInSimSettings) {
   EXPECT_EQ(s.sparse_backend, sim::SparseBackend::eigen_ldlt);
   EXPECT_EQ(s.implicit_solve, sim::ImplicitSolve::conjugate_gradient);
   EXPECT_EQ(s.implicit_cg_tolerance, 1e-3);
+  EXPECT_EQ(s.implicit_cg_preconditioner, sim::CgPreconditioner::block_jacobi);
   EXPECT_EQ(s.projection.method, sim::ProjectionMethod::fast_projection);
   EXPECT_EQ(s.projection.edges, sim::ConstrainedEdges::triangle_edges);
   EXPECT_EQ(s.projection.tolerance, 1e-4);
@@ -60,6 +62,7 @@ TEST(SolverScene, OmittedKeysTakeTheStructDefaults) {
   EXPECT_EQ(s.sparse_backend, sim::default_sparse_backend());
   EXPECT_EQ(s.implicit_solve, defaults.implicit_solve);
   EXPECT_EQ(s.implicit_cg_tolerance, defaults.implicit_cg_tolerance);
+  EXPECT_EQ(s.implicit_cg_preconditioner, sim::CgPreconditioner::automatic);
   EXPECT_EQ(s.projection.method, sim::ProjectionMethod::none);
   EXPECT_EQ(s.projection.edges, projection.edges);
   EXPECT_EQ(s.projection.tolerance, 1e-3);
@@ -232,6 +235,11 @@ TEST(SolverScene, OutOfRange) {
   j = solver_scene();
   j["simulation"]["cg_tolerance"] = 1.0;
   EXPECT_EQ(scene_error_of(j), "scene.json: simulation.cg_tolerance: expected a number in (0, 1), got 1.0");
+  j["simulation"]["cg_tolerance"] = 1e-3;
+  j["simulation"]["cg_preconditioner"] = "amg";
+  EXPECT_EQ(scene_error_of(j),
+            "scene.json: simulation.cg_preconditioner: expected one of 'auto', 'multigrid', "
+            "'block_jacobi', got the string 'amg'");
   j["simulation"]["implicit_solver"] = "cg";
   EXPECT_CONTAINS(scene_error_of(j), "scene.json: simulation.implicit_solver:");
   EXPECT_CONTAINS(scene_error_of(j), "conjugate_gradient");

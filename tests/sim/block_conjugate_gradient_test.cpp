@@ -5,52 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <memory>
-#include <random>
 
 #include <Eigen/SparseCholesky>
+
+#include "tests/support/block_grid_matrix.h"
 
 namespace weft::sim {
 namespace {
 
-// A symmetric positive definite 3×3-block matrix with the coupling of a cloth grid: n×n
-// vertices, a random SPD 3×3 block on each edge and diagonal of the grid (a spring's [H −H;
-// −H H]) plus a mass on the diagonal. The full matrix.
-SparseMatrix grid_system(int n, double mass, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Eigen::Triplet<double, int>> t;
-  const auto add_block = [&](int p, int q, const Eigen::Matrix3d& b) {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) t.emplace_back(3 * p + r, 3 * q + c, b(r, c));
-  };
-  for (int v = 0; v < n * n; ++v) add_block(v, v, mass * Eigen::Matrix3d::Identity());
-  const auto spring = [&](int a, int b) {
-    Eigen::Matrix3d g;
-    for (int k = 0; k < 9; ++k) g(k / 3, k % 3) = u(rng);
-    const Eigen::Matrix3d H = g * g.transpose() + 0.1 * Eigen::Matrix3d::Identity();
-    add_block(a, a, H);
-    add_block(b, b, H);
-    add_block(a, b, -H);
-    add_block(b, a, -H);
-  };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int v = i * n + j;
-      if (j + 1 < n) spring(v, v + 1);
-      if (i + 1 < n) spring(v, v + n);
-      if (i + 1 < n && j + 1 < n) spring(v, v + n + 1);
-    }
-  SparseMatrix A(3 * n * n, 3 * n * n);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
+using test_matrices::grid_system;
+using test_matrices::random_vector;
 
-SparseMatrix lower(const SparseMatrix& full) {
-  SparseMatrix l = full.triangularView<Eigen::Lower>();
-  l.makeCompressed();
-  return l;
-}
+SparseMatrix lower(const SparseMatrix& full) { return test_matrices::lower_triangle(full); }
 
 // Conjugate gradients analysed and set up for the full symmetric matrix A.
 std::unique_ptr<BlockConjugateGradient> prepared(const SparseMatrix& A, int threads = 1) {
@@ -58,14 +24,6 @@ std::unique_ptr<BlockConjugateGradient> prepared(const SparseMatrix& A, int thre
   cg->analyze(lower(A));
   cg->set_matrix(lower(A));
   return cg;
-}
-
-Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g;
-  Eigen::VectorXd b(n);
-  for (Eigen::Index i = 0; i < n; ++i) b[i] = g(rng);
-  return b;
 }
 
 TEST(BlockConjugateGradient, ReachesTheToleranceAndAgreesWithADirectSolve) {
