@@ -9,9 +9,13 @@ the issue that asked for this comparison, and the growth of each column with the
 Blender's column is left out when no `blender` is found. The sweep's CPU time is the process's
 over the frames (the set-up left out); Blender's is its bake's.
 
+Both run pinned to one CPU (`taskset -c CPU`, the last one by default). Blender's `-t 1` does
+not keep its cloth solver on one thread: on a busy machine its waiting threads spin, and its
+CPU time per frame at 32² was measured at 24–293 ms unpinned against 20 ms pinned.
+
   python3 bench/cloth_vs_blender.py [--sizes 32,64,128,256] [--frames 48] [--quality 5]
       [--sweep build/bench/inextensibility_sweep] [--blender blender] [--wool-mass]
-      [--preconditioner auto|multigrid|block_jacobi]
+      [--preconditioner auto|multigrid|block_jacobi] [--cpu N]
 """
 import argparse
 import math
@@ -25,7 +29,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TARGET_RATIO = {64: 0.10, 128: 0.12, 256: 0.15}  # weft / Blender, CPU per frame
 
 
-def sweep_cpu_ms(sweep, n, frames, adaptive, preconditioner):
+def pinned(command, cpu):
+    return (["taskset", "-c", str(cpu)] + command) if shutil.which("taskset") else command
+
+
+def sweep_cpu_ms(sweep, n, frames, adaptive, preconditioner, cpu):
     command = [sweep, "--sizes", str(n), "--cg", "1e-3", "--methods", "tol 1e-2",
                "--threads", "1", "--frames", str(frames)]
     if adaptive:
@@ -34,7 +42,7 @@ def sweep_cpu_ms(sweep, n, frames, adaptive, preconditioner):
         command.append("--multigrid")
     elif preconditioner == "block_jacobi":
         command.append("--block-jacobi")
-    out = subprocess.run(command, check=True, capture_output=True, text=True).stdout
+    out = subprocess.run(pinned(command, cpu), check=True, capture_output=True, text=True).stdout
     for line in out.splitlines():
         if line.startswith("%d²" % n) and "fast_projection" in line:
             fields = line.split()
@@ -45,13 +53,13 @@ def sweep_cpu_ms(sweep, n, frames, adaptive, preconditioner):
     raise SystemExit("no fast_projection row for %d² in the sweep's output:\n%s" % (n, out))
 
 
-def blender_cpu_ms(blender, n, frames, quality, wool_mass):
+def blender_cpu_ms(blender, n, frames, quality, wool_mass, cpu):
     command = [blender, "-b", "--factory-startup", "-t", "1", "--python-exit-code", "1",
                "--python", os.path.join(HERE, "blender_cloth_hang.py"), "--",
                str(n), str(frames), str(quality)]
     if wool_mass:
         command.append("--wool-mass")
-    out = subprocess.run(command, check=True, capture_output=True, text=True).stdout
+    out = subprocess.run(pinned(command, cpu), check=True, capture_output=True, text=True).stdout
     match = re.search(r"cpu_ms_per_frame=([0-9.]+) lowest_z=([-0-9.]+) max_strain=([0-9.]+)", out)
     if not match:
         raise SystemExit("no weft-bench line in Blender's output:\n%s" % out[-2000:])
@@ -76,6 +84,7 @@ def main():
     parser.add_argument("--wool-mass", action="store_true")
     parser.add_argument("--preconditioner", default="auto",
                         choices=["auto", "multigrid", "block_jacobi"])
+    parser.add_argument("--cpu", type=int, default=(os.cpu_count() or 1) - 1)
     args = parser.parse_args()
     if not os.path.exists(args.sweep):
         raise SystemExit("%s: not found (build with -DWEFT_BUILD_BENCH=ON)" % args.sweep)
@@ -83,10 +92,10 @@ def main():
         print("blender not found: its column is left out", file=sys.stderr)
     rows = []
     for n in [int(s) for s in args.sizes.split(",")]:
-        fixed = sweep_cpu_ms(args.sweep, n, args.frames, False, args.preconditioner)
-        adaptive = sweep_cpu_ms(args.sweep, n, args.frames, True, args.preconditioner)
-        blender = (blender_cpu_ms(args.blender, n, args.frames, args.quality, args.wool_mass)
-                   if args.blender else None)
+        fixed = sweep_cpu_ms(args.sweep, n, args.frames, False, args.preconditioner, args.cpu)
+        adaptive = sweep_cpu_ms(args.sweep, n, args.frames, True, args.preconditioner, args.cpu)
+        blender = (blender_cpu_ms(args.blender, n, args.frames, args.quality, args.wool_mass,
+                                  args.cpu) if args.blender else None)
         rows.append({"n": n, "fixed": fixed["cpu_ms"], "adaptive": adaptive["cpu_ms"],
                      "blender": blender["cpu_ms"] if blender else None,
                      "detail": (fixed, adaptive, blender)})

@@ -45,8 +45,8 @@ class TimeIntegrator {
 };
 
 // How implicit Euler solves each step's linear system: a sparse direct factorization
-// (SparseBackend), or conjugate gradients with a 3×3 block-Jacobi preconditioner
-// (sim/linear/block_conjugate_gradient.h), warm-started from the previous step's Δv and stopped
+// (SparseBackend), or conjugate gradients preconditioned by block Jacobi or a grid multigrid
+// (CgPreconditioner; sim/linear/block_conjugate_gradient.h), warm-started from the previous step's Δv and stopped
 // at a relative residual ‖r‖/‖b‖ ≤ tolerance (inexact Newton: cheaper per step on large meshes;
 // the step's accuracy is then that of the residual).
 enum class ImplicitSolve { direct, conjugate_gradient };

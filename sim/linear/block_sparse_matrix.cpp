@@ -80,6 +80,20 @@ void BlockSparseMatrix::invert_diagonal(std::vector<Eigen::Matrix3d>& inverse) c
     inverse[p] = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(diagonal(p)).inverse();
 }
 
+Eigen::MatrixXd BlockSparseMatrix::to_dense() const {
+  using Block = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
+  const auto n = static_cast<Eigen::Index>(3 * block_rows());
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (std::size_t p = 0; p < block_rows(); ++p) {
+    const auto r = static_cast<Eigen::Index>(3 * p);
+    dense.block<3, 3>(r, r) = Block(diagonal(p));
+    for (int k = begin(p); k < end(p); ++k)
+      dense.block<3, 3>(r, 3 * static_cast<Eigen::Index>(m_column[static_cast<std::size_t>(k)])) =
+          Block(off_diagonal(k));
+  }
+  return dense;
+}
+
 std::size_t BlockSparseMatrix::bytes_per_product() const {
   return (m_values.size() + m_diagonal.size()) * sizeof(double) +
          (m_column.size() + m_start.size()) * sizeof(int) + 2 * 3 * block_rows() * sizeof(double);

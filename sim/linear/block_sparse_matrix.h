@@ -48,6 +48,8 @@ class BlockSparseMatrix {
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, base::ThreadPool* pool) const;
   // The inverse of every diagonal block.
   void invert_diagonal(std::vector<Eigen::Matrix3d>& inverse) const;
+  // The whole matrix, dense (for small matrices: the multigrid's coarsest level, tests).
+  Eigen::MatrixXd to_dense() const;
   // Bytes one product streams at the least: every block and index once, x and y once.
   std::size_t bytes_per_product() const;
 

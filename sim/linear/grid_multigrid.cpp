@@ -51,8 +51,6 @@ std::vector<std::vector<int>> stencil_pattern(Index nu, Index nv, int radius, st
   return columns;
 }
 
-using RowMajorBlock = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
-
 }  // namespace
 
 std::optional<GridMultigrid> GridMultigrid::make(const BlockSparseMatrix& fine, Index nu, Index nv) {
@@ -158,17 +156,7 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
     }
     level.A.invert_diagonal(level.inverse);
   }
-  const BlockSparseMatrix& last = m_levels.back().A;
-  const auto n = static_cast<Eigen::Index>(3 * last.block_rows());
-  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
-  for (std::size_t p = 0; p < last.block_rows(); ++p) {
-    const auto r = static_cast<Eigen::Index>(3 * p);
-    dense.block<3, 3>(r, r) = RowMajorBlock(last.diagonal(p));
-    for (int k = last.begin(p); k < last.end(p); ++k)
-      dense.block<3, 3>(r, 3 * static_cast<Eigen::Index>(last.column()[static_cast<std::size_t>(k)])) =
-          RowMajorBlock(last.off_diagonal(k));
-  }
-  m_coarsest.compute(dense);
+  m_coarsest.compute(m_levels.back().A.to_dense());
   m_coarsest_ok = m_coarsest.info() == Eigen::Success;
 }
 

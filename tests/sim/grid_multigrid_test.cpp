@@ -21,19 +21,14 @@ using test_matrices::grid_system;
 using test_matrices::lower_triangle;
 using test_matrices::random_vector;
 
-// The dense matrix of a BlockSparseMatrix.
-Eigen::MatrixXd dense(const BlockSparseMatrix& A) {
-  const auto n = static_cast<Eigen::Index>(3 * A.block_rows());
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
-  using Block = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
-  for (std::size_t p = 0; p < A.block_rows(); ++p) {
-    const auto r = static_cast<Eigen::Index>(3 * p);
-    D.block<3, 3>(r, r) = Block(A.diagonal(p));
-    for (int k = A.begin(p); k < A.end(p); ++k)
-      D.block<3, 3>(r, 3 * static_cast<Eigen::Index>(A.column()[static_cast<std::size_t>(k)])) =
-          Block(A.off_diagonal(k));
-  }
-  return D;
+// A's pattern and values in `cg`, and the multigrid of its n×n grid, updated.
+GridMultigrid updated_multigrid(const SparseMatrix& A, int n, BlockConjugateGradient& cg) {
+  cg.analyze(lower_triangle(A));
+  cg.set_matrix(lower_triangle(A));
+  std::optional<GridMultigrid> mg = GridMultigrid::make(cg.matrix(), n, n);
+  EXPECT_TRUE(mg);
+  mg->update(cg.matrix());
+  return std::move(*mg);
 }
 
 // Bilinear prolongation from the (nu/2 + 1) × (nv/2 + 1) grid to the nu × nv grid, written from
@@ -71,22 +66,18 @@ TEST(GridMultigrid, CoarseMatricesAreTheGalerkinProducts) {
   const int n = 9;
   const SparseMatrix A = grid_system(n, 0.05, 11, 1.0, true);
   BlockConjugateGradient cg(1);
-  cg.analyze(lower_triangle(A));
-  cg.set_matrix(lower_triangle(A));
-  std::optional<GridMultigrid> mg = GridMultigrid::make(cg.matrix(), n, n);
-  ASSERT_TRUE(mg);
-  ASSERT_EQ(mg->levels(), 3);
-  mg->update(cg.matrix());
+  const GridMultigrid mg = updated_multigrid(A, n, cg);
+  ASSERT_EQ(mg.levels(), 3);
   Eigen::MatrixXd fine = Eigen::MatrixXd(A);
   Index nu = n;
-  for (int l = 1; l < mg->levels(); ++l) {
+  for (int l = 1; l < mg.levels(); ++l) {
     const Eigen::MatrixXd P = bilinear_prolongation(nu, nu);
     const Eigen::MatrixXd expected = P.transpose() * fine * P;
-    const Eigen::MatrixXd coarse = dense(mg->coarse_matrix(l));
+    const Eigen::MatrixXd coarse = mg.coarse_matrix(l).to_dense();
     ASSERT_EQ(coarse.rows(), expected.rows());
     EXPECT_LT((coarse - expected).norm(), 1e-12 * expected.norm()) << "level " << l;
     fine = expected;
-    nu = mg->coarse_nu(l);
+    nu = mg.coarse_nu(l);
   }
 }
 
@@ -94,18 +85,14 @@ TEST(GridMultigrid, TheCycleIsSymmetricAndPositive) {
   const int n = 20;
   const SparseMatrix A = grid_system(n, 0.02, 12, 1.0, true);
   BlockConjugateGradient cg(1);
-  cg.analyze(lower_triangle(A));
-  cg.set_matrix(lower_triangle(A));
-  std::optional<GridMultigrid> mg = GridMultigrid::make(cg.matrix(), n, n);
-  ASSERT_TRUE(mg);
-  mg->update(cg.matrix());
+  const GridMultigrid mg = updated_multigrid(A, n, cg);
   std::vector<Eigen::Matrix3d> inverse;
   cg.matrix().invert_diagonal(inverse);
   for (unsigned seed = 0; seed < 4; ++seed) {
     const Eigen::VectorXd u = random_vector(A.rows(), 100 + seed), v = random_vector(A.rows(), 200 + seed);
     Eigen::VectorXd Bu, Bv;
-    mg->apply(cg.matrix(), inverse, u, Bu, nullptr);
-    mg->apply(cg.matrix(), inverse, v, Bv, nullptr);
+    mg.apply(cg.matrix(), inverse, u, Bu, nullptr);
+    mg.apply(cg.matrix(), inverse, v, Bv, nullptr);
     EXPECT_NEAR(u.dot(Bv), v.dot(Bu), 1e-12 * Bu.norm() * v.norm());
     EXPECT_GT(v.dot(Bv), 0.0);
   }
