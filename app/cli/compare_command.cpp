@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/io/finite_outputs.h"
 #include "base/html_escape.h"
 #include "app/scene/json_reader.h"
 #include "app/cli/options.h"
@@ -303,6 +304,7 @@ int run_compare(const CompareOptions& o) {
     return exit_bad_input;
   }
   const nlohmann::json j = result_json(o, masks, ps, rs, c);
+  const std::string json_text = finite_json_text(j, "weft compare's result");
   for (const auto& w : j["warnings"])
     std::fprintf(stderr, "weft compare: warning: %s\n", w.get<std::string>().c_str());
   fs::create_directories(o.out);
@@ -311,7 +313,7 @@ int run_compare(const CompareOptions& o) {
   render::write_png(render::outline_overlay(photo, c), o.out / "overlay.png");
   render::write_png(render::fold_label_image(c), o.out / "folds.png");
   write_report(o.out / "report.html", j);
-  if (o.json) std::printf("%s\n", j.dump(2).c_str());
+  if (o.json) std::printf("%s\n", json_text.c_str());
   else print_text(j);
   std::fprintf(stderr, "weft compare: wrote %s\n", (o.out / "report.html").c_str());
   return exit_ok;

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/io/finite_outputs.h"
 #include "app/scene/json_reader.h"
 #include "app/io/output_files.h"
 
@@ -65,7 +66,7 @@ void print_json(const DiffOptions& o, const render::ImageDifference& d, const Di
   j["crossed"] = v.crossed;
   static const char* results[] = {"pass", "warn", "fail"};
   j["result"] = results[v.exit];
-  std::printf("%s\n", j.dump(2).c_str());
+  std::printf("%s\n", finite_json_text(j, "weft diff's result").c_str());
 }
 
 // Writes the heatmap as PNG or JPEG by the file's extension.

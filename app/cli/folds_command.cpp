@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/io/finite_outputs.h"
 #include "app/report/folds_overlay.h"
 #include "app/run/frame_mesh.h"
 #include "app/scene/json_reader.h"
@@ -170,7 +171,7 @@ int run_folds(const FoldsOptions& options) {
   if (options.size) std::tie(width, height) = parse_size(*options.size, "--size");
 
   if (options.json)
-    std::printf("%s\n", folds_json(in, result).dump(2).c_str());
+    std::printf("%s\n", finite_json_text(folds_json(in, result), "weft folds' result").c_str());
   else
     print_text(in, result);
 

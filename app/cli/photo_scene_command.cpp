@@ -12,6 +12,7 @@
 
 #include "app/cli/options.h"
 #include "app/fit/photo_scene_fit.h"
+#include "app/io/finite_outputs.h"
 #include "app/io/input_error.h"
 #include "app/io/input_guard.h"
 #include "app/io/output_files.h"
@@ -317,10 +318,11 @@ int run_photo_scene(const PhotoSceneOptions& o) {
     seen_fraction = t.seen_fraction;
     scene = problem.scene_at(best.placement, texture_file);
   }
-  write_text(o.out / "scene.json", photo_scene_json(setup, best.placement,
-                                                    scene_description(o, final_eval), texture_file)
-                                           .dump(2) +
-                                       "\n");
+  write_text(o.out / "scene.json",
+             finite_json_text(photo_scene_json(setup, best.placement,
+                                               scene_description(o, final_eval), texture_file),
+                              (o.out / "scene.json").string()) +
+                 "\n");
 
   const render::Mask mask = problem.silhouette(scene, *settled.simulator);
   const render::Image look = problem.render_look(scene, *settled.simulator);
@@ -344,8 +346,9 @@ int run_photo_scene(const PhotoSceneOptions& o) {
   j["delta_e2000"] = {{"mean", c.delta_e.mean}, {"p95", c.delta_e.p95}};
   if (o.texture) j["texture_seen_fraction"] = seen_fraction;
   j["scene"] = scene_path;
-  write_text(o.out / "summary.json", j.dump(2) + "\n");
-  if (o.json) std::printf("%s\n", j.dump(2).c_str());
+  const std::string summary = finite_json_text(j, (o.out / "summary.json").string());
+  write_text(o.out / "summary.json", summary + "\n");
+  if (o.json) std::printf("%s\n", summary.c_str());
   else print_summary(j, setup, first, final_eval, c, scene_path);
   return exit_ok;
 }

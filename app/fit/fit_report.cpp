@@ -237,8 +237,8 @@ FitOutputs write_fit_outputs(const fs::path& dir, FitProblem& problem, const Fit
     outputs.drape_check = check_fitted_drape(problem, r.best.values);
     result["drape_photos"] = fitted_drape_json(*outputs.drape_check);
   }
-  require_finite_json(result, (dir / "fit_result.json").string());
-  write_text(dir / "fit_result.json", result.dump(2) + "\n");
+  write_text(dir / "fit_result.json",
+             finite_json_text(result, (dir / "fit_result.json").string()) + "\n");
   write_text(dir / "fitted_scene.json", problem.scene_at(r.best.values).text);
   write_text(dir / "fit.txt", "weft " + std::string(version()) + "\ncommand: " + command_line +
                                   "\nfit: " + spec.source + "\nscene: " + spec.base.source + "\n");

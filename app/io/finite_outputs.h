@@ -45,4 +45,12 @@ void require_finite_json(const Json& document, const std::string& what) {
     throw_non_finite(what + ": " + at);
 }
 
+// `document` as text, indented by `indent`, after require_finite_json(document, what): what
+// weft prints (--json) or writes as a .json file goes through here.
+template <class Json>
+std::string finite_json_text(const Json& document, const std::string& what, int indent = 2) {
+  require_finite_json(document, what);
+  return document.dump(indent);
+}
+
 }  // namespace weft::app

@@ -51,6 +51,21 @@ TEST(FiniteOutputs, AJsonNumberThatIsNotFiniteIsNamedByItsPath) {
   }
 }
 
+// What weft compare, diff, folds and photo-scene print or write as JSON: the text only when
+// every number is finite (nlohmann/json would print a NaN as null, which reads as "missing").
+TEST(FiniteOutputs, JsonTextIsGivenOnlyWhenEveryNumberIsFinite) {
+  nlohmann::json j = {{"iou", 0.97}, {"delta_e2000", {{"mean", 2.5}, {"p95", 6.0}}}};
+  EXPECT_EQ(finite_json_text(j, "weft compare's result"), j.dump(2));
+  j["delta_e2000"]["p95"] = std::numeric_limits<double>::quiet_NaN();
+  try {
+    (void)finite_json_text(j, "weft compare's result");
+    ADD_FAILURE() << "a NaN passed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_CONTAINS(std::string(e.what()),
+                    "weft compare's result: /delta_e2000/p95 is not a finite number");
+  }
+}
+
 TEST(FiniteOutputs, WriteTextRefusesACsvWithANonFiniteCellAndWritesNothing) {
   const std::filesystem::path dir =
       test_files::fresh_directory(::testing::TempDir(), "weft_finite_outputs_test");
