@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/io/fbx_precheck.h"
 #include "app/io/gltf_precheck.h"
 #include "app/io/mesh_file.h"
 
@@ -311,6 +312,7 @@ void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
   if (extension == ".obj") check_obj_counts(bytes, name);
   if (extension == ".glb") check_gltf_json(check_glb(bytes, name), name);
   if (extension == ".gltf") check_gltf_json(bytes, name);
+  if (extension == ".fbx") check_fbx(bytes, name);
   if (extension != ".ply") return;
   const PlyHeader h = read_ply_header(bytes, name);
   check_ply_counts(h, bytes.size() - h.body, name);
