@@ -75,6 +75,20 @@ PlyProperty read_ply_property(const std::vector<std::string>& w, const std::stri
   return p;
 }
 
+// An element's name once in a header, and faces as `face` or `tristrips`, not both: assimp sizes
+// its vertices (faces) by the first such element and writes the next one's past them (heap
+// corruption, `free(): invalid next size` in the Release build; found by fuzzing).
+void check_ply_element_name(const PlyHeader& h, const std::string& element, std::size_t line,
+                            const std::string& name) {
+  const std::string where = "PLY header line " + std::to_string(line) + ": element '" + element + "'";
+  for (const PlyElement& e : h.elements) {
+    if (e.name == element)
+      fail(name, where + " a second time (assimp would read it into the first one's arrays)");
+    if ((e.name == "face" && element == "tristrips") || (e.name == "tristrips" && element == "face"))
+      fail(name, where + " beside '" + e.name + "' (assimp would read both into one array of faces)");
+  }
+}
+
 // The header, line by line: "ply", then only format, comment, obj_info, element and property
 // lines up to an "end_header" line. Anything else is refused: assimp's reader was seen to hang
 // on a misspelt keyword.
@@ -110,6 +124,7 @@ PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
     } else if (key == "element" && w.size() == 3) {
       if (w[2].find_first_not_of("0123456789") != std::string::npos || w[2].size() > 19)
         fail(name, "PLY element '" + w[1] + "': count '" + w[2] + "' (expected a whole number)");
+      check_ply_element_name(h, w[1], number, name);
       h.elements.push_back({w[1], std::stoull(w[2]), {}});
     } else if (key == "property" && !h.elements.empty()) {
       h.elements.back().properties.push_back(read_ply_property(w, line, name));
@@ -131,6 +146,11 @@ std::string number_text(double v) {
 // The index lists of faces: "vertex_indices" or "vertex_index" of the element "face".
 bool is_face_list(const PlyElement& e, const PlyProperty& p) {
   return e.name == "face" && p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
+}
+
+// A face's texture coordinates (two a corner), which assimp reads beside its last index list.
+bool is_face_texcoords(const PlyElement& e, const PlyProperty& p) {
+  return e.name == "face" && p.list && p.name == "texcoord";
 }
 
 // The body of a PLY file, read value by value with every read checked against its end.
@@ -192,7 +212,8 @@ void check_ply_counts(const PlyHeader& h, std::size_t body_bytes, const std::str
   }
 }
 
-// Walks every element; each face's corners must be vertices of the file.
+// Walks every element; each face's corners must be vertices of the file, its texture
+// coordinates at most two a corner.
 void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::string& name) {
   std::uint64_t vertices = 0;
   for (const PlyElement& e : h.elements)
@@ -200,7 +221,8 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
   PlyBody body(bytes, h, name);
   for (const PlyElement& e : h.elements)
     // An element without properties takes no bytes, whatever its count (up to 10¹⁹).
-    for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i)
+    for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i) {
+      int corners = -1, texcoords = -1;  // the lists' lengths, as assimp takes them: the last
       for (const PlyProperty& p : e.properties) {
         const std::string where = e.name + " " + std::to_string(i) + ", " + p.name;
         if (!p.list) {
@@ -210,6 +232,8 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
         const double n = body.next(p.count_size, p.count_signed, false, where + "'s count");
         if (!(n >= 0 && n <= 255 && n == static_cast<double>(static_cast<int>(n))))
           fail(name, where + ": a list of " + number_text(n) + " items (expected 0 to 255)");
+        if (is_face_list(e, p)) corners = static_cast<int>(n);
+        if (is_face_texcoords(e, p)) texcoords = static_cast<int>(n);
         for (int k = 0; k < static_cast<int>(n); ++k) {
           const double v = body.next(p.size, p.is_signed, p.floating, where);
           if (is_face_list(e, p) && !(v >= 0 && v < static_cast<double>(vertices) &&
@@ -218,6 +242,13 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
                            ", not one of the file's " + std::to_string(vertices) + " vertices");
         }
       }
+      // assimp reads texture coordinate k at corner k / 2: past a face's corners (an invalid
+      // read), or without corners through a null pointer (SIGSEGV in the Release build).
+      if (texcoords > 2 * std::max(corners, 0))
+        fail(name, e.name + " " + std::to_string(i) + ", texcoord: " + std::to_string(texcoords) +
+                       " texture coordinates for " + std::to_string(std::max(corners, 0)) +
+                       " corners (at most two a corner)");
+    }
 }
 
 // An OBJ line's numbers from the `first`-th on (0-based, after the keyword) must be finite as

@@ -1,8 +1,8 @@
 // Hostile mesh files through the real `weft`, as each command reads them: the cloth's mesh
 // (cloth.mesh), a mesh obstacle and `weft turntable MESH`. A PLY whose face refers to a vertex it
-// does not have, or whose list count runs past its faces, used to crash inside assimp (SIGSEGV),
-// as did FBX models in a cycle; a glTF buffer outside the mesh's folder was read. Each is exit 1
-// naming the file, nothing written.
+// does not have, whose list count runs past its faces or with a second vertex element, used to
+// crash inside assimp (SIGSEGV, heap corruption), as did FBX models in a cycle; a glTF buffer
+// outside the mesh's folder was read. Each is exit 1 naming the file, nothing written.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -80,6 +80,22 @@ TEST_F(HostileMeshCli, AGltfBufferOutsideTheMeshFolderIsNotRead) {
                                    " --out " + (m_dir / "out").string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_CONTAINS(r.output, "outside the mesh file's folder");
+}
+
+// A PLY with a second vertex element: assimp wrote its vertices past the first one's array and
+// `weft turntable` aborted (heap corruption; found by fuzz_mesh_ply).
+TEST_F(HostileMeshCli, APlyElementTwiceIsRefused) {
+  std::ofstream ply(m_dir / "twice.ply");
+  const std::string vertex = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  ply << "ply\nformat ascii 1.0\n" << vertex << "element vertex 1000\nproperty float x\n"
+      << "property float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  for (int k = 0; k < 1000; ++k) ply << "0.5 0.5 0\n";
+  ply.close();
+  const CommandResult r = run_weft("turntable " + (m_dir / "twice.ply").string() + " --out " +
+                                   (m_dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, (m_dir / "twice.ply").string() + ": PLY header line 7: element 'vertex' a second time");
+  EXPECT_FALSE(fs::exists(m_dir / "out"));
 }
 
 // FBX files assimp recursed through until `weft turntable` and `weft run` died (SIGSEGV): a model

@@ -98,6 +98,36 @@ TEST(HostileMesh, APlyHeaderIsReadStrictlyAndAnEmptyElementTakesNoTime) {
                                       "end_header\n", ".ply", "empty.ply"));
 }
 
+// Found by fuzzing (fuzz_mesh_ply): a second `element vertex` made assimp write its vertices
+// past the first one's array (heap corruption: `weft turntable` aborted); faces beside tristrips
+// likewise, and a face's texture coordinates were read past its corners, or through a null
+// pointer without them (SIGSEGV).
+TEST(HostileMesh, APlyElementTwiceOrTexcoordsPastTheCornersAreRefused) {
+  const fs::path d = dir();
+  write_text(d / "twice.ply", "ply\nformat ascii 1.0\n" + kPlyVertices + kPlyVertices +
+                                  "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_CONTAINS(test::mesh_load_error(d / "twice.ply"),
+                  (d / "twice.ply").string() + ": PLY header line 7: element 'vertex' a second "
+                                               "time (assimp would read it into the first one's arrays)");
+  std::string strips = ascii_ply("3 0 1 2\n3 0 1 2\n");
+  strips.insert(strips.find("end_header"), "element tristrips 1\nproperty list int int vertex_indices\n");
+  write_text(d / "strips.ply", strips);
+  EXPECT_CONTAINS(test::mesh_load_error(d / "strips.ply"), "element 'tristrips' beside 'face'");
+  const auto textured = [](bool corners, const std::string& uv) {
+    return "ply\nformat ascii 1.0\n" + kPlyVertices + "element face 1\n" +
+           (corners ? "property list uchar int vertex_indices\n" : "") +
+           "property list uchar float texcoord\nend_header\n0 0 0\n1 0 0\n0 1 0\n" +
+           (corners ? "3 0 1 2 " : "") + uv + "\n";
+  };
+  write_text(d / "uv.ply", textured(true, "6 0 0 1 0 0 1"));
+  EXPECT_EQ(load_triangle_mesh(d / "uv.ply").triangles.size(), 1u);
+  write_text(d / "past.ply", textured(true, "8 0 0 1 0 0 1 1 1"));
+  EXPECT_CONTAINS(test::mesh_load_error(d / "past.ply"),
+                  "face 0, texcoord: 8 texture coordinates for 3 corners (at most two a corner)");
+  write_text(d / "none.ply", textured(false, "6 0 0 1 0 0 1"));
+  EXPECT_CONTAINS(test::mesh_load_error(d / "none.ply"), "6 texture coordinates for 0 corners");
+}
+
 TEST(HostileMesh, AnObjOverTheLimitIsRefusedBeforeItIsRead) {
   const fs::path d = dir();
   std::string obj;
