@@ -240,21 +240,44 @@ class FbxBinaryTokenizer : public FbxTokenizer {
     const std::uint64_t begin = m_cursor;
     const char type = m_bytes.at(m_cursor++);
     switch (type) {
-      case 'Y': m_cursor += 2; break;
-      case 'C': m_cursor += 1; break;
-      case 'I': case 'F': m_cursor += 4; break;
-      case 'D': case 'L': m_cursor += 8; break;
+      case 'Y':
+        m_cursor += 2;
+        break;
+      case 'C':
+        m_cursor += 1;
+        break;
+      case 'I':
+      case 'F':
+        m_cursor += 4;
+        break;
+      case 'D':
+      case 'L':
+        m_cursor += 8;
+        break;
       case 'R': {
         const std::uint32_t length = read_word(limit);
         m_cursor += length;
         break;
       }
-      case 'b': m_cursor = limit; break;
-      case 'f': case 'd': case 'l': case 'i': case 'c': read_array(type, limit); break;
-      case 'S': read_string(limit, true, true); break;
-      default: fail(std::string("cannot ReadData, unexpected type code: ") + type);
+      case 'b':
+        m_cursor = limit;
+        break;
+      case 'f':
+      case 'd':
+      case 'l':
+      case 'i':
+      case 'c':
+        read_array(type, limit);
+        break;
+      case 'S':
+        read_string(limit, true, true);
+        break;
+      default:
+        fail(std::string("cannot ReadData, unexpected type code: ") + type);
     }
-    if (m_cursor > limit) fail(std::string("cannot ReadData, the remaining size is too small for the data type: ") + type);
+    if (m_cursor > limit)
+      fail(std::string("cannot ReadData, the remaining size is too small for the data type: ") +
+           type);
     push(FbxTokenType::data, begin, m_cursor, m_cursor);
   }
 
@@ -295,12 +318,14 @@ class FbxBinaryTokenizer : public FbxTokenizer {
     m_cursor += size;
     return v;
   }
-  std::uint32_t read_word(std::uint64_t limit) { return static_cast<std::uint32_t>(read_le(limit, 4)); }
+  std::uint32_t read_word(std::uint64_t limit) {
+    return static_cast<std::uint32_t>(read_le(limit, 4));
+  }
   std::uint64_t read_long(std::uint64_t limit) { return read_le(limit, 8); }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw MeshFileError(m_name + ": FBX binary weft cannot read: byte " +
-                        std::to_string(m_cursor) + ": " + what);
+    throw MeshFileError(m_name + ": FBX binary weft cannot read: byte " + std::to_string(m_cursor) +
+                        ": " + what);
   }
 
   FbxBytes m_bytes;
@@ -341,7 +366,8 @@ class FbxParser {
                           m_tokens.where(m_current->where) + " (assimp reads them by recursion)");
     if (!advance()) fail("unexpected end of file");
     while (m_current->type != FbxTokenType::close) {
-      if (m_current->type != FbxTokenType::key) fail("unexpected token, expected a key", *m_current);
+      if (m_current->type != FbxTokenType::key)
+        fail("unexpected token, expected a key", *m_current);
       if (m_current->begin == m_current->end) fail("unexpected content: an empty key", *m_current);
       element(*m_current, depth, section);
       if (!m_current) {
@@ -402,7 +428,8 @@ std::optional<std::uint64_t> fbx_id(const FbxToken& t, const FbxBytes& bytes, bo
   if (binary) {
     if (s.size() < 9 || s[0] != 'L') return std::nullopt;
     std::uint64_t id = 0;
-    for (int k = 0; k < 8; ++k) id |= std::uint64_t{static_cast<unsigned char>(s[1 + k])} << (8 * k);
+    for (int k = 0; k < 8; ++k)
+      id |= std::uint64_t{static_cast<unsigned char>(s[1 + k])} << (8 * k);
     return id;
   }
   if (s.empty() || s[0] < '0' || s[0] > '9') return std::nullopt;

@@ -20,9 +20,9 @@ namespace fs = std::filesystem;
 namespace weft::app {
 namespace {
 
-using test_files::write_text;
-
-fs::path fbx_dir() { return test_files::fresh_directory(::testing::TempDir(), "weft_hostile_fbx_test"); }
+fs::path fbx_dir() {
+  return test_files::fresh_directory(::testing::TempDir(), "weft_hostile_fbx_test");
+}
 
 // A text FBX of one quad (geometry 10) in model 20, under model 21; `links` are the connections
 // after the geometry's, `more` extra objects.
@@ -31,7 +31,8 @@ std::string fbx_text(const std::string& links, const std::string& more = "") {
          "Objects:  {\n\tGeometry: 10, \"Geometry::\", \"Mesh\" {\n"
          "\t\tVertices: *12 {\n\t\t\ta: 0,0,0,1,0,0,1,1,0,0,1,0\n\t\t}\n"
          "\t\tPolygonVertexIndex: *4 {\n\t\t\ta: 0,1,2,-4\n\t\t}\n\t}\n"
-         "\tModel: 20, \"Model::a\", \"Mesh\" {\n\t}\n\tModel: 21, \"Model::b\", \"Null\" {\n\t}\n" +
+         "\tModel: 20, \"Model::a\", \"Mesh\" {\n\t}\n\tModel: 21, \"Model::b\", \"Null\" "
+         "{\n\t}\n" +
          more + "}\nConnections:  {\n\tC: \"OO\",10,20\n" + links + "}\n";
 }
 
@@ -41,11 +42,16 @@ std::string fbx_le(std::uint64_t v, int bytes) {
   for (int k = 0; k < bytes; ++k) s += static_cast<char>(v >> (8 * k) & 0xFF);
   return s;
 }
-std::string fbx_long(std::int64_t v) { return "L" + fbx_le(static_cast<std::uint64_t>(v), 8); }
-std::string fbx_string(const std::string& s) { return "S" + fbx_le(s.size(), 4) + s; }
+std::string fbx_long(std::int64_t v) {
+  return "L" + fbx_le(static_cast<std::uint64_t>(v), 8);
+}
+std::string fbx_string(const std::string& s) {
+  return "S" + fbx_le(s.size(), 4) + s;
+}
 template <typename T>
 std::string fbx_array(char type, const std::vector<T>& values) {
-  std::string s = type + fbx_le(values.size(), 4) + fbx_le(0, 4) + fbx_le(values.size() * sizeof(T), 4);
+  std::string s =
+      type + fbx_le(values.size(), 4) + fbx_le(0, 4) + fbx_le(values.size() * sizeof(T), 4);
   for (const T v : values) s.append(reinterpret_cast<const char*>(&v), sizeof v);
   return s;
 }
@@ -61,7 +67,8 @@ std::string fbx_node(const FbxNode& n, std::uint64_t offset) {
   for (const std::string& p : n.properties) properties += p;
   const std::string head = static_cast<char>(n.name.size()) + n.name + properties;
   std::string nested;
-  for (const FbxNode& c : n.children) nested += fbx_node(c, offset + 24 + head.size() + nested.size());
+  for (const FbxNode& c : n.children)
+    nested += fbx_node(c, offset + 24 + head.size() + nested.size());
   if (!n.children.empty()) nested += std::string(25, '\0');
   return fbx_le(offset + 24 + head.size() + nested.size(), 8) + fbx_le(n.properties.size(), 8) +
          fbx_le(properties.size(), 8) + head + nested;
@@ -71,19 +78,25 @@ std::string fbx_node(const FbxNode& n, std::uint64_t offset) {
 std::string fbx_binary(const std::vector<std::pair<int, int>>& links) {
   // An object: ID, "name\0\1Type", kind; and a nested list (assimp needs one: a Version).
   const auto object = [](const char* type, int id, const char* name, const char* kind) {
-    return FbxNode{type,
-                   {fbx_long(id), fbx_string(name + std::string("\0\1", 2) + type), fbx_string(kind)},
-                   {{"Version", {"I" + fbx_le(232, 4)}, {}}}};
+    return FbxNode{
+        type,
+        {fbx_long(id), fbx_string(name + std::string("\0\1", 2) + type), fbx_string(kind)},
+        {{"Version", {"I" + fbx_le(232, 4)}, {}}}};
   };
   FbxNode geometry = object("Geometry", 10, "", "Mesh");
-  geometry.children = {{"Vertices", {fbx_array<double>('d', {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0})}, {}},
-                       {"PolygonVertexIndex", {fbx_array<std::int32_t>('i', {0, 1, 2, -4})}, {}}};
-  FbxNode connections{"Connections", {}, {{"C", {fbx_string("OO"), fbx_long(10), fbx_long(20)}, {}}}};
+  geometry.children = {
+      {"Vertices", {fbx_array<double>('d', {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0})}, {}},
+      {"PolygonVertexIndex", {fbx_array<std::int32_t>('i', {0, 1, 2, -4})}, {}}};
+  FbxNode connections{
+      "Connections", {}, {{"C", {fbx_string("OO"), fbx_long(10), fbx_long(20)}, {}}}};
   for (const auto& [child, parent] : links)
-    connections.children.push_back({"C", {fbx_string("OO"), fbx_long(child), fbx_long(parent)}, {}});
+    connections.children.push_back(
+        {"C", {fbx_string("OO"), fbx_long(child), fbx_long(parent)}, {}});
   const std::vector<FbxNode> top = {
       {"FBXHeaderExtension", {}, {{"FBXVersion", {"I" + fbx_le(7500, 4)}, {}}}},
-      {"Objects", {}, {geometry, object("Model", 20, "a", "Mesh"), object("Model", 21, "b", "Null")}},
+      {"Objects",
+       {},
+       {geometry, object("Model", 20, "a", "Mesh"), object("Model", 21, "b", "Null")}},
       connections};
   std::string s = std::string("Kaydara FBX Binary  \0\x1a\0", 23) + fbx_le(7500, 4);
   for (const FbxNode& n : top) s += fbx_node(n, s.size());
@@ -92,8 +105,8 @@ std::string fbx_binary(const std::vector<std::pair<int, int>>& links) {
 
 TEST(HostileFbx, AQuadInTwoModelsLoadsAsTextAndBinary) {
   const fs::path d = fbx_dir();
-  write_text(d / "text.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n"));
-  write_text(d / "binary.fbx", fbx_binary({{20, 21}, {21, 0}}));
+  test_files::write_text(d / "text.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n"));
+  test_files::write_text(d / "binary.fbx", fbx_binary({{20, 21}, {21, 0}}));
   for (const char* name : {"text.fbx", "binary.fbx"}) {
     const PolygonMesh m = load_polygon_mesh(d / name);
     EXPECT_EQ(m.vertices.rows(), 4) << name;
@@ -105,19 +118,24 @@ TEST(HostileFbx, AQuadInTwoModelsLoadsAsTextAndBinary) {
 TEST(HostileFbx, AModelLinkedToItselfOrInACycleIsRefused) {
   const fs::path d = fbx_dir();
   // Model 21 under the root and under itself: assimp recursed until SIGSEGV.
-  write_text(d / "self.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n\tC: \"OO\",21,21\n"));
-  write_text(d / "self_binary.fbx", fbx_binary({{20, 21}, {21, 0}, {21, 21}}));
+  test_files::write_text(d / "self.fbx",
+                         fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n\tC: \"OO\",21,21\n"));
+  test_files::write_text(d / "self_binary.fbx", fbx_binary({{20, 21}, {21, 0}, {21, 21}}));
   for (const char* name : {"self.fbx", "self_binary.fbx"})
     EXPECT_CONTAINS(test::mesh_load_error(d / name),
-                    (d / name).string() + ": FBX model 21 has 2 parent connections (to 0, 21); a "
-                                          "model has one parent");
-  write_text(d / "cycle.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,20\n"));
-  EXPECT_CONTAINS(test::mesh_load_error(d / "cycle.fbx"),
-                  ": FBX models connected in a cycle (20 → 21 → 20): a model cannot be its own ancestor");
+                    (d / name).string() +
+                        ": FBX model 21 has 2 parent connections (to 0, 21); a "
+                        "model has one parent");
+  test_files::write_text(d / "cycle.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,20\n"));
+  EXPECT_CONTAINS(
+      test::mesh_load_error(d / "cycle.fbx"),
+      ": FBX models connected in a cycle (20 → 21 → 20): a model cannot be its own ancestor");
   // An overflowing ID is 0 to assimp: the root.
-  write_text(d / "overflow.fbx",
-             fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n\tC: \"OO\",21,99999999999999999999\n"));
-  EXPECT_CONTAINS(test::mesh_load_error(d / "overflow.fbx"), "model 21 has 2 parent connections (to 0, 0)");
+  test_files::write_text(
+      d / "overflow.fbx",
+      fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n\tC: \"OO\",21,99999999999999999999\n"));
+  EXPECT_CONTAINS(test::mesh_load_error(d / "overflow.fbx"),
+                  "model 21 has 2 parent connections (to 0, 0)");
 }
 
 // A model is a child of the one before it, twice: assimp converted 2^40 copies (a hang).
@@ -130,7 +148,8 @@ TEST(HostileFbx, AModelLinkedTwiceToItsParentIsRefused) {
       for (int twice = 0; twice < 2; ++twice)
         links += "\tC: \"OO\"," + std::to_string(100 + k) + "," + std::to_string(99 + k) + "\n";
   }
-  write_text(d / "twice.fbx", fbx_text(links + "\tC: \"OO\",21,0\n\tC: \"OO\",20,21\n", models));
+  test_files::write_text(d / "twice.fbx",
+                         fbx_text(links + "\tC: \"OO\",21,0\n\tC: \"OO\",20,21\n", models));
   EXPECT_CONTAINS(test::mesh_load_error(d / "twice.fbx"),
                   "FBX model 101 has 2 parent connections (to 100, 100)");
 }
@@ -140,18 +159,21 @@ TEST(HostileFbx, DeepModelsOrScopesAreRefused) {
   std::string models, links = "\tC: \"OO\",1000,0\n";
   for (int k = 0; k <= max_fbx_model_depth; ++k) {
     models += "\tModel: " + std::to_string(1000 + k) + ", \"Model::m\", \"Null\" {\n\t}\n";
-    if (k > 0) links += "\tC: \"OO\"," + std::to_string(1000 + k) + "," + std::to_string(999 + k) + "\n";
+    if (k > 0)
+      links += "\tC: \"OO\"," + std::to_string(1000 + k) + "," + std::to_string(999 + k) + "\n";
   }
-  write_text(d / "chain.fbx", fbx_text(links + "\tC: \"OO\",21,0\n\tC: \"OO\",20,21\n", models));
+  test_files::write_text(d / "chain.fbx",
+                         fbx_text(links + "\tC: \"OO\",21,0\n\tC: \"OO\",20,21\n", models));
   EXPECT_CONTAINS(test::mesh_load_error(d / "chain.fbx"),
                   "FBX model " + std::to_string(1000 + max_fbx_model_depth) + " is nested " +
                       std::to_string(max_fbx_model_depth + 1) + " models deep, more than " +
                       std::to_string(max_fbx_model_depth));
   std::string deep;
   for (int k = 0; k <= max_fbx_scope_depth; ++k) deep += "A: {\n";
-  write_text(d / "deep.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n") + deep);
-  EXPECT_CONTAINS(test::mesh_load_error(d / "deep.fbx"),
-                  "FBX scopes nested deeper than " + std::to_string(max_fbx_scope_depth) + " at line ");
+  test_files::write_text(d / "deep.fbx", fbx_text("\tC: \"OO\",20,21\n\tC: \"OO\",21,0\n") + deep);
+  EXPECT_CONTAINS(
+      test::mesh_load_error(d / "deep.fbx"),
+      "FBX scopes nested deeper than " + std::to_string(max_fbx_scope_depth) + " at line ");
 }
 
 // What assimp's tokenizers refuse is refused here, naming the line or byte.
@@ -166,11 +188,13 @@ TEST(HostileFbx, TokensAssimpWouldNotReadAreRefused) {
   };
   EXPECT_CONTAINS(error("A: \"open\nB:", "q.fbx"),
                   "q.fbx: FBX file weft cannot read: unexpected end of file");
-  EXPECT_CONTAINS(error("A: 1 :", "c.fbx"), "c.fbx: FBX text weft cannot read: line 1: unexpected colon");
+  EXPECT_CONTAINS(error("A: 1 :", "c.fbx"),
+                  "c.fbx: FBX text weft cannot read: line 1: unexpected colon");
   std::string binary = fbx_binary({{20, 21}, {21, 0}});
   EXPECT_EQ(error(binary, "b.fbx"), "no error");
   binary[34] = '\x7f';  // the first node's end offset (its high byte): past the file
-  EXPECT_CONTAINS(error(binary, "b.fbx"), "b.fbx: FBX binary weft cannot read: byte 35: block offset is out of range");
+  EXPECT_CONTAINS(error(binary, "b.fbx"),
+                  "b.fbx: FBX binary weft cannot read: byte 35: block offset is out of range");
 }
 
 }  // namespace

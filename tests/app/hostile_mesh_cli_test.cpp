@@ -86,15 +86,16 @@ TEST_F(HostileMeshCli, AGltfBufferOutsideTheMeshFolderIsNotRead) {
 // `weft turntable` aborted (heap corruption; found by fuzz_mesh_ply).
 TEST_F(HostileMeshCli, APlyElementTwiceIsRefused) {
   std::ofstream ply(m_dir / "twice.ply");
-  const std::string vertex = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
-  ply << "ply\nformat ascii 1.0\n" << vertex << "element vertex 1000\nproperty float x\n"
-      << "property float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  ply << "ply\nformat ascii 1.0\nelement vertex 3\n" << xyz << "element vertex 1000\n" << xyz
+      << "end_header\n0 0 0\n1 0 0\n0 1 0\n";
   for (int k = 0; k < 1000; ++k) ply << "0.5 0.5 0\n";
   ply.close();
   const CommandResult r = run_weft("turntable " + (m_dir / "twice.ply").string() + " --out " +
                                    (m_dir / "out").string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_CONTAINS(r.output, (m_dir / "twice.ply").string() + ": PLY header line 7: element 'vertex' a second time");
+  EXPECT_CONTAINS(r.output, (m_dir / "twice.ply").string() +
+                                ": PLY header line 7: element 'vertex' a second time");
   EXPECT_FALSE(fs::exists(m_dir / "out"));
 }
 
@@ -116,7 +117,8 @@ TEST_F(HostileMeshCli, AnFbxAssimpWouldRecurseThroughWithoutEndIsRefused) {
         R"({"description": "a cloth from a mesh file", "cloth": {"mesh": ")" + name + R"("},
   "output": {"frames": 2}, "render": {"size": [96, 64]}})");
     const fs::path out = m_dir / ("out_" + name);
-    for (const std::string& command : {"run " + cloth.string(), "turntable " + (m_dir / name).string()}) {
+    for (const std::string& command :
+         {"run " + cloth.string(), "turntable " + (m_dir / name).string()}) {
       const CommandResult r = run_weft(command + " --out " + out.string());
       EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.output;
       EXPECT_CONTAINS(r.output, (m_dir / name).string() + ": " + why);
