@@ -78,9 +78,27 @@ PlyProperty read_ply_property(const std::vector<std::string>& w, const std::stri
 // An element's name once in a header, and faces as `face` or `tristrips`, not both: assimp sizes
 // its vertices (faces) by the first such element and writes the next one's past them (heap
 // corruption, `free(): invalid next size` in the Release build; found by fuzzing).
+bool assimp_reads_ply_element(const std::string& element) {
+  return element == "vertex" || element == "face" || element == "tristrips" || element == "edge" ||
+         element == "material";
+}
+
+// assimp reads the count of an element of another name from the start of its name (its parser
+// does not skip the name): `element camera 1` has no items to it, `element 8888…8face 2` some
+// 4·10⁹ (out-of-memory; found by fuzzing), and either misreads the elements after it. Such an
+// element is refused before one assimp reads, or when its name starts with a digit, and not
+// walked (weft's walk then reads what assimp reads).
 void check_ply_element_name(const PlyHeader& h, const std::string& element, std::size_t line,
                             const std::string& name) {
   const std::string where = "PLY header line " + std::to_string(line) + ": element '" + element + "'";
+  if (element == "TextureFile" || std::isdigit(static_cast<unsigned char>(element[0])))
+    fail(name, where + " (assimp reads a count from an element name starting with a digit)");
+  if (assimp_reads_ply_element(element))
+    for (const PlyElement& e : h.elements)
+      if (!assimp_reads_ply_element(e.name))
+        fail(name, where + " after element '" + e.name + "', which assimp takes as empty (it "
+                           "reads vertex, face, tristrips, edge and material elements) and would "
+                           "read its data as the next one's");
   for (const PlyElement& e : h.elements) {
     if (e.name == element)
       fail(name, where + " a second time (assimp would read it into the first one's arrays)");
@@ -125,7 +143,8 @@ PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
       if (w[2].find_first_not_of("0123456789") != std::string::npos || w[2].size() > 19)
         fail(name, "PLY element '" + w[1] + "': count '" + w[2] + "' (expected a whole number)");
       check_ply_element_name(h, w[1], number, name);
-      h.elements.push_back({w[1], std::stoull(w[2]), {}});
+      // assimp counts an element of another name by the digits its name starts with (none: 0).
+      h.elements.push_back({w[1], assimp_reads_ply_element(w[1]) ? std::stoull(w[2]) : 0, {}});
     } else if (key == "property" && !h.elements.empty()) {
       h.elements.back().properties.push_back(read_ply_property(w, line, name));
     } else if (key != "comment" && key != "obj_info") {
