@@ -95,6 +95,13 @@ TEST(HostileMesh, APlyHeaderIsReadStrictlyAndAnEmptyElementTakesNoTime) {
                   "PLY header line 7: a control character");
   EXPECT_NO_THROW(precheck_mesh_bytes("ply\nformat binary_little_endian 1.0\n"
                                       "element nothing 4444444888888\nend_header\n", ".ply", "empty.ply"));
+  // A header ending the file without a line end: assimp's reader looped (found by fuzzing).
+  EXPECT_CONTAINS(test::mesh_load_error([&] {
+                    test_files::write_text(d / "eol.ply", "ply\nformat binary_little_endian 1.0\n"
+                                                          "element foo 8\nend_header");
+                    return d / "eol.ply";
+                  }()),
+                  "the PLY header's end_header line has no line end");
   // assimp counts no element named 'nothing' (it reads a count from the start of the name).
   EXPECT_NO_THROW(precheck_mesh_bytes("ply\nformat ascii 1.0\nelement nothing 4444444888888\n"
                                       "end_header\n\n", ".ply", "empty.ply"));
