@@ -168,8 +168,9 @@ void precheck_mesh_file(const std::filesystem::path& path) {
   const std::string why = why_not_a_readable_file(path, max_mesh_file_bytes);
   if (!why.empty()) throw MeshFileError(name + ": cannot read mesh file: " + why);
   const std::string extension = lower_extension(path);
-  if (extension != ".ply" && extension != ".obj" && extension != ".glb" && extension != ".gltf")
-    return;  // STL and FBX: assimp's checks alone
+  if (extension != ".ply" && extension != ".obj" && extension != ".glb" && extension != ".gltf" &&
+      extension != ".fbx")
+    return;  // STL: assimp's checks alone
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   precheck_mesh_bytes(bytes, extension, name);

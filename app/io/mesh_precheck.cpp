@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/io/fbx_precheck.h"
 #include "app/io/gltf_precheck.h"
 #include "app/io/mesh_file.h"
 
@@ -74,6 +75,38 @@ PlyProperty read_ply_property(const std::vector<std::string>& w, const std::stri
   return p;
 }
 
+// An element's name once in a header, and faces as `face` or `tristrips`, not both: assimp sizes
+// its vertices (faces) by the first such element and writes the next one's past them (heap
+// corruption, `free(): invalid next size` in the Release build; found by fuzzing).
+bool assimp_reads_ply_element(const std::string& element) {
+  return element == "vertex" || element == "face" || element == "tristrips" || element == "edge" ||
+         element == "material";
+}
+
+// assimp reads the count of an element of another name from the start of its name (its parser
+// does not skip the name): `element camera 1` has no items to it, `element 8888…8face 2` some
+// 4·10⁹ (out-of-memory; found by fuzzing), and either misreads the elements after it. Such an
+// element is refused before one assimp reads, or when its name starts with a digit, and not
+// walked (weft's walk then reads what assimp reads).
+void check_ply_element_name(const PlyHeader& h, const std::string& element, std::size_t line,
+                            const std::string& name) {
+  const std::string where = "PLY header line " + std::to_string(line) + ": element '" + element + "'";
+  if (element == "TextureFile" || std::isdigit(static_cast<unsigned char>(element[0])))
+    fail(name, where + " (assimp reads a count from an element name starting with a digit)");
+  if (assimp_reads_ply_element(element))
+    for (const PlyElement& e : h.elements)
+      if (!assimp_reads_ply_element(e.name))
+        fail(name, where + " after element '" + e.name + "', which assimp takes as empty (it "
+                           "reads vertex, face, tristrips, edge and material elements) and would "
+                           "read its data as the next one's");
+  for (const PlyElement& e : h.elements) {
+    if (e.name == element)
+      fail(name, where + " a second time (assimp would read it into the first one's arrays)");
+    if ((e.name == "face" && element == "tristrips") || (e.name == "tristrips" && element == "face"))
+      fail(name, where + " beside '" + e.name + "' (assimp would read both into one array of faces)");
+  }
+}
+
 // The header, line by line: "ply", then only format, comment, obj_info, element and property
 // lines up to an "end_header" line. Anything else is refused: assimp's reader was seen to hang
 // on a misspelt keyword.
@@ -98,6 +131,8 @@ PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
       if (line != "ply") fail(name, "not a PLY file (expected its first line to be \"ply\")");
     } else if (key == "end_header" && w.size() == 1) {
       if (!format) fail(name, "the PLY header has no format line");
+      // Without it assimp's reader was seen to loop (found by fuzzing; a 192-byte header).
+      if (end == bytes.size()) fail(name, "the PLY header's end_header line has no line end");
       h.body = std::min(at, bytes.size());
       return h;
     } else if (key == "format" && w.size() == 3 && !format) {
@@ -109,7 +144,9 @@ PlyHeader read_ply_header(std::string_view bytes, const std::string& name) {
     } else if (key == "element" && w.size() == 3) {
       if (w[2].find_first_not_of("0123456789") != std::string::npos || w[2].size() > 19)
         fail(name, "PLY element '" + w[1] + "': count '" + w[2] + "' (expected a whole number)");
-      h.elements.push_back({w[1], std::stoull(w[2]), {}});
+      check_ply_element_name(h, w[1], number, name);
+      // assimp counts an element of another name by the digits its name starts with (none: 0).
+      h.elements.push_back({w[1], assimp_reads_ply_element(w[1]) ? std::stoull(w[2]) : 0, {}});
     } else if (key == "property" && !h.elements.empty()) {
       h.elements.back().properties.push_back(read_ply_property(w, line, name));
     } else if (key != "comment" && key != "obj_info") {
@@ -132,28 +169,84 @@ bool is_face_list(const PlyElement& e, const PlyProperty& p) {
   return e.name == "face" && p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
 }
 
-// The body of a PLY file, read value by value with every read checked against its end.
+// A face's texture coordinates (two a corner), which assimp reads beside its last index list.
+bool is_face_texcoords(const PlyElement& e, const PlyProperty& p) {
+  return e.name == "face" && p.list && p.name == "texcoord";
+}
+
+// The body of a PLY file, read value by value with every read checked against its end. A text
+// body is read as assimp reads it, one line for each element (its words parsed from that line
+// alone): a body that is not plain text lines (a NUL, a form feed or a lone carriage return end
+// a line there, and an empty line is skipped or read depending on what precedes it), or a word
+// that is not a number of its property's type (assimp stops inside it and reads the rest as the
+// next value), would make assimp read other numbers than these. A NUL in a face's line made
+// assimp read a list count of 954 437 119 (15 GB, 57 s in the Release build; found by fuzzing).
 class PlyBody {
  public:
   PlyBody(std::string_view bytes, const PlyHeader& h, const std::string& name)
-      : m_bytes(bytes), m_at(h.body), m_ascii(h.ascii), m_big_endian(h.big_endian), m_name(name) {}
+      : m_bytes(bytes), m_at(h.body), m_next_line(h.body), m_ascii(h.ascii),
+        m_big_endian(h.big_endian), m_name(name) {
+    if (!m_ascii) return;
+    for (std::size_t k = h.body; k < bytes.size(); ++k) {
+      const auto c = static_cast<unsigned char>(bytes[k]);
+      if ((c < 0x20 && c != '\t' && c != '\n' && !(c == '\r' && k + 1 < bytes.size() &&
+                                                  bytes[k + 1] == '\n')) || c == 0x7f)
+        fail(m_name, "PLY body byte " + std::to_string(k) + ": a control character (the body of "
+                     "an ASCII PLY is lines of text)");
+    }
+  }
+
+  // An element starts: a text body's next line (a binary body reads on).
+  void start(const std::string& where) {
+    if (!m_ascii) return;
+    if (m_next_line >= m_bytes.size())
+      fail(m_name, where + ": the file ends before it (truncated, or a bogus count)");
+    const std::size_t end = std::min(m_bytes.find('\n', m_next_line), m_bytes.size());
+    m_at = m_next_line;
+    m_end = end > m_at && m_bytes[end - 1] == '\r' ? end - 1 : end;
+    m_next_line = end + 1;
+    if (m_at == m_end) fail(m_name, where + ": an empty line (expected the element's numbers)");
+  }
+
+  // An element ends: nothing more on its line.
+  void finish(const std::string& where) {
+    if (m_ascii && skip_spaces() < m_end)
+      fail(m_name, where + ": more numbers on its line than the element's properties");
+  }
 
   // The next value as a double (binary integers are exact up to 2⁵³, beyond any limit here).
   double next(int size, bool is_signed, bool floating, const std::string& where) {
-    return m_ascii ? next_word(where) : next_binary(size, is_signed, floating, where);
+    return m_ascii ? next_word(is_signed, floating, where)
+                   : next_binary(size, is_signed, floating, where);
   }
 
  private:
-  double next_word(const std::string& where) {
-    while (m_at < m_bytes.size() && std::isspace(static_cast<unsigned char>(m_bytes[m_at]))) ++m_at;
-    const std::size_t start = m_at;
-    while (m_at < m_bytes.size() && !std::isspace(static_cast<unsigned char>(m_bytes[m_at]))) ++m_at;
-    if (start == m_at) fail(m_name, where + ": the file ends before it (truncated, or a bogus count)");
+  std::size_t skip_spaces() {
+    while (m_at < m_end && (m_bytes[m_at] == ' ' || m_bytes[m_at] == '\t')) ++m_at;
+    return m_at;
+  }
+
+  // A word of the line: digits (after a '-' for a signed type), for a floating type also a '.'
+  // and an exponent; what assimp's readers of the type read whole.
+  double next_word(bool is_signed, bool floating, const std::string& where) {
+    const std::size_t start = skip_spaces();
+    while (m_at < m_end && m_bytes[m_at] != ' ' && m_bytes[m_at] != '\t') ++m_at;
+    if (start == m_at) fail(m_name, where + ": its line ends before it");
     const std::string word(m_bytes.substr(start, m_at - start));
-    char* end = nullptr;
-    const double v = std::strtod(word.c_str(), &end);
-    if (*end != '\0') fail(m_name, where + ": '" + word + "' is not a number");
-    return v;
+    std::size_t k = word[0] == '-' && (is_signed || floating) ? 1 : 0, digits = 0;
+    for (; k < word.size() && std::isdigit(static_cast<unsigned char>(word[k])); ++k) ++digits;
+    if (floating && k < word.size() && word[k] == '.')
+      for (++k; k < word.size() && std::isdigit(static_cast<unsigned char>(word[k])); ++k) ++digits;
+    if (floating && digits > 0 && k < word.size() && (word[k] == 'e' || word[k] == 'E')) {
+      k += k + 1 < word.size() && (word[k + 1] == '-' || word[k + 1] == '+') ? 2 : 1;
+      const std::size_t exponent = k;
+      while (k < word.size() && std::isdigit(static_cast<unsigned char>(word[k]))) ++k;
+      if (k == exponent) digits = 0;
+    }
+    if (digits == 0 || k != word.size())
+      fail(m_name, where + ": '" + word + "' is not " +
+                       (floating ? "a number" : is_signed ? "an integer" : "a whole number"));
+    return std::strtod(word.c_str(), nullptr);
   }
 
   double next_binary(int size, bool is_signed, bool floating, const std::string& where) {
@@ -171,7 +264,7 @@ class PlyBody {
   }
 
   std::string_view m_bytes;
-  std::size_t m_at;
+  std::size_t m_at, m_end = 0, m_next_line;  // text: the line read, [m_at, m_end), and the next
   bool m_ascii, m_big_endian;
   const std::string& m_name;
 };
@@ -191,15 +284,19 @@ void check_ply_counts(const PlyHeader& h, std::size_t body_bytes, const std::str
   }
 }
 
-// Walks every element; each face's corners must be vertices of the file.
+// Walks every element; each face's corners must be vertices of the file, its texture
+// coordinates at most two a corner.
 void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::string& name) {
   std::uint64_t vertices = 0;
   for (const PlyElement& e : h.elements)
     if (e.name == "vertex") vertices = e.count;
   PlyBody body(bytes, h, name);
   for (const PlyElement& e : h.elements)
-    // An element without properties takes no bytes, whatever its count (up to 10¹⁹).
-    for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i)
+    // A binary element without properties takes no bytes, whatever its count (up to 10¹⁹); a
+    // text one a line.
+    for (std::uint64_t i = 0; i < e.count && (h.ascii || !e.properties.empty()); ++i) {
+      int corners = -1, texcoords = -1;  // the lists' lengths, as assimp takes them: the last
+      body.start(e.name + " " + std::to_string(i));
       for (const PlyProperty& p : e.properties) {
         const std::string where = e.name + " " + std::to_string(i) + ", " + p.name;
         if (!p.list) {
@@ -209,6 +306,8 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
         const double n = body.next(p.count_size, p.count_signed, false, where + "'s count");
         if (!(n >= 0 && n <= 255 && n == static_cast<double>(static_cast<int>(n))))
           fail(name, where + ": a list of " + number_text(n) + " items (expected 0 to 255)");
+        if (is_face_list(e, p)) corners = static_cast<int>(n);
+        if (is_face_texcoords(e, p)) texcoords = static_cast<int>(n);
         for (int k = 0; k < static_cast<int>(n); ++k) {
           const double v = body.next(p.size, p.is_signed, p.floating, where);
           if (is_face_list(e, p) && !(v >= 0 && v < static_cast<double>(vertices) &&
@@ -217,6 +316,14 @@ void check_ply_body(std::string_view bytes, const PlyHeader& h, const std::strin
                            ", not one of the file's " + std::to_string(vertices) + " vertices");
         }
       }
+      if (!e.properties.empty()) body.finish(e.name + " " + std::to_string(i));
+      // assimp reads texture coordinate k at corner k / 2: past a face's corners (an invalid
+      // read), or without corners through a null pointer (SIGSEGV in the Release build).
+      if (texcoords > 2 * std::max(corners, 0))
+        fail(name, e.name + " " + std::to_string(i) + ", texcoord: " + std::to_string(texcoords) +
+                       " texture coordinates for " + std::to_string(std::max(corners, 0)) +
+                       " corners (at most two a corner)");
+    }
 }
 
 // An OBJ line's numbers from the `first`-th on (0-based, after the keyword) must be finite as
@@ -311,6 +418,7 @@ void precheck_mesh_bytes(std::string_view bytes, const std::string& extension,
   if (extension == ".obj") check_obj_counts(bytes, name);
   if (extension == ".glb") check_gltf_json(check_glb(bytes, name), name);
   if (extension == ".gltf") check_gltf_json(bytes, name);
+  if (extension == ".fbx") check_fbx(bytes, name);
   if (extension != ".ply") return;
   const PlyHeader h = read_ply_header(bytes, name);
   check_ply_counts(h, bytes.size() - h.body, name);

@@ -1,7 +1,8 @@
 // Hostile mesh files through the real `weft`, as each command reads them: the cloth's mesh
 // (cloth.mesh), a mesh obstacle and `weft turntable MESH`. A PLY whose face refers to a vertex it
-// does not have, or whose list count runs past its faces, used to crash inside assimp (SIGSEGV);
-// a glTF buffer outside the mesh's folder was read. Each is exit 1 naming the file, nothing written.
+// does not have, whose list count runs past its faces or with a second vertex element, used to
+// crash inside assimp (SIGSEGV, heap corruption), as did FBX models in a cycle; a glTF buffer
+// outside the mesh's folder was read. Each is exit 1 naming the file, nothing written.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -79,6 +80,51 @@ TEST_F(HostileMeshCli, AGltfBufferOutsideTheMeshFolderIsNotRead) {
                                    " --out " + (m_dir / "out").string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_CONTAINS(r.output, "outside the mesh file's folder");
+}
+
+// A PLY with a second vertex element: assimp wrote its vertices past the first one's array and
+// `weft turntable` aborted (heap corruption; found by fuzz_mesh_ply).
+TEST_F(HostileMeshCli, APlyElementTwiceIsRefused) {
+  std::ofstream ply(m_dir / "twice.ply");
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  ply << "ply\nformat ascii 1.0\nelement vertex 3\n" << xyz << "element vertex 1000\n" << xyz
+      << "end_header\n0 0 0\n1 0 0\n0 1 0\n";
+  for (int k = 0; k < 1000; ++k) ply << "0.5 0.5 0\n";
+  ply.close();
+  const CommandResult r = run_weft("turntable " + (m_dir / "twice.ply").string() + " --out " +
+                                   (m_dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_CONTAINS(r.output, (m_dir / "twice.ply").string() +
+                                ": PLY header line 7: element 'vertex' a second time");
+  EXPECT_FALSE(fs::exists(m_dir / "out"));
+}
+
+// FBX files assimp recursed through until `weft turntable` and `weft run` died (SIGSEGV): a model
+// under the root and under itself (found by fuzz_mesh_fbx), scopes nested a million deep.
+TEST_F(HostileMeshCli, AnFbxAssimpWouldRecurseThroughWithoutEndIsRefused) {
+  std::ofstream(m_dir / "self.fbx")
+      << "FBXHeaderExtension:  {\n\tFBXVersion: 7500\n}\nObjects:  {\n\tModel: 21, \"Model::b\", "
+         "\"Null\" {\n\t}\n}\nConnections:  {\n\tC: \"OO\",21,0\n\tC: \"OO\",21,21\n}\n";
+  std::ofstream deep(m_dir / "deep.fbx");
+  for (int k = 0; k < 1000000; ++k) deep << "A: {";
+  deep.close();
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"self.fbx", "FBX model 21 has 2 parent connections (to 0, 21)"},
+      {"deep.fbx", "FBX scopes nested deeper than 64 at line 1"}};
+  for (const auto& [name, why] : files) {
+    const fs::path cloth = write_scene(
+        "cloth_" + name + ".json",
+        R"({"description": "a cloth from a mesh file", "cloth": {"mesh": ")" + name + R"("},
+  "output": {"frames": 2}, "render": {"size": [96, 64]}})");
+    const fs::path out = m_dir / ("out_" + name);
+    for (const std::string& command :
+         {"run " + cloth.string(), "turntable " + (m_dir / name).string()}) {
+      const CommandResult r = run_weft(command + " --out " + out.string());
+      EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.output;
+      EXPECT_CONTAINS(r.output, (m_dir / name).string() + ": " + why);
+      EXPECT_FALSE(fs::exists(out)) << command;
+    }
+  }
 }
 
 }  // namespace
