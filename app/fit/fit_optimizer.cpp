@@ -9,18 +9,6 @@
 namespace weft::app {
 namespace {
 
-std::string stop_reason(nlopt::result r) {
-  switch (r) {
-    case nlopt::SUCCESS: return "success";
-    case nlopt::STOPVAL_REACHED: return "objective stop value reached";
-    case nlopt::FTOL_REACHED: return "objective tolerance reached";
-    case nlopt::XTOL_REACHED: return "parameter tolerance reached";
-    case nlopt::MAXEVAL_REACHED: return "max_evaluations reached";
-    case nlopt::MAXTIME_REACHED: return "time limit reached";
-    default: return "stopped (NLopt code " + std::to_string(static_cast<int>(r)) + ")";
-  }
-}
-
 std::vector<double> from_log(const std::vector<double>& x) {
   std::vector<double> v;
   for (const double xi : x) v.push_back(std::pow(10.0, xi));
@@ -36,6 +24,18 @@ double crossing(const Profile& p, std::size_t i, std::size_t j, double level) {
 }
 
 }  // namespace
+
+std::string nlopt_stop_reason(int result) {
+  switch (static_cast<nlopt::result>(result)) {
+    case nlopt::SUCCESS: return "success";
+    case nlopt::STOPVAL_REACHED: return "objective stop value reached";
+    case nlopt::FTOL_REACHED: return "objective tolerance reached";
+    case nlopt::XTOL_REACHED: return "parameter tolerance reached";
+    case nlopt::MAXEVAL_REACHED: return "max_evaluations reached";
+    case nlopt::MAXTIME_REACHED: return "time limit reached";
+    default: return "stopped (NLopt code " + std::to_string(result) + ")";
+  }
+}
 
 FittedParameter sensitivity_band(const Profile& p, std::size_t best, double band) {
   FittedParameter f;
@@ -88,7 +88,7 @@ std::string optimise(const FitSpec& spec, std::vector<double>& x,
       },
       &callback);
   double minimum = 0.0;
-  return stop_reason(opt.optimize(x, minimum));
+  return nlopt_stop_reason(opt.optimize(x, minimum));
 }
 
 // The profile along parameter i around result.best (its band, FitResult::profiles).

@@ -43,6 +43,9 @@ struct FitResult {
 enum class FitPhase { optimise, profile };
 
 // Fits; `on_evaluation` sees each evaluation as it is made (its 1-based number and phase).
+// Why an NLopt optimisation stopped (`result`: an nlopt::result), in words for the reports.
+std::string nlopt_stop_reason(int result);
+
 FitResult run_fit(FitProblem& problem,
                   const std::function<void(const Evaluation&, int, FitPhase)>& on_evaluation = {});
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlopt.hpp>
 
+#include "app/fit/fit_optimizer.h"
 #include "app/run/frame_mesh.h"
 #include "app/run/obstacle_meshes.h"
 #include "app/run/renderer_choice.h"
@@ -59,19 +60,6 @@ std::vector<FreedParameter> freed_parameters(const PlacementFitSettings& s, doub
                    [](const Placement& p) { return std::log10(p.density_kg_m2.value_or(0.19)); },
                    [](Placement& p, double x) { p.density_kg_m2 = std::pow(10.0, x); }});
   return out;
-}
-
-std::string nlopt_stop_reason(nlopt::result r) {
-  switch (r) {
-    case nlopt::XTOL_REACHED:
-      return "parameter tolerance reached";
-    case nlopt::FTOL_REACHED:
-      return "objective tolerance reached";
-    case nlopt::MAXEVAL_REACHED:
-      return "max_evaluations reached";
-    default:
-      return "stopped (NLopt code " + std::to_string(static_cast<int>(r)) + ")";
-  }
 }
 
 }  // namespace
