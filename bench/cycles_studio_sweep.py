@@ -7,7 +7,10 @@
 #
 #   bench/cycles_studio_sweep.py --mesh DIR/mesh_0096.obj [--hdr ../shared/hdri/studio.hdr]
 #       [--weft build/weft] [--blender blender] [--size 320x240] [--samples 16,32,64,128,256]
-#       [--reference-samples 1024] [--work /tmp/weft_cycles_sweep]
+#       [--reference-samples 1024] [--work /tmp/weft_cycles_sweep] [--threads N]
+#
+# --threads N fixes Cycles' thread count (0, the default: all cores); with 1, pinned to a core
+# (taskset), the sweep leaves the other core to other work and its CPU times stay comparable.
 #
 # The mesh: `weft run assets/scenes/sphere_drape.json --last --export-meshes obj --up z`.
 
@@ -25,7 +28,7 @@ def cycles(o, samples, out):
     before = children_cpu_s()
     p = subprocess.run([o.blender, "-b", "--factory-startup", "-P",
                         os.path.join(HERE, "cycles_studio.py"), "--", o.mesh, o.hdr, out, o.size,
-                        str(samples)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                        str(samples), "--threads", str(o.threads)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode != 0 or not os.path.exists(out):
         sys.exit("blender failed:\n" + p.stdout[-3000:])
     return children_cpu_s() - before
@@ -41,6 +44,7 @@ def main():
     parser.add_argument("--samples", default="16,32,64,100,128,256")
     parser.add_argument("--reference-samples", type=int, default=1024)
     parser.add_argument("--work", default="/tmp/weft_cycles_sweep")
+    parser.add_argument("--threads", type=int, default=0)
     o = parser.parse_args()
     o.hdr = os.path.abspath(o.hdr)
     o.mesh = os.path.abspath(o.mesh)

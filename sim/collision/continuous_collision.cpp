@@ -121,17 +121,27 @@ double ccd_length_scale(const Vec3& u0, const Vec3& du, const Vec3& v0, const Ve
                    (w0 + dw).norm(), eta_m});
 }
 
+// Whether a pair stays farther apart than eta all step, by the coplanar search's bound over the
+// whole step: d(t) ≥ (d(0) + d(1) − speed)/2. Most pairs of a small step are (neighbours in a
+// smooth sheet, whose cubic is nearly zero and would send them to the search), and this costs
+// two distances instead of the cubic's roots. The margin keeps rounding in the two distances
+// from skipping a pair ccd_first_impact would count.
+template <class Distance>
+bool ccd_apart_all_step(const Distance& distance, double speed, double eta_m) {
+  return 0.5 * (distance(0.0) + distance(1.0) - speed) >= eta_m * (1.0 + 1e-9);
+}
+
 // The earliest impact of two features whose coplanarity cubic is f: at the cubic's roots where
 // the height over the common plane, |f(t)| / plane_area(t), is below eta and the features' own
 // distance(t) is too; or, when they stay coplanar all step (f ≡ 0), by ccd_coplanar_search
-// with the bound relative_speed().
-template <class Distance, class Speed, class PlaneArea>
+// with the bound relative_speed.
+template <class Distance, class PlaneArea>
 std::optional<double> ccd_first_impact(const CoplanarityCubic& f, double length_m,
-                                       const Distance& distance, const Speed& relative_speed,
+                                       const Distance& distance, double relative_speed,
                                        const PlaneArea& plane_area, double eta_m) {
   std::array<double, 8> times{};
   const int n = ccd_candidate_times(f, coplanar_tolerance * length_m * length_m * length_m, times);
-  if (n < 0) return ccd_coplanar_search(distance, relative_speed(), eta_m);
+  if (n < 0) return ccd_coplanar_search(distance, relative_speed, eta_m);
   for (int k = 0; k < n; ++k) {
     const double t = times[static_cast<std::size_t>(k)];
     if (std::abs(f(t)) > eta_m * plane_area(t)) continue;
@@ -155,20 +165,19 @@ CoplanarityCubic coplanarity_cubic(const Vec3& u0, const Vec3& du, const Vec3& v
 std::optional<double> vertex_triangle_impact(const Vec3& p0, const Vec3& a0, const Vec3& b0,
                                              const Vec3& c0, const Vec3& p1, const Vec3& a1,
                                              const Vec3& b1, const Vec3& c1, double eta_m) {
-  // Relative to a, so that a translated configuration rounds alike.
-  const Vec3 u0 = b0 - a0, v0 = c0 - a0, w0 = p0 - a0;
-  const Vec3 du = (b1 - a1) - u0, dv = (c1 - a1) - v0, dw = (p1 - a1) - w0;
-  const CoplanarityCubic f = coplanarity_cubic(u0, du, v0, dv, w0, dw);
   const auto distance = [&](double t) {
     const Vec3 p = ccd_lerp(p0, p1, t), a = ccd_lerp(a0, a1, t), b = ccd_lerp(b0, b1, t),
                c = ccd_lerp(c0, c1, t);
     const Vec3 w = closest_point_on_triangle_weights(p, a, b, c);
     return (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
   };
-  const auto speed = [&] {
-    return ccd_relative_speed(std::array<Vec3, 1>{p1 - p0},
-                              std::array<Vec3, 3>{a1 - a0, b1 - b0, c1 - c0});
-  };
+  const double speed = ccd_relative_speed(std::array<Vec3, 1>{p1 - p0},
+                                          std::array<Vec3, 3>{a1 - a0, b1 - b0, c1 - c0});
+  if (ccd_apart_all_step(distance, speed, eta_m)) return std::nullopt;
+  // Relative to a, so that a translated configuration rounds alike.
+  const Vec3 u0 = b0 - a0, v0 = c0 - a0, w0 = p0 - a0;
+  const Vec3 du = (b1 - a1) - u0, dv = (c1 - a1) - v0, dw = (p1 - a1) - w0;
+  const CoplanarityCubic f = coplanarity_cubic(u0, du, v0, dv, w0, dw);
   // The distance is at least the height over the plane, |f| / |u × v|.
   const auto plane_area = [&](double t) { return (u0 + t * du).cross(v0 + t * dv).norm(); };
   return ccd_first_impact(f, ccd_length_scale(u0, du, v0, dv, w0, dw, eta_m), distance, speed,
@@ -178,19 +187,18 @@ std::optional<double> vertex_triangle_impact(const Vec3& p0, const Vec3& a0, con
 std::optional<double> edge_edge_impact(const Vec3& p0, const Vec3& q0, const Vec3& r0,
                                        const Vec3& s0, const Vec3& p1, const Vec3& q1,
                                        const Vec3& r1, const Vec3& s1, double eta_m) {
-  const Vec3 u0 = q0 - p0, v0 = r0 - p0, w0 = s0 - p0;
-  const Vec3 du = (q1 - p1) - u0, dv = (r1 - p1) - v0, dw = (s1 - p1) - w0;
-  const CoplanarityCubic f = coplanarity_cubic(u0, du, v0, dv, w0, dw);
   const auto distance = [&](double t) {
     const Vec3 p = ccd_lerp(p0, p1, t), q = ccd_lerp(q0, q1, t), r = ccd_lerp(r0, r1, t),
                s = ccd_lerp(s0, s1, t);
     const std::array<double, 2> st = closest_segment_parameters(p, q, r, s);
     return ((p + st[0] * (q - p)) - (r + st[1] * (s - r))).norm();
   };
-  const auto speed = [&] {
-    return ccd_relative_speed(std::array<Vec3, 2>{p1 - p0, q1 - q0},
-                              std::array<Vec3, 2>{r1 - r0, s1 - s0});
-  };
+  const double speed = ccd_relative_speed(std::array<Vec3, 2>{p1 - p0, q1 - q0},
+                                          std::array<Vec3, 2>{r1 - r0, s1 - s0});
+  if (ccd_apart_all_step(distance, speed, eta_m)) return std::nullopt;
+  const Vec3 u0 = q0 - p0, v0 = r0 - p0, w0 = s0 - p0;
+  const Vec3 du = (q1 - p1) - u0, dv = (r1 - p1) - v0, dw = (s1 - p1) - w0;
+  const CoplanarityCubic f = coplanarity_cubic(u0, du, v0, dv, w0, dw);
   // The distance is at least the lines' distance, |f| / |(q − p) × (s − r)|.
   const auto plane_area = [&](double t) {
     return (u0 + t * du).cross((w0 + t * dw) - (v0 + t * dv)).norm();

@@ -14,7 +14,10 @@
 // and t = 1 are all tried; at each such time the features' distance is measured, and a
 // distance below `eta` (a thickness, m) is an impact. So near misses within eta count,
 // grazing coplanar motion counts where the features come within eta, and a pair that ends
-// within eta counts at t = 1. The start (t = 0) counts only as a root of f.
+// within eta counts at t = 1. The start (t = 0) counts only as a root of f. Before all
+// this, a pair whose distance is at least eta all step by the Lipschitz bound — d(t) ≥
+// (d(0) + d(1) − S)/2, S the largest relative displacement of a vertex of one feature against
+// one of the other — is no impact without solving the cubic.
 
 #include <optional>
 
