@@ -49,10 +49,7 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
     solver->analyze(assembly.matrix());
   } else {
     cg = std::make_unique<BlockConjugateGradient>(solve.threads);
-    const bool multigrid =
-        solve.preconditioner == CgPreconditioner::multigrid ||
-        (solve.preconditioner == CgPreconditioner::automatic &&
-         solve.grid_nu * solve.grid_nv >= kMultigridMinVertices);
+    const bool multigrid = uses_multigrid(solve);
     cg->analyze(assembly.matrix(), multigrid ? solve.grid_nu : 0, multigrid ? solve.grid_nv : 0);
     last_dv = Eigen::VectorXd::Zero(3 * n);
   }

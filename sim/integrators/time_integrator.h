@@ -78,6 +78,15 @@ struct ImplicitSolveSettings {
   Index grid_nu = 0, grid_nv = 0;
 };
 
+// Whether conjugate gradients use the multigrid for these settings: asked for, or automatic on
+// a grid of at least kMultigridMinVertices vertices. (A grid the hierarchy cannot coarsen still
+// falls back to block Jacobi, BlockConjugateGradient::analyze.)
+inline bool uses_multigrid(const ImplicitSolveSettings& s) {
+  return s.preconditioner == CgPreconditioner::multigrid ||
+         (s.preconditioner == CgPreconditioner::automatic &&
+          s.grid_nu * s.grid_nv >= kMultigridMinVertices);
+}
+
 struct IntegratorSettings {
   ImplicitSolveSettings implicit_solve;  // implicit_euler
   double relaxation_max_step_s = 0.0;    // dynamic_relaxation: fictitious masses stable up to it
