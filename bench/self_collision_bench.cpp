@@ -6,7 +6,8 @@
 // every thread: self-collision builds its candidate list on --threads threads, 0 for all
 // hardware threads, while the rest of the step runs on one), the step count, the
 // self-contacts per step, the candidate pairs in the list, the broad- and narrow-phase shares
-// of the frame time, the rebuilds and the edge–triangle crossings at the end; then the on/off
+// of the frame time, the rebuilds of the proximity candidates and of the impact zones' cached
+// pairs (sim/collision/impact_zones.h) and the edge–triangle crossings at the end; then the on/off
 // ratios of the medians.
 //
 // --inextensible: the same drop with fast projection (tol 1e-3) after implicit Euler solved by
@@ -40,6 +41,7 @@ struct Run {
   double contacts_per_step = 0.0;  // max over each frame's steps, averaged over frames
   double broad_share = 0.0, narrow_share = 0.0;
   long rebuilds = 0;
+  long zone_rebuilds = 0;  // the impact zones' candidate list
   double candidates = 0.0;  // candidate pairs in the list, averaged over frames
   Index crossings = 0;
 };
@@ -93,6 +95,7 @@ Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bo
     r.narrow_share = self->narrow_phase_s() / total_s;
     r.rebuilds = self->rebuilds();
   }
+  if (const ImpactZones* zones = sim.impact_zones()) r.zone_rebuilds = zones->candidate_rebuilds();
   const auto triangles = sim.mesh().triangles();
   r.crossings = count_edge_triangle_crossings(sim.state().x, triangles, unique_edges(triangles));
   return r;
@@ -139,9 +142,9 @@ int main(int argc, char** argv) {
               n, inextensible ? "fast projection after implicit Euler" : "mass-spring, symplectic Euler",
               seconds, repeats,
               threads == 0 ? "all hardware threads" : (std::to_string(threads) + " thread(s)").c_str());
-  std::printf("%-15s %9s %13s %8s %14s %11s %7s %7s %9s %10s\n", "self-collision", "ms/frame",
-              "cpu ms/frame", "steps", "contacts/step", "candidates", "broad", "narrow", "rebuilds",
-              "crossings");
+  std::printf("%-15s %9s %13s %8s %14s %11s %7s %7s %9s %14s %10s\n", "self-collision",
+              "ms/frame", "cpu ms/frame", "steps", "contacts/step", "candidates", "broad", "narrow",
+              "rebuilds", "zone rebuilds", "crossings");
   const auto row = [](const char* name, const std::vector<Run>& runs) {
     std::vector<double> ms, cpu_ms, broad, narrow, contacts, candidates;
     for (const Run& r : runs) {
@@ -152,9 +155,10 @@ int main(int argc, char** argv) {
       narrow.push_back(r.narrow_share);
       contacts.push_back(r.contacts_per_step);
     }
-    std::printf("%-15s %9.1f %13.1f %8ld %14.0f %11.0f %6.1f%% %6.1f%% %9ld %10d\n", name,
-                median(ms), median(cpu_ms), runs.front().steps, median(contacts), median(candidates), 100.0 * median(broad),
-                100.0 * median(narrow), runs.front().rebuilds, runs.back().crossings);
+    std::printf("%-15s %9.1f %13.1f %8ld %14.0f %11.0f %6.1f%% %6.1f%% %9ld %14ld %10d\n", name,
+                median(ms), median(cpu_ms), runs.front().steps, median(contacts), median(candidates),
+                100.0 * median(broad), 100.0 * median(narrow), runs.front().rebuilds,
+                runs.front().zone_rebuilds, runs.back().crossings);
     return std::array<double, 2>{median(ms), median(cpu_ms)};
   };
   const auto ms_off = row("off", off);

@@ -59,6 +59,7 @@ class ContactsAndConstraints {
   std::string explain_collide() const;
   const ConstraintProjector* projector() const { return m_projector.get(); }
   const SelfCollision* self_collision() const { return m_self.get(); }
+  const ImpactZones* impact_zones() const { return m_zones.get(); }
   // What the phase carries from one step to the next, for a checkpoint: the carried tension,
   // the projector's and self-collision's memory. The obstacles' poses and motions are not: each
   // step poses them anew at its times before it uses them.

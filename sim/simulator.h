@@ -129,6 +129,8 @@ class Simulator {
   const PhaseTimers& timers() const { return m_timers; }
   // Self-collision's broad and narrow phase (their times, candidate lists); null when off.
   const SelfCollision* self_collision() const { return m_contacts->self_collision(); }
+  // Self-collision's failsafe (its candidate list's rebuilds); null when off.
+  const ImpactZones* impact_zones() const { return m_contacts->impact_zones(); }
   // dynamic_relaxation: where the relaxation stands (residual, kinetic peaks); null otherwise.
   const DynamicRelaxation* relaxation() const;
   // One line per phase of a step (integrate, forces, project, collide, pins): which terms and
