@@ -42,10 +42,10 @@ struct FitResult {
 // Phase of an evaluation, for progress lines and the CSV log.
 enum class FitPhase { optimise, profile };
 
-// Fits; `on_evaluation` sees each evaluation as it is made (its 1-based number and phase).
 // Why an NLopt optimisation stopped (`result`: an nlopt::result), in words for the reports.
 std::string nlopt_stop_reason(int result);
 
+// Fits; `on_evaluation` sees each evaluation as it is made (its 1-based number and phase).
 FitResult run_fit(FitProblem& problem,
                   const std::function<void(const Evaluation&, int, FitPhase)>& on_evaluation = {});
 

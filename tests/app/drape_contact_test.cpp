@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -28,6 +28,11 @@ Scene coarse_scene_with_self_collision(const std::string& name) {
   Scene scene = test::coarse_scene(name, 17);
   scene.sim.self_collision.enabled = true;
   return scene;
+}
+
+// A scene file's name without its extension, as the test's name.
+std::string scene_test_name(const ::testing::TestParamInfo<std::string>& info) {
+  return info.param.substr(0, info.param.find('.'));
 }
 
 class DrapeSceneContact : public ::testing::TestWithParam<std::string> {};
@@ -69,10 +74,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DrapeSceneContact,
                                            "disc_drape_50.json", "sphere_drape_30.json",
                                            "cusick_drape.json", "sphere_drape_mesh.json",
                                            "hang_corners_20.json", "hang_corners_100.json"),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param;
-                           return name.substr(0, name.find('.'));
-                         });
+                         scene_test_name);
 
 class DrapeSceneAtRest : public ::testing::TestWithParam<std::string> {};
 
@@ -99,10 +101,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DrapeSceneAtRest,
                                            "sphere_drape_20_remeshed.json", "sphere_drape_30.json",
                                            "sphere_drape_inextensible.json",
                                            "sphere_drape_mesh.json"),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param;
-                           return name.substr(0, name.find('.'));
-                         });
+                         scene_test_name);
 
 }  // namespace
 }  // namespace weft::app

@@ -182,10 +182,6 @@ TEST(GridMultigrid, NoHierarchyForSmallGridsOrFarCouplings) {
   EXPECT_TRUE(GridMultigrid::make(cg.matrix(), 12, 12));
 }
 
-// Through the simulator: a 33² mass-spring hang stepped by implicit Euler with CG to 1e-9 moves
-// the same with either preconditioner (the solution does not depend on the path to it), and
-// the multigrid, chosen by name below the automatic threshold, is the one that ran (far fewer
-// iterations).
 // "auto" takes the multigrid from 150 × 150 vertices (where it was measured to pay), block
 // Jacobi below and on a triangle mesh (no grid); an explicit choice holds at any size.
 TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
@@ -208,6 +204,10 @@ TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   EXPECT_TRUE(uses_multigrid(s));
 }
 
+// Through the simulator: a 33² mass-spring hang stepped by implicit Euler with CG to 1e-9 moves
+// the same with either preconditioner (the solution does not depend on the path to it), and
+// the multigrid, chosen by name below the automatic threshold, is the one that ran (far fewer
+// iterations).
 TEST(GridMultigrid, TheSimulatorTakesTheSameStepsWithEitherPreconditioner) {
   GridSpec grid;
   grid.nu = grid.nv = 33;
