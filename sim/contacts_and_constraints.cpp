@@ -23,7 +23,7 @@ ContactsAndConstraints::ContactsAndConstraints(const ClothMesh& mesh,
   if (settings.self_collision.enabled)
     m_self = std::make_unique<SelfCollision>(mesh, settings.self_collision);
   if (m_self && settings.self_collision.impact_zones)
-    m_zones = std::make_unique<ImpactZones>(mesh.triangles(),
+    m_zones = std::make_unique<ImpactZones>(mesh,
                                             impact_zone_fraction * m_self->thickness_m());
 }
 

@@ -45,6 +45,21 @@ Eigen::VectorXd impact_zone_masses(const Eigen::VectorXd& inv_mass, std::size_t 
   return mass;
 }
 
+// The least altitude of the mesh's triangles at rest. On a flat grid, a vertex is at least this
+// far from a triangle, and an edge from an edge, that it shares no vertex with: the segment
+// between them leaves the vertex's star through the opposite sides of its triangles.
+double least_rest_altitude(const ClothMesh& mesh, const std::vector<std::array<Index, 3>>& triangles) {
+  double least_m = std::numeric_limits<double>::infinity();
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = vertex(mesh.rest_positions, t[k]);
+      const Vec3 b = vertex(mesh.rest_positions, t[(k + 1) % 3]);
+      const Vec3 c = vertex(mesh.rest_positions, t[(k + 2) % 3]);
+      least_m = std::min(least_m, (b - a).cross(c - a).norm() / (c - b).norm());
+    }
+  return std::isfinite(least_m) ? least_m : 0.0;
+}
+
 }  // namespace
 
 void apply_rigid_zone_motion(const std::vector<Index>& zone, const Matrix3X& x_start,
@@ -89,6 +104,15 @@ ImpactZones::ImpactZones(std::vector<std::array<Index, 3>> triangles, double eta
   std::sort(m_vertices.begin(), m_vertices.end());
   m_vertices.erase(std::unique(m_vertices.begin(), m_vertices.end()), m_vertices.end());
 }
+
+ImpactZones::ImpactZones(const ClothMesh& mesh, double eta_m)
+    : ImpactZones(mesh.triangles(), eta_m) {
+  if (!mesh.has_grid()) return;
+  m_patches = std::make_unique<SurfacePatches>(mesh, m_triangles, m_edges, patch_cells_per_side);
+  m_culling.exclusion_m = least_rest_altitude(mesh, m_triangles);
+}
+
+ImpactZones::~ImpactZones() = default;
 
 Index ImpactZones::find(Index v) {
   Index root = v;
@@ -177,7 +201,7 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
                                   const std::vector<char>& changed, PairLists& out) {
   out.vt.clear();
   out.ee.clear();
-  if (!(reach_needed(x_start, x) <= m_cache_reach_m)) rebuild_candidates(x_start, x);
+  if (!m_patches && !(reach_needed(x_start, x) <= m_cache_reach_m)) rebuild_candidates(x_start, x);
   const auto moved = [&](Index v) { return changed[static_cast<std::size_t>(v)] != 0; };
   // The swept boxes of the features with a changed vertex; the others' are the last pass's.
   m_vertex_boxes.resize(static_cast<std::size_t>(x.rows()));
@@ -195,6 +219,11 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
     if (moved(edge[0]) || moved(edge[1]))
       m_edge_boxes[e] = swept_box(x_start, x, edge.data(), 2, 0.5 * m_eta_m);
   }
+  if (m_patches) {
+    m_patches->refit_swept(x_start, x);
+    find_patch_candidates(changed, out);
+    return;
+  }
   for (const auto& [v, t] : m_cached.vt) {
     const auto& tri = m_triangles[static_cast<std::size_t>(t)];
     if (!(moved(v) || moved(tri[0]) || moved(tri[1]) || moved(tri[2]))) continue;
@@ -210,6 +239,51 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
                       m_edge_boxes[static_cast<std::size_t>(f)]))
       out.ee.push_back({e, f});
   }
+}
+
+// The pairs of each patch pair that the cones do not rule out (surface_patches.h): a patch
+// owns each vertex and edge once and holds each triangle once, so every pair comes from one
+// patch pair, once.
+void ImpactZones::find_patch_candidates(const std::vector<char>& changed, PairLists& out) {
+  const auto moved = [&](Index v) { return changed[static_cast<std::size_t>(v)] != 0; };
+  m_patches->near_pairs(m_eta_m, m_culling, m_patch_pairs);
+  const auto any_moved = [&](const SurfacePatch& patch) {
+    return std::any_of(patch.vertices.begin(), patch.vertices.end(), moved);
+  };
+  const auto add_vertex_triangle = [&](const SurfacePatch& a, const SurfacePatch& b) {
+    const Aabb reach = inflated(b.box, m_eta_m);
+    for (const Index v : a.owned_vertices) {
+      const Aabb& vbox = m_vertex_boxes[static_cast<std::size_t>(v)];
+      if (!boxes_overlap(vbox, reach)) continue;
+      for (const Index t : b.triangles) {
+        const auto& tri = m_triangles[static_cast<std::size_t>(t)];
+        if (tri[0] == v || tri[1] == v || tri[2] == v) continue;
+        if (!(moved(v) || moved(tri[0]) || moved(tri[1]) || moved(tri[2]))) continue;
+        if (boxes_overlap(m_triangle_boxes[static_cast<std::size_t>(t)], vbox)) out.vt.push_back({v, t});
+      }
+    }
+  };
+  for (const auto& [p, q] : m_patch_pairs) {
+    const SurfacePatch& a = (*m_patches)[p];
+    const SurfacePatch& b = (*m_patches)[q];
+    if (!any_moved(a) && !any_moved(b)) continue;
+    add_vertex_triangle(a, b);
+    if (p != q) add_vertex_triangle(b, a);
+    for (std::size_t i = 0; i < a.owned_edges.size(); ++i)
+      for (std::size_t j = p == q ? i + 1 : 0; j < b.owned_edges.size(); ++j) {
+        const Index e = std::min(a.owned_edges[i], b.owned_edges[j]);
+        const Index f = std::max(a.owned_edges[i], b.owned_edges[j]);
+        const auto& ea = m_edges[static_cast<std::size_t>(e)];
+        const auto& eb = m_edges[static_cast<std::size_t>(f)];
+        if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
+        if (!(moved(ea[0]) || moved(ea[1]) || moved(eb[0]) || moved(eb[1]))) continue;
+        if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)],
+                          m_edge_boxes[static_cast<std::size_t>(f)]))
+          out.ee.push_back({e, f});
+      }
+  }
+  std::sort(out.vt.begin(), out.vt.end());
+  std::sort(out.ee.begin(), out.ee.end());
 }
 
 void ImpactZones::absorb(const std::vector<std::array<Index, 2>>& edges) {
@@ -236,6 +310,7 @@ void ImpactZones::collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
     const auto& tri = m_triangles[static_cast<std::size_t>(t)];
     const std::array<Index, 4> ids{v, tri[0], tri[1], tri[2]};
     if (!worth_testing(ids)) continue;
+    ++m_tested;
     if (vertex_triangle_impact(vertex(x_start, v), vertex(x_start, tri[0]),
                                vertex(x_start, tri[1]), vertex(x_start, tri[2]), vertex(x, v),
                                vertex(x, tri[0]), vertex(x, tri[1]), vertex(x, tri[2]), m_eta_m))
@@ -246,6 +321,7 @@ void ImpactZones::collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
     const auto& b = m_edges[static_cast<std::size_t>(f)];
     const std::array<Index, 4> ids{a[0], a[1], b[0], b[1]};
     if (!worth_testing(ids)) continue;
+    ++m_tested;
     if (edge_edge_impact(vertex(x_start, a[0]), vertex(x_start, a[1]), vertex(x_start, b[0]),
                          vertex(x_start, b[1]), vertex(x, a[0]), vertex(x, a[1]),
                          vertex(x, b[0]), vertex(x, b[1]), m_eta_m))

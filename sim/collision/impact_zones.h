@@ -38,9 +38,12 @@
 // same bits every time.
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "sim/collision/spatial_hash.h"
+#include "sim/collision/surface_patches.h"
+#include "sim/grid.h"
 #include "sim/types.h"
 
 namespace weft::sim {
@@ -64,6 +67,11 @@ class ImpactZones {
   // triangles: the cloth's triangles; their edges are the edge features. eta_m > 0: the
   // continuous-collision thickness.
   ImpactZones(std::vector<std::array<Index, 3>> triangles, double eta_m);
+  // The same over a cloth mesh's triangles (ClothMesh::triangles()). On a warp/weft grid the
+  // pairs are found on patches of the grid whose normal cones over the step rule out the
+  // flat ones (rule above), instead of the cached list.
+  ImpactZones(const ClothMesh& mesh, double eta_m);
+  ~ImpactZones();
 
   // Replaces the motion of the colliding zones (rule above). inv_mass: #V, 0 at pins. grow:
   // keep the zones of the last call (same step, x moved since only outside them) and let them
@@ -84,8 +92,12 @@ class ImpactZones {
   static constexpr int max_passes = 200;
   // The cached list's reach r, in mean edge lengths (of the step it was built from).
   static constexpr double reach_edges = 0.25;
+  // Grid cells per side of a patch, on a grid.
+  static constexpr Index patch_cells_per_side = 2;
   // Times the cached candidate list was built.
   long candidate_rebuilds() const { return m_rebuilds; }
+  // Pairs tested by continuous collision detection, over all calls.
+  long tested_pairs() const { return m_tested; }
 
  private:
   struct PairLists {
@@ -99,6 +111,8 @@ class ImpactZones {
   // The smallest reach for which the cached list holds (rule above); infinite without a list.
   double reach_needed(const Matrix3X& x_start, const Matrix3X& x) const;
   void rebuild_candidates(const Matrix3X& x_start, const Matrix3X& x);
+  // find_candidates on the grid's patches (m_patches), into out, unsorted.
+  void find_patch_candidates(const std::vector<char>& changed, PairLists& out);
   // The candidate pairs that touch a changed vertex, are not inside one zone already and
   // collide over the step from x_start to x (continuous_collision.h), in the candidates' order.
   void collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
@@ -136,7 +150,13 @@ class ImpactZones {
   Matrix3X m_cache_a, m_cache_b;
   double m_cache_reach_m = 0.0;
   long m_rebuilds = 0;
+  long m_tested = 0;
   std::vector<Aabb> m_triangle_boxes, m_edge_boxes, m_vertex_boxes;  // swept; scratch
+  // On a grid: its patches, and when their cones rule pairs out (exclusion: the least
+  // altitude of a rest triangle, below which no two features sharing no vertex come at rest).
+  std::unique_ptr<SurfacePatches> m_patches;
+  ConeCulling m_culling;
+  std::vector<std::array<Index, 2>> m_patch_pairs;  // scratch
 };
 
 }  // namespace weft::sim

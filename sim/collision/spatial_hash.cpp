@@ -16,12 +16,6 @@ Aabb bounding_box(const Vec3& a, const Vec3& b, const Vec3& c) {
   return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
 }
 
-Aabb inflated(Aabb box, double by_m) {
-  box.lo.array() -= by_m;
-  box.hi.array() += by_m;
-  return box;
-}
-
 SpatialHash::SpatialHash(double cell_size_m, std::vector<Aabb> boxes)
     : m_cell_size_m(cell_size_m), m_boxes(std::move(boxes)) {
   if (!(std::isfinite(cell_size_m) && cell_size_m > 0.0))

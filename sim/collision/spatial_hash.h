@@ -29,7 +29,11 @@ inline bool boxes_overlap(const Aabb& a, const Aabb& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
 }
 // The box grown by by_m on every side.
-Aabb inflated(Aabb box, double by_m);
+inline Aabb inflated(Aabb box, double by_m) {
+  box.lo.array() -= by_m;
+  box.hi.array() += by_m;
+  return box;
+}
 
 class SpatialHash {
  public:

@@ -129,6 +129,13 @@ Eigen::Matrix2d rest_edge_frame_inverse(const Matrix3X& rest_positions,
                                                                  : Eigen::Matrix2d::Zero();
 }
 
+// The smallest singular value of a 3×2 matrix: the root of the smaller eigenvalue of FᵀF.
+double least_singular_value(const Eigen::Matrix<double, 3, 2>& f) {
+  const double p = f.col(0).squaredNorm(), q = f.col(1).squaredNorm(), r = f.col(0).dot(f.col(1));
+  const double half_gap = 0.5 * (p - q);
+  return std::sqrt(std::max(0.0, 0.5 * (p + q) - std::sqrt(half_gap * half_gap + r * r)));
+}
+
 }  // namespace
 
 SurfacePatches::SurfacePatches(const ClothMesh& mesh,
@@ -185,27 +192,71 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
       m_normals[t] = (b - a).cross(c - a);
       degenerate = degenerate || !(m_normals[t].squaredNorm() > 0.0);
       patch.normal_sum += m_normals[t];
-      // The smallest singular value of F: the root of the smaller eigenvalue of FᵀF.
       Eigen::Matrix<double, 3, 2> edges;
       edges << b - a, c - a;
-      const Eigen::Matrix<double, 3, 2> f = edges * m_rest_inverse[t];
-      const double p = f.col(0).squaredNorm(), q = f.col(1).squaredNorm(), r = f.col(0).dot(f.col(1));
-      const double least = 0.5 * (p + q) - std::hypot(0.5 * (p - q), r);
-      patch.least_stretch = std::min(patch.least_stretch, std::sqrt(std::max(0.0, least)));
+      patch.least_stretch =
+          std::min(patch.least_stretch, least_singular_value(edges * m_rest_inverse[t]));
     }
-    const double length = patch.normal_sum.norm();
-    if (degenerate || !(length > 0.0)) {
-      patch.cone_angle_rad = base::kPi;
-      continue;
-    }
-    const Vec3 axis = patch.normal_sum / length;
-    double cos_min = 1.0;
-    for (const Index t : patch.triangles) {
-      const Vec3& n = m_normals[static_cast<std::size_t>(t)];
-      cos_min = std::min(cos_min, axis.dot(n) / n.norm());
-    }
-    patch.cone_angle_rad = std::acos(std::clamp(cos_min, -1.0, 1.0));
+    set_cone(patch, degenerate, 1);
   }
+}
+
+void SurfacePatches::refit_swept(const Matrix3X& x_start, const Matrix3X& x) {
+  m_normals.resize(3 * m_triangles.size());
+  for (SurfacePatch& patch : m_patches) {
+    patch.normal_sum.setZero();
+    patch.least_stretch = std::numeric_limits<double>::infinity();
+    bool degenerate = false;
+    for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
+      const auto t = static_cast<std::size_t>(patch.triangles[k]);
+      const auto& tri = m_triangles[t];
+      const Vec3 a0 = vertex(x_start, tri[0]), a1 = vertex(x, tri[0]);
+      const Vec3 e0 = vertex(x_start, tri[1]) - a0, f0 = vertex(x_start, tri[2]) - a0;
+      const Vec3 e1 = vertex(x, tri[1]) - a1, f1 = vertex(x, tri[2]) - a1;
+      const Aabb box = merged(bounding_box(a0, vertex(x_start, tri[1]), vertex(x_start, tri[2])),
+                              bounding_box(a1, vertex(x, tri[1]), vertex(x, tri[2])));
+      patch.box = k == 0 ? box : merged(patch.box, box);
+      // n(t) = (1−t)² n₀ + 2t(1−t) n_mid + t² n₁ along the straight paths: a positive
+      // combination of the three, so within any convex cone that holds them.
+      Vec3* n = &m_normals[3 * t];
+      n[0] = e0.cross(f0);
+      n[1] = 0.5 * (e0.cross(f1) + e1.cross(f0));
+      n[2] = e1.cross(f1);
+      degenerate = degenerate || !(n[0].squaredNorm() > 0.0) || !(n[2].squaredNorm() > 0.0);
+      patch.normal_sum += n[0] + n[2];
+      // F(t) = F₀ + t (F₁ − F₀): by Weyl's inequality σ_min(F(t)) ≥ σ_min(F₀) − t‖ΔF‖ and
+      // ≥ σ_min(F₁) − (1−t)‖ΔF‖, so at least (σ₀ + σ₁ − ‖ΔF‖)/2 over the step.
+      Eigen::Matrix<double, 3, 2> start_edges, end_edges;
+      start_edges << e0, f0;
+      end_edges << e1, f1;
+      const Eigen::Matrix<double, 3, 2> F0 = start_edges * m_rest_inverse[t];
+      const Eigen::Matrix<double, 3, 2> F1 = end_edges * m_rest_inverse[t];
+      const double least =
+          0.5 * (least_singular_value(F0) + least_singular_value(F1) - (F1 - F0).norm());
+      patch.least_stretch = std::min(patch.least_stretch, std::max(0.0, least));
+    }
+    set_cone(patch, degenerate, 3);
+  }
+}
+
+// The patch's cone: its axis, the normalized normal_sum, and the largest angle between it and
+// the normals its triangles keep in m_normals (normals_per_triangle each; a zero one is left
+// out: it adds nothing to a positive combination). π when a triangle is degenerate.
+void SurfacePatches::set_cone(SurfacePatch& patch, bool degenerate, int normals_per_triangle) {
+  const double length = patch.normal_sum.norm();
+  if (degenerate || !(length > 0.0)) {
+    patch.cone_angle_rad = base::kPi;
+    return;
+  }
+  const Vec3 axis = patch.normal_sum / length;
+  double cos_min = 1.0;
+  for (const Index t : patch.triangles)
+    for (int k = 0; k < normals_per_triangle; ++k) {
+      const Vec3& n = m_normals[static_cast<std::size_t>(normals_per_triangle * t + k)];
+      const double n_length = n.norm();
+      if (n_length > 0.0) cos_min = std::min(cos_min, axis.dot(n) / n_length);
+    }
+  patch.cone_angle_rad = std::acos(std::clamp(cos_min, -1.0, 1.0));
 }
 
 double ConeCulling::flat_angle_rad(double reach_m, double least_stretch) const {

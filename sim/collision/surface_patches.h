@@ -103,6 +103,11 @@ class SurfacePatches {
   void refit(const Matrix3X& x);
   // The same for patches [first, end) only; calls for disjoint ranges may run at once.
   void refit(const Matrix3X& x, std::size_t first, std::size_t end);
+  // The same over a step, every vertex moving on its straight path from x_start to x: each
+  // box holds the patch's triangles at both ends (so all along the paths), each cone every
+  // normal its triangles take on the way, and least_stretch bounds every triangle's least
+  // stretch along the way from below. For continuous collision (impact_zones.h).
+  void refit_swept(const Matrix3X& x_start, const Matrix3X& x);
 
   // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
   // within reach_m of each other and that the normal cones do not rule out (`culling`; a
@@ -138,7 +143,10 @@ class SurfacePatches {
   Index m_patches_u = 0;              // patch grid columns
   std::vector<Index> m_patch_of_grid; // patch at grid (i, j): [j · m_patches_u + i], −1 if none
   bool m_cone_culling = true;         // false on a mesh without a grid (see the top)
-  std::vector<Vec3> m_normals;  // refit's scratch: each triangle's area-weighted normal
+  void set_cone(SurfacePatch& patch, bool degenerate, int normals_per_triangle);
+  // Scratch: each triangle's area-weighted normal (refit), or its three control normals over
+  // the step (refit_swept).
+  std::vector<Vec3> m_normals;
   // Per triangle: the inverse of its rest edge matrix in a frame of its own plane, for the
   // deformation gradient F = [x1 − x0, x2 − x0] · m_rest_inverse (3×2).
   std::vector<Eigen::Matrix2d> m_rest_inverse;

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <set>
 
 #include "base/constants.h"
@@ -145,6 +147,50 @@ TEST(SurfacePatches, ARolledSheetKeepsEveryPairWithinReach) {
       ASSERT_TRUE(covered(edge_owner[i], edge_owner[j])) << "edges " << i << " and " << j;
     }
   EXPECT_GT(near_pairs, 1000) << "the layers should be within reach of each other";
+}
+
+// Over a step, refit_swept's box, cone and least stretch hold every triangle of a patch at
+// every time along the straight paths: the rolled sheet moved to a squeezed, shaken one,
+// sampled at 201 times. And a flat sheet moved rigidly keeps a zero cone and unit stretch.
+TEST(SurfacePatches, SweptRefitBoundsEveryTimeAlongThePaths) {
+  const ClothMesh mesh = sheet(17);
+  const auto triangles = mesh.triangles();
+  const auto edges = unique_edges(triangles);
+  SurfacePatches patches(mesh, triangles, edges, 2);
+  const Matrix3X x0 = rolled(mesh, 0.08, 0.005);
+  Matrix3X x1 = 0.9 * x0;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-3e-3, 3e-3);
+  for (Index v = 0; v < x1.rows(); ++v) x1.row(v) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+  patches.refit_swept(x0, x1);
+  SurfacePatches at_time(mesh, triangles, edges, 2);
+  for (int k = 0; k <= 200; ++k) {
+    const double t = k / 200.0;
+    const Matrix3X x = (1.0 - t) * x0 + t * x1;
+    at_time.refit(x);
+    for (std::size_t p = 0; p < patches.patches().size(); ++p) {
+      const SurfacePatch& swept = patches.patches()[p];
+      const SurfacePatch& now = at_time.patches()[p];
+      EXPECT_TRUE((swept.box.lo.array() <= now.box.lo.array()).all() &&
+                  (now.box.hi.array() <= swept.box.hi.array()).all()) << "patch " << p << " at t " << t;
+      EXPECT_LE(swept.least_stretch, now.least_stretch + 1e-12) << "patch " << p << " at t " << t;
+      const Vec3 axis = swept.normal_sum.normalized();
+      for (const Index tri : now.triangles) {
+        const auto& c = triangles[static_cast<std::size_t>(tri)];
+        const Vec3 n = (vertex(x, c[1]) - vertex(x, c[0])).cross(vertex(x, c[2]) - vertex(x, c[0]));
+        EXPECT_LE(std::acos(std::clamp(axis.dot(n.normalized()), -1.0, 1.0)), swept.cone_angle_rad + 1e-9)
+            << "triangle " << tri << " at t " << t;
+      }
+    }
+  }
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3(0, 1, 0)).toRotationMatrix();
+  const Matrix3X moved = (mesh.rest_positions * turn.transpose()).rowwise() + Eigen::RowVector3d(0, 0, -0.1);
+  patches.refit_swept(mesh.rest_positions, moved);
+  for (const SurfacePatch& p : patches.patches()) {
+    EXPECT_LT(p.cone_angle_rad, 0.3 + 1e-9);  // a turn of 0.3 rad sweeps the normals that far
+    // The bound (σ₀ + σ₁ − ‖ΔF‖)/2 with σ = 1 and the warp's column turned: ‖ΔF‖ = 2 sin 0.15.
+    EXPECT_NEAR(p.least_stretch, 1.0 - std::sin(0.15), 1e-9);
+  }
 }
 
 }  // namespace
