@@ -23,7 +23,15 @@
 // Broad phase: the pairs whose boxes swept over the step (triangles grown by eta, edges by
 // eta/2) overlap; after the first pass only the pairs touching a vertex whose path changed are
 // tested again, and a call with `grow` tests at first only the pairs touching a vertex moved
-// since the last call (the others were tested at those positions). The pairs are filtered from
+// since the last call (the others were tested at those positions).
+//
+// On a warp/weft grid the pairs come from the grid's patches (surface_patches.h), refitted over
+// the step at every pass (refit_swept: boxes, normal cones and least stretches that hold all
+// along the straight paths), and a patch or two neighbouring ones flat all along the step are
+// ruled out: on a flat grid two features sharing no vertex are at rest at least the least
+// altitude of a triangle apart, and the cones' bound keeps them farther than eta.
+//
+// On a mesh without a grid the pairs are filtered from
 // a cached list (a Verlet list) of the pairs whose reference boxes — each vertex's box from A_i
 // to B_i, the start and end positions at the list's build — overlap when grown by a reach r
 // more. The list holds every pair whose swept boxes overlap while some common translation T
