@@ -6,9 +6,10 @@
 // every thread: self-collision builds its candidate list on --threads threads, 0 for all
 // hardware threads, while the rest of the step runs on one), the step count, the
 // self-contacts per step, the candidate pairs in the list, the broad- and narrow-phase shares
-// of the frame time, the rebuilds of the proximity candidates and of the impact zones' cached
-// pairs (sim/collision/impact_zones.h) and the edge–triangle crossings at the end; then the on/off
-// ratios of the medians.
+// of the frame time, the rebuilds of the proximity candidates, the pairs the impact zones test
+// by continuous collision per step (sim/collision/impact_zones.h), the most edge–triangle
+// crossings in a frame (counted outside the timed steps), the steps a projection left above
+// its tolerance and the largest strain it left; then the on/off ratios of the medians.
 //
 // --inextensible: the same drop with fast projection (tol 1e-3) after implicit Euler solved by
 // conjugate gradients to 1e-3 (h = 1/120 s), the inextensible model bench/inextensibility_sweep
@@ -41,9 +42,11 @@ struct Run {
   double contacts_per_step = 0.0;  // max over each frame's steps, averaged over frames
   double broad_share = 0.0, narrow_share = 0.0;
   long rebuilds = 0;
-  long zone_rebuilds = 0;  // the impact zones' candidate list
+  double zone_pairs_per_step = 0.0;  // pairs the impact zones tested by continuous collision
   double candidates = 0.0;  // candidate pairs in the list, averaged over frames
-  Index crossings = 0;
+  Index crossings = 0;      // edge–triangle crossings, the most in a frame (not timed)
+  long unconverged_steps = 0;  // steps the projection left above its tolerance
+  double worst_strain = 0.0;   // the largest strain a projection left
 };
 
 double process_cpu_s() {
@@ -76,28 +79,34 @@ Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bo
   const int frames = static_cast<int>(seconds * fps + 0.5);
   Run r;
   double contact_sum = 0.0;
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start_s = process_cpu_s();
+  const auto triangles = sim.mesh().triangles();
+  const auto edges = unique_edges(triangles);
+  double total_s = 0.0, cpu_s = 0.0;
   for (int f = 0; f < frames; ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start_s = process_cpu_s();
     sim.advance(1.0 / fps);
+    total_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cpu_s += process_cpu_s() - cpu_start_s;
     const StepStatistics s = sim.take_step_statistics();
     r.steps += s.steps;
+    r.unconverged_steps += s.unconverged_steps;
+    r.worst_strain = std::max(r.worst_strain, s.worst_projected_strain);
     contact_sum += static_cast<double>(s.max_self_contacts);
     if (const SelfCollision* self = sim.self_collision())
       r.candidates += static_cast<double>(self->candidate_count()) / frames;
+    r.crossings = std::max(r.crossings, count_edge_triangle_crossings(sim.state().x, triangles, edges));
   }
-  const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.ms_per_frame = 1e3 * total_s / frames;
-  r.cpu_ms_per_frame = 1e3 * (process_cpu_s() - cpu_start_s) / frames;
+  r.cpu_ms_per_frame = 1e3 * cpu_s / frames;
   r.contacts_per_step = contact_sum / frames;
   if (const SelfCollision* self = sim.self_collision()) {
     r.broad_share = self->broad_phase_s() / total_s;
     r.narrow_share = self->narrow_phase_s() / total_s;
     r.rebuilds = self->rebuilds();
   }
-  if (const ImpactZones* zones = sim.impact_zones()) r.zone_rebuilds = zones->candidate_rebuilds();
-  const auto triangles = sim.mesh().triangles();
-  r.crossings = count_edge_triangle_crossings(sim.state().x, triangles, unique_edges(triangles));
+  if (const ImpactZones* zones = sim.impact_zones())
+    r.zone_pairs_per_step = static_cast<double>(zones->tested_pairs()) / static_cast<double>(r.steps);
   return r;
 }
 
@@ -142,9 +151,9 @@ int main(int argc, char** argv) {
               n, inextensible ? "fast projection after implicit Euler" : "mass-spring, symplectic Euler",
               seconds, repeats,
               threads == 0 ? "all hardware threads" : (std::to_string(threads) + " thread(s)").c_str());
-  std::printf("%-15s %9s %13s %8s %14s %11s %7s %7s %9s %14s %10s\n", "self-collision",
+  std::printf("%-15s %9s %13s %8s %14s %11s %7s %7s %9s %11s %10s %10s %8s\n", "self-collision",
               "ms/frame", "cpu ms/frame", "steps", "contacts/step", "candidates", "broad", "narrow",
-              "rebuilds", "zone rebuilds", "crossings");
+              "rebuilds", "CCD/step", "crossings", "above tol", "strain");
   const auto row = [](const char* name, const std::vector<Run>& runs) {
     std::vector<double> ms, cpu_ms, broad, narrow, contacts, candidates;
     for (const Run& r : runs) {
@@ -155,10 +164,11 @@ int main(int argc, char** argv) {
       narrow.push_back(r.narrow_share);
       contacts.push_back(r.contacts_per_step);
     }
-    std::printf("%-15s %9.1f %13.1f %8ld %14.0f %11.0f %6.1f%% %6.1f%% %9ld %14ld %10d\n", name,
-                median(ms), median(cpu_ms), runs.front().steps, median(contacts), median(candidates),
-                100.0 * median(broad), 100.0 * median(narrow), runs.front().rebuilds,
-                runs.front().zone_rebuilds, runs.back().crossings);
+    std::printf("%-15s %9.1f %13.1f %8ld %14.0f %11.0f %6.1f%% %6.1f%% %9ld %11.0f %10d %10ld %7.3f%%\n",
+                name, median(ms), median(cpu_ms), runs.front().steps, median(contacts),
+                median(candidates), 100.0 * median(broad), 100.0 * median(narrow),
+                runs.front().rebuilds, runs.front().zone_pairs_per_step, runs.back().crossings,
+                runs.back().unconverged_steps, 100.0 * runs.back().worst_strain);
     return std::array<double, 2>{median(ms), median(cpu_ms)};
   };
   const auto ms_off = row("off", off);

@@ -119,21 +119,26 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
     Eigen::VectorXd held = m_inv_mass;
     for (int round = 0; round < kHeldRounds && (round == 0 || counts.collisions > 0); ++round) {
       for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
-      if (!m_held_projector)
+      if (!m_held_projector) {
+        ProjectionSettings held_settings = m_settings.projection;
+        held_settings.stall_fraction = kHeldStallFraction;
         m_held_projector =
-            make_projector(m_mesh, m_inv_mass, m_settings.projection, m_settings.sparse_backend);
+            make_projector(m_mesh, m_inv_mass, held_settings, m_settings.sparse_backend);
+      }
       m_held_projector->set_inverse_masses(held, /*fresh=*/round == 0);
       const ProjectionResult r = m_held_projector->project(x);
       stats.projection_iterations += r.iterations;  // its convergence shows in the frame's strain
       stats.projection_factorizations += r.factorizations;
       stats.projection_reuse_iterations += r.reuse_iterations;
       stats.solve_s += r.solve_s;
-      // The zones take in the free ends of the edges they leave stretched beyond the
-      // tolerance: a zone that moves rigidly with them keeps those edges at their start length.
+      // The zones take in the free ends of the edges left stretched beyond the tolerance: a
+      // zone that moves rigidly with them keeps those edges at their start length. Those are
+      // the edges leaving a zone, and where the projection stalled (two zones pulling the
+      // free cloth between them apart), also edges between free vertices.
       std::vector<std::array<Index, 2>> stretched;
       if (m_settings.projection.method == ProjectionMethod::fast_projection)
         for (const EdgeConstraint& c : m_held_projector->constraints())
-          if ((held[c.a] == 0.0) != (held[c.b] == 0.0) &&
+          if ((held[c.a] != 0.0 || held[c.b] != 0.0) &&
               std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)) >
                   m_settings.projection.tolerance)
             stretched.push_back({c.a, c.b});

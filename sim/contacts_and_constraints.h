@@ -74,6 +74,11 @@ class ContactsAndConstraints {
   static void record(const ProjectionResult& r, StepStatistics& stats);  // a step's, summed
   static constexpr int kContactRounds = 2;  // push-outs between projections, per step
   static constexpr int kHeldRounds = 10;    // projections with the impact zones held, per step
+  // Their projections stop, unconverged, when a step the line search shortened leaves Σ C²
+  // above this fraction of its value before (ProjectionSettings::stall_fraction): where the
+  // held zones leave no shape within the tolerance, the zones take in the stretched edges
+  // instead of the iterations crawling on.
+  static constexpr double kHeldStallFraction = 0.9;
 
   const ClothMesh& m_mesh;        // the owner's
   const SimSettings& m_settings;  // the owner's

@@ -264,6 +264,7 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
     if (alpha == 0.0) break;  // stalled: no step along δ reduces Σ C²
     x += alpha * step;
     m_multipliers += alpha * mu;
+    const double merit_before = merit;
     merit = evaluate(x);
     result.max_strain = max_edge_strain(m_constraints, x, m_inv_mass);
     if (result.max_strain < best_strain) {
@@ -271,6 +272,9 @@ ProjectionResult FastProjection::project(Matrix3X& x) {
       best = x;
       best_multipliers = m_multipliers;
     }
+    if (alpha < 1.0 && m_settings.stall_fraction > 0.0 &&
+        merit > m_settings.stall_fraction * merit_before)
+      break;  // stalled (ProjectionSettings::stall_fraction)
   }
   result.converged = result.max_strain <= m_settings.tolerance;
   if (!result.converged && best_strain < result.max_strain) {

@@ -74,6 +74,12 @@ struct ProjectionSettings {
   // 64² and 0.88–1.02 at 128² (tol 1e-2 to 1e-4, docs/benchmarks.md). Before, the 128² hang's
   // near-singular top edge needed more CG iterations than a factorization costs and doubled it.
   int reuse_iterations = 8;
+  // Fast projection: stop, unconverged, when an iteration whose step the line search shortened
+  // leaves Σ C² above this fraction of its value before (0: never; the iteration cap alone).
+  // Where no shape meets the tolerance (the failsafe's projections with impact zones held: two
+  // held zones pulling the cloth between them apart) the line search keeps taking ever shorter
+  // steps that each remove a percent or less.
+  double stall_fraction = 0.0;
 };
 
 struct [[nodiscard]] ProjectionResult {
