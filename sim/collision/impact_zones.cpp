@@ -220,8 +220,7 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
       m_edge_boxes[e] = swept_box(x_start, x, edge.data(), 2, 0.5 * m_eta_m);
   }
   if (m_patches) {
-    m_patches->refit_swept(x_start, x);
-    find_patch_candidates(changed, out);
+    find_patch_candidates(x_start, x, changed, out);
     return;
   }
   for (const auto& [v, t] : m_cached.vt) {
@@ -244,12 +243,17 @@ void ImpactZones::find_candidates(const Matrix3X& x_start, const Matrix3X& x,
 // The pairs of each patch pair that the cones do not rule out (surface_patches.h): a patch
 // owns each vertex and edge once and holds each triangle once, so every pair comes from one
 // patch pair, once.
-void ImpactZones::find_patch_candidates(const std::vector<char>& changed, PairLists& out) {
+void ImpactZones::find_patch_candidates(const Matrix3X& x_start, const Matrix3X& x,
+                                        const std::vector<char>& changed, PairLists& out) {
   const auto moved = [&](Index v) { return changed[static_cast<std::size_t>(v)] != 0; };
-  m_patches->near_pairs(m_eta_m, m_culling, m_patch_pairs);
-  const auto any_moved = [&](const SurfacePatch& patch) {
-    return std::any_of(patch.vertices.begin(), patch.vertices.end(), moved);
-  };
+  // Only the patches with a changed vertex are refitted and paired: the others' fits are for
+  // the same paths (paths_changed).
+  const std::vector<SurfacePatch>& patches = m_patches->patches();
+  m_patch_moved.resize(patches.size());
+  for (std::size_t p = 0; p < patches.size(); ++p)
+    m_patch_moved[p] = std::any_of(patches[p].vertices.begin(), patches[p].vertices.end(), moved);
+  m_patches->refit_swept(x_start, x, &m_patch_moved);
+  m_patches->near_pairs(m_eta_m, m_culling, m_patch_pairs, nullptr, &m_patch_moved);
   const auto add_vertex_triangle = [&](const SurfacePatch& a, const SurfacePatch& b) {
     const Aabb reach = inflated(b.box, m_eta_m);
     for (const Index v : a.owned_vertices) {
@@ -263,16 +267,26 @@ void ImpactZones::find_patch_candidates(const std::vector<char>& changed, PairLi
       }
     }
   };
+  // The edges a patch owns whose boxes reach another patch's box (an edge box holds eta/2).
+  std::vector<Index> edges_a, edges_b;
+  const auto reaching = [&](const SurfacePatch& from, const SurfacePatch& to, std::vector<Index>& out) {
+    out.clear();
+    const Aabb reach = inflated(to.box, 0.5 * m_eta_m);
+    for (const Index e : from.owned_edges)
+      if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)], reach)) out.push_back(e);
+  };
   for (const auto& [p, q] : m_patch_pairs) {
     const SurfacePatch& a = (*m_patches)[p];
     const SurfacePatch& b = (*m_patches)[q];
-    if (!any_moved(a) && !any_moved(b)) continue;
     add_vertex_triangle(a, b);
     if (p != q) add_vertex_triangle(b, a);
-    for (std::size_t i = 0; i < a.owned_edges.size(); ++i)
-      for (std::size_t j = p == q ? i + 1 : 0; j < b.owned_edges.size(); ++j) {
-        const Index e = std::min(a.owned_edges[i], b.owned_edges[j]);
-        const Index f = std::max(a.owned_edges[i], b.owned_edges[j]);
+    reaching(a, b, edges_a);
+    if (p == q) edges_b = edges_a;
+    else reaching(b, a, edges_b);
+    for (std::size_t i = 0; i < edges_a.size(); ++i)
+      for (std::size_t j = p == q ? i + 1 : 0; j < edges_b.size(); ++j) {
+        const Index e = std::min(edges_a[i], edges_b[j]);
+        const Index f = std::max(edges_a[i], edges_b[j]);
         const auto& ea = m_edges[static_cast<std::size_t>(e)];
         const auto& eb = m_edges[static_cast<std::size_t>(f)];
         if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;

@@ -119,8 +119,9 @@ class ImpactZones {
   // The smallest reach for which the cached list holds (rule above); infinite without a list.
   double reach_needed(const Matrix3X& x_start, const Matrix3X& x) const;
   void rebuild_candidates(const Matrix3X& x_start, const Matrix3X& x);
-  // find_candidates on the grid's patches (m_patches), into out, unsorted.
-  void find_patch_candidates(const std::vector<char>& changed, PairLists& out);
+  // find_candidates on the grid's patches (m_patches).
+  void find_patch_candidates(const Matrix3X& x_start, const Matrix3X& x,
+                             const std::vector<char>& changed, PairLists& out);
   // The candidate pairs that touch a changed vertex, are not inside one zone already and
   // collide over the step from x_start to x (continuous_collision.h), in the candidates' order.
   void collect_impacts(const Matrix3X& x_start, const Matrix3X& x,
@@ -165,6 +166,7 @@ class ImpactZones {
   std::unique_ptr<SurfacePatches> m_patches;
   ConeCulling m_culling;
   std::vector<std::array<Index, 2>> m_patch_pairs;  // scratch
+  std::vector<char> m_patch_moved;                   // scratch: per patch, a changed vertex
 };
 
 }  // namespace weft::sim

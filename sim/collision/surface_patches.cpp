@@ -201,9 +201,12 @@ void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end
   }
 }
 
-void SurfacePatches::refit_swept(const Matrix3X& x_start, const Matrix3X& x) {
+void SurfacePatches::refit_swept(const Matrix3X& x_start, const Matrix3X& x,
+                                 const std::vector<char>* only) {
   m_normals.resize(3 * m_triangles.size());
-  for (SurfacePatch& patch : m_patches) {
+  for (std::size_t i = 0; i < m_patches.size(); ++i) {
+    if (only && !(*only)[i]) continue;
+    SurfacePatch& patch = m_patches[i];
     patch.normal_sum.setZero();
     patch.least_stretch = std::numeric_limits<double>::infinity();
     bool degenerate = false;
@@ -302,10 +305,10 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& fla
 }
 
 void SurfacePatches::near_pairs(double reach_m, const ConeCulling& culling,
-                                std::vector<std::array<Index, 2>>& pairs,
-                                base::ThreadPool* pool) const {
+                                std::vector<std::array<Index, 2>>& pairs, base::ThreadPool* pool,
+                                const std::vector<char>* wanted) const {
   std::vector<PatchPair> within;
-  pairs_within(reach_m, reach_m, culling, within, pool);
+  pairs_within(reach_m, reach_m, culling, within, pool, wanted);
   pairs.clear();
   for (const PatchPair& pair : within)
     if (!pair.culled) pairs.push_back(pair.ids);
@@ -313,8 +316,9 @@ void SurfacePatches::near_pairs(double reach_m, const ConeCulling& culling,
 }
 
 void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
-                                  std::vector<PatchPair>& pairs,
-                                  base::ThreadPool* pool) const {
+                                  std::vector<PatchPair>& pairs, base::ThreadPool* pool,
+                                  const std::vector<char>* wanted) const {
+  const auto is_wanted = [&](Index p) { return !wanted || (*wanted)[static_cast<std::size_t>(p)]; };
   pairs.clear();
   if (m_patches.empty()) return;
   // Sort and sweep (Baraff 1992) along the axis the boxes spread most: the patches are few
@@ -364,12 +368,15 @@ void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCull
     for (std::size_t i = base::share_begin(order.size(), shares, k); i < end; ++i) {
       const Index p = order[i];
       const SurfacePatch& a = m_patches[static_cast<std::size_t>(p)];
-      out.push_back({{p, p}, 0.0, a.cone_angle_rad < flat_angles_rad[static_cast<std::size_t>(p)]});
+      const bool p_wanted = is_wanted(p);
+      if (p_wanted)
+        out.push_back({{p, p}, 0.0, a.cone_angle_rad < flat_angles_rad[static_cast<std::size_t>(p)]});
       for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
         if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
             bound[4][i] > bound[5][j])
           continue;
         const Index q = order[j];
+        if (!p_wanted && !is_wanted(q)) continue;
         const SurfacePatch& b = m_patches[static_cast<std::size_t>(q)];
         const double gap_m =
             std::max(0.0, (b.box.lo - a.box.hi).cwiseMax(a.box.lo - b.box.hi).maxCoeff());

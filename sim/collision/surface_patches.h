@@ -107,21 +107,25 @@ class SurfacePatches {
   // box holds the patch's triangles at both ends (so all along the paths), each cone every
   // normal its triangles take on the way, and least_stretch bounds every triangle's least
   // stretch along the way from below. For continuous collision (impact_zones.h).
-  void refit_swept(const Matrix3X& x_start, const Matrix3X& x);
+  // With `only` (one flag per patch), the flagged patches alone; the others keep their fit.
+  void refit_swept(const Matrix3X& x_start, const Matrix3X& x,
+                   const std::vector<char>* only = nullptr);
 
   // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
   // within reach_m of each other and that the normal cones do not rule out (`culling`; a
   // default ConeCulling rules out nothing). Sorted. Call refit first. The threads of `pool`
-  // (base/thread_pool.h; none: this thread alone) sweep; the pairs are the same.
+  // (base/thread_pool.h; none: this thread alone) sweep; the pairs are the same. With
+  // `wanted` (one flag per patch), only the pairs with a wanted patch.
   void near_pairs(double reach_m, const ConeCulling& culling,
-                  std::vector<std::array<Index, 2>>& pairs,
-                  base::ThreadPool* pool = nullptr) const;
+                  std::vector<std::array<Index, 2>>& pairs, base::ThreadPool* pool = nullptr,
+                  const std::vector<char>* wanted = nullptr) const;
   // Every patch pair whose boxes are at most watch_m apart along each axis (a pair left out
   // is farther apart than watch_m), with its gap; those within reach_m (≤ watch_m) that the
   // cones rule out, as near_pairs() drops them, are marked culled. In the order of a sweep
-  // along one axis, the same for any number of shares.
+  // along one axis, the same for any number of shares. `wanted` as for near_pairs.
   void pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
-                    std::vector<PatchPair>& pairs, base::ThreadPool* pool = nullptr) const;
+                    std::vector<PatchPair>& pairs, base::ThreadPool* pool = nullptr,
+                    const std::vector<char>* wanted = nullptr) const;
 
   // Each patch's motion from `reference` to x (both #V×3), one per patch.
   void motions(const Matrix3X& x, const Matrix3X& reference,
