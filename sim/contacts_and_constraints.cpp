@@ -38,11 +38,12 @@ void ContactsAndConstraints::pose_obstacles(double t0_s, double t1_s) {
 }
 
 bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, double h_s,
-                                     PhaseTimers& timers, StepStatistics& stats) {
+                                     PhaseTimers& timers, StepStatistics& stats,
+                                     const Matrix3X* failsafe_from) {
   bool collided = timers.time(Phase::collide, [&] { return collide(x_start, x, true, stats); });
   if (!m_projector) {
-    if (m_zones) {
-      timers.time(Phase::collide, [&] { failsafe(x_start, x, stats); });
+    if (m_zones && failsafe_from) {
+      timers.time(Phase::collide, [&] { failsafe(*failsafe_from, x, stats); });
       collided = collided || !m_zones->zone_vertices().empty();  // a zone moved x
     }
     return collided;
@@ -60,8 +61,8 @@ bool ContactsAndConstraints::resolve(const Matrix3X& x_start, Matrix3X& x, doubl
         !timers.time(Phase::collide, [&] { return collide(x_start, x, false, stats); }))
       break;
   }
-  if (m_zones) {
-    timers.time(Phase::collide, [&] { failsafe(x_start, x, stats); });
+  if (m_zones && failsafe_from) {
+    timers.time(Phase::collide, [&] { failsafe(*failsafe_from, x, stats); });
     // The zones' rigid motions stretch the edges that leave a zone, which the projections with
     // the zones held may not bring back: a step left beyond the tolerance missed it (counted,
     // and warned of at the end of a run), as a projection that missed it would have.
@@ -214,6 +215,13 @@ std::string ContactsAndConstraints::explain_collide() const {
          << m_self->edge_count() << " edges, thickness " << 1e3 * m_self->thickness_m()
          << " mm, marbles of radius " << 1e3 * m_self->marble_radius_m()
          << " mm, candidate margin " << 1e3 * m_self->margin_m() << " mm";
+    const double interval_s = m_settings.self_collision.failsafe_interval_s;
+    if (!m_zones)
+      line << ", no impact zones";
+    else if (interval_s > 0.0)
+      line << ", impact zones over windows of at most " << 1e3 * interval_s << " ms";
+    else
+      line << ", impact zones every step";
   }
   return line.str();
 }

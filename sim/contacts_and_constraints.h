@@ -40,9 +40,11 @@ class ContactsAndConstraints {
   void pose_obstacles(double t0_s, double t1_s);
   // Corrects the positions x (#V×3, m) that a step of h_s seconds from x_start reached:
   // push-outs and projections, timed as Phase::collide and Phase::project, counted in stats.
-  // True when x was changed (a projection ran or a contact moved a vertex).
+  // True when x was changed (a projection ran or a contact moved a vertex). The failsafe
+  // (impact zones) runs last over the paths from failsafe_from (the positions at the start of
+  // its window of steps; x_start for one step); none: not at this step.
   bool resolve(const Matrix3X& x_start, Matrix3X& x, double h_s, PhaseTimers& timers,
-               StepStatistics& stats);
+               StepStatistics& stats, const Matrix3X* failsafe_from);
 
   // The vertices of x (#V×3, m; free ones, inv_mass > 0) within resting_reach × the collision
   // thickness of an obstacle's surface, each with the outward normal of the nearest obstacle:

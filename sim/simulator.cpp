@@ -170,7 +170,9 @@ void Simulator::advance(double dt_s) {
   if (!m_energy_guard_started) start_energy_guard();
   const double h = dt_s / static_cast<double>(n);
   const double t_end = m_state.time_s + dt_s;
-  for (long s = 0; s < n; ++s) step(h);
+  const long window = failsafe_window_steps(h);
+  for (long s = 0; s < n; ++s)
+    attempt_step(h, /*may_reject=*/false, /*ends_window=*/(s + 1) % window == 0 || s + 1 == n);
   m_state.time_s = t_end;  // no drift from summing substeps
   check_growth();
 }
@@ -228,7 +230,13 @@ const DynamicRelaxation* Simulator::relaxation() const {
 
 void Simulator::step(double h_s) { attempt_step(h_s, /*may_reject=*/false); }
 
-bool Simulator::attempt_step(double h_s, bool may_reject) {
+long Simulator::failsafe_window_steps(double h_s) const {
+  const double interval_s = m_settings.self_collision.failsafe_interval_s;
+  if (!m_contacts->impact_zones() || m_settings.remesh.enabled || !(interval_s > h_s)) return 1;
+  return std::max(1L, static_cast<long>(std::floor(interval_s / h_s * (1.0 + 1e-12))));
+}
+
+bool Simulator::attempt_step(double h_s, bool may_reject, bool ends_window) {
   const double t0 = m_state.time_s, t1 = t0 + h_s;
   m_x_start = m_state.x;
   if (may_reject) m_v_start = m_state.v;
@@ -253,12 +261,18 @@ bool Simulator::attempt_step(double h_s, bool may_reject) {
   m_timers.time(Phase::obstacles, [&] { m_contacts->pose_obstacles(t0, t1); });
   const long iterations_before = m_stats.projection_iterations;
   const long unconverged_before = m_stats.unconverged_steps;
-  const bool corrected = m_contacts->resolve(m_x_start, m_state.x, h_s, m_timers, m_stats);
+  if (m_window_steps == 0) m_window_start = m_x_start;
+  ++m_window_steps;
+  m_window_s += h_s;
+  const bool corrected = m_contacts->resolve(m_x_start, m_state.x, h_s, m_timers, m_stats,
+                                             ends_window ? &m_window_start : nullptr);
   if (m_adaptive)
     m_adaptive->accept(h_s, static_cast<int>(m_stats.projection_iterations - iterations_before),
                        m_stats.unconverged_steps == unconverged_before);
-  m_timers.time(Phase::filter,
-                [&] { filter_velocities(corrected, integrated.kinetic_reset, h_s); });
+  m_timers.time(Phase::filter, [&] {
+    filter_velocities(corrected, integrated.kinetic_reset, h_s);
+    if (ends_window) filter_window_velocities(integrated.kinetic_reset);
+  });
   m_state.time_s = t1;
   ++m_steps;
   m_stats.min_step_s = m_stats.steps == 0 ? h_s : std::min(m_stats.min_step_s, h_s);
@@ -347,7 +361,7 @@ void Simulator::relax_new_vertices(const std::vector<Index>& old_to_new) {
   StepStatistics scratch;
   const auto push_out = [&](Matrix3X& x) {
     const Matrix3X start = x;
-    m_contacts->resolve(start, x, m_time_step_s, m_timers, scratch);
+    m_contacts->resolve(start, x, m_time_step_s, m_timers, scratch, &start);
   };
   push_out(m_state.x);
   std::vector<char> free(static_cast<std::size_t>(m_state.x.rows()), 1);
@@ -381,6 +395,16 @@ Eigen::RowVector3d Simulator::pin_position(const MovingPin& pin, double time_s) 
 void Simulator::filter_velocities(bool corrected, bool kinetic_reset, double h_s) {
   if (corrected) m_state.v = (m_state.x - m_x_start) / h_s;
   if (kinetic_reset) m_state.v.setZero();
+}
+
+void Simulator::filter_window_velocities(bool kinetic_reset) {
+  const ImpactZones* zones = m_contacts->impact_zones();
+  if (zones && m_window_steps > 1 && !kinetic_reset)
+    for (const Index v : zones->zone_vertices())
+      if (m_system.inv_mass[v] > 0.0)  // pins keep the velocity their path gives
+        m_state.v.row(v) = (m_state.x.row(v) - m_window_start.row(v)) / m_window_s;
+  m_window_steps = 0;
+  m_window_s = 0.0;
 }
 
 void Simulator::check_finite() const {

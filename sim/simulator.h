@@ -161,9 +161,17 @@ class Simulator {
   void place_pins(double time_s);  // puts moving pins exactly on their path
   // step(h_s); with may_reject and the adaptive step, a step whose prediction strays too far is
   // undone (positions, velocities) before its contacts and constraints: returns false.
-  bool attempt_step(double h_s, bool may_reject);
+  // ends_window: the self-collision failsafe runs at the end of this step, over the window of
+  // steps since the last (SelfCollisionSettings::failsafe_interval_s).
+  bool attempt_step(double h_s, bool may_reject, bool ends_window = true);
   void advance_adaptively(double dt_s);
+  // Steps of h_s per failsafe window in advance(): 1 unless the interval holds several.
+  long failsafe_window_steps(double h_s) const;
   void filter_velocities(bool corrected, bool kinetic_reset, double h_s);
+  // After a failsafe over a window of several steps: the zones' vertices get the zone's mean
+  // velocity over the window instead of the last step's jump to it (none after a kinetic
+  // reset). Closes the window.
+  void filter_window_velocities(bool kinetic_reset);
   void check_finite() const;
   void start_energy_guard();
   void check_growth() const;
@@ -201,6 +209,10 @@ class Simulator {
   State m_state;
   Matrix3X m_x_start;  // #V×3 start-of-step positions: velocity filter, friction
   Matrix3X m_v_start;  // #V×3 start-of-step velocities, kept for an adaptive step's rejection
+  // The failsafe's window: the positions at its start, its steps so far and their duration.
+  Matrix3X m_window_start;
+  long m_window_steps = 0;
+  double m_window_s = 0.0;
   std::unique_ptr<AdaptiveStep> m_adaptive;
   // The energy guard of check_growth(): the total energy at the first advance() and how much
   // it may grow; none when pins, obstacles or air feed energy in.

@@ -225,6 +225,8 @@ sim::SelfCollisionSettings read_self_collision(ObjectReader r, Scene::CrossingPo
   c.neighbourhood_edges =
       r.number("neighbourhood", c.neighbourhood_edges, Range::closed(0.0, 4.0));
   c.impact_zones = r.boolean("impact_zones", c.impact_zones);
+  c.failsafe_interval_s =
+      r.quantity("failsafe_interval", Quantity::time, c.failsafe_interval_s, Range::closed(0.0, 1.0));
   r.finish();
   return c;
 }

@@ -407,6 +407,7 @@ ImpactZoneCounts ImpactZones::resolve(const Matrix3X& x_start, const Eigen::Vect
                                       Matrix3X& x, bool grow) {
   ImpactZoneCounts counts;
   const auto n = static_cast<std::size_t>(x.rows());
+  if (!grow) ++m_runs;
   if (!grow || m_parent.size() != n) m_parent.assign(n, -1);
   m_zone_vertices.clear();
   const Matrix3X proposed = x;

@@ -106,6 +106,8 @@ class ImpactZones {
   long candidate_rebuilds() const { return m_rebuilds; }
   // Pairs tested by continuous collision detection, over all calls.
   long tested_pairs() const { return m_tested; }
+  // Calls of resolve() without grow: the failsafe's runs.
+  long runs() const { return m_runs; }
 
  private:
   struct PairLists {
@@ -160,6 +162,7 @@ class ImpactZones {
   double m_cache_reach_m = 0.0;
   long m_rebuilds = 0;
   long m_tested = 0;
+  long m_runs = 0;
   std::vector<Aabb> m_triangle_boxes, m_edge_boxes, m_vertex_boxes;  // swept; scratch
   // On a grid: its patches, and when their cones rule pairs out (exclusion: the least
   // altitude of a rest triangle, below which no two features sharing no vertex come at rest).

@@ -73,6 +73,13 @@ struct SelfCollisionSettings {
   // detection over the step's motion and rigid impact zones, so no crossing is left. Run by
   // the step's contacts and constraints (contacts_and_constraints.h), not by SelfCollision.
   bool impact_zones = true;
+  // The failsafe covers windows of steps at most this long (s), each ending at a frame's end
+  // at the latest, instead of every step (Bridson et al. 2002's collision step over the
+  // dynamics' substeps): explicit steps far shorter than a frame pay for it once a window.
+  // The crossings a window's steps leave are taken out at its end, so no frame has one; a
+  // zone's vertices leave with the zone's mean velocity over the window. 0: every step. Steps
+  // of the adaptive step, and steps that may remesh, always end a window.
+  double failsafe_interval_s = 1e-3;
   int threads = 0;  // threads that build the candidate list, 0..4096; 0: all hardware
                     // threads. Never changes a bit of the result.
 };

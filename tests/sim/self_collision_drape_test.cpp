@@ -107,5 +107,66 @@ TEST(ImpactZoneDrape, SameBitsOnOneAndTwoThreads) {
                               << " m";
 }
 
+// Explicit steps far shorter than a frame run the failsafe once a window of steps
+// (SelfCollisionSettings::failsafe_interval_s), not after every step: a 32² mass-spring sheet
+// (symplectic Euler) dropped onto the sphere, 12 frames. Both ways no frame has a crossing,
+// the windowed drop ends where the one checked every step does (its centre of mass within
+// 5 mm, its fastest vertex as slow), with a fraction of the failsafe's runs, and with the same
+// bits on one and two threads.
+struct ExplicitDropRun {
+  std::vector<Index> crossings;  // per frame
+  long steps = 0, failsafe_runs = 0;
+  double fastest_m_s = 0.0;  // at the end
+  Matrix3X x;
+};
+
+ExplicitDropRun drop_explicitly(double interval_s, int threads) {
+  SimSettings s;
+  s.obstacles = {SphereObstacle{Vec3(0.0, 0.0, 0.6), 0.25},
+                 PlaneObstacle{Vec3::Zero(), Vec3::UnitZ()}};
+  s.collision_friction = 0.5;
+  s.self_collision.enabled = true;
+  s.self_collision.failsafe_interval_s = interval_s;
+  s.self_collision.threads = threads;
+  s.solver_threads = threads;
+  GridSpec grid;
+  grid.nu = grid.nv = 32;
+  grid.origin = Vec3(-0.5, -0.5, 1.0);
+  Simulator sim(make_grid(grid), Material{}, {}, s);
+  const auto triangles = sim.mesh().triangles();
+  const auto edges = unique_edges(triangles);
+  ExplicitDropRun run;
+  for (int frame = 1; frame <= 12; ++frame) {
+    sim.advance(1.0 / 24.0);
+    run.steps += sim.take_step_statistics().steps;
+    run.crossings.push_back(count_edge_triangle_crossings(sim.state().x, triangles, edges));
+  }
+  run.failsafe_runs = sim.impact_zones()->runs();
+  run.fastest_m_s = sim.state().v.rowwise().norm().maxCoeff();
+  run.x = sim.state().x;
+  return run;
+}
+
+TEST(ImpactZoneDrape, ExplicitStepsRunTheFailsafeOnceAWindow) {
+  const ExplicitDropRun every = drop_explicitly(0.0, 2);
+  const ExplicitDropRun windowed = drop_explicitly(SelfCollisionSettings{}.failsafe_interval_s, 2);
+  for (std::size_t f = 0; f < every.crossings.size(); ++f) {
+    EXPECT_EQ(every.crossings[f], 0) << "frame " << f + 1;
+    EXPECT_EQ(windowed.crossings[f], 0) << "frame " << f + 1;
+  }
+  EXPECT_EQ(every.failsafe_runs, every.steps);
+  EXPECT_EQ(windowed.steps, every.steps);
+  EXPECT_LE(windowed.failsafe_runs, every.steps / 3);  // 1/1000 s holds three steps here
+  const Vec3 moved = (windowed.x.colwise().mean() - every.x.colwise().mean()).transpose();
+  EXPECT_LT(moved.norm(), 5e-3);
+  EXPECT_LT(windowed.fastest_m_s, 2.0 * every.fastest_m_s + 0.05);
+  std::printf("32² mass-spring drop: %ld steps, failsafe %ld times (every step: %ld), centres "
+              "of mass %.2e m apart, fastest vertex %.3f against %.3f m/s\n",
+              every.steps, windowed.failsafe_runs, every.failsafe_runs, moved.norm(),
+              windowed.fastest_m_s, every.fastest_m_s);
+  const ExplicitDropRun one = drop_explicitly(SelfCollisionSettings{}.failsafe_interval_s, 1);
+  EXPECT_TRUE(one.x == windowed.x);
+}
+
 }  // namespace
 }  // namespace weft::sim
