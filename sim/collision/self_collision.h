@@ -78,7 +78,7 @@ struct SelfCollisionSettings {
   // dynamics' substeps): explicit steps far shorter than a frame pay for it once a window.
   // The crossings a window's steps leave are taken out at its end, so no frame has one; a
   // zone's vertices leave with the zone's mean velocity over the window. 0: every step. Steps
-  // of the adaptive step, and steps that may remesh, always end a window.
+  // of the adaptive step, of dynamic relaxation and steps that may remesh always end a window.
   double failsafe_interval_s = 1e-3;
   int threads = 0;  // threads that build the candidate list, 0..4096; 0: all hardware
                     // threads. Never changes a bit of the result.

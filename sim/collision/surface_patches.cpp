@@ -136,6 +136,31 @@ double least_singular_value(const Eigen::Matrix<double, 3, 2>& f) {
   return std::sqrt(std::max(0.0, 0.5 * (p + q) - std::sqrt(half_gap * half_gap + r * r)));
 }
 
+// One triangle's part of its patch's fit (SurfacePatches::refit, refit_swept).
+struct TriangleFit {
+  Aabb box;
+  Vec3 normal_sum;  // added to the patch's
+  double least_stretch;
+  bool degenerate;
+};
+
+// Refits a patch from fit(t), t each of its triangles: its box, normal sum and least stretch.
+// Returns whether a triangle is degenerate.
+template <class Fit>
+bool fit_patch(SurfacePatch& patch, Fit&& fit) {
+  patch.normal_sum.setZero();
+  patch.least_stretch = std::numeric_limits<double>::infinity();
+  bool degenerate = false;
+  for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
+    const TriangleFit f = fit(static_cast<std::size_t>(patch.triangles[k]));
+    patch.box = k == 0 ? f.box : merged(patch.box, f.box);
+    patch.normal_sum += f.normal_sum;
+    patch.least_stretch = std::min(patch.least_stretch, f.least_stretch);
+    degenerate = degenerate || f.degenerate;
+  }
+  return degenerate;
+}
+
 }  // namespace
 
 SurfacePatches::SurfacePatches(const ClothMesh& mesh,
@@ -179,25 +204,17 @@ void SurfacePatches::refit(const Matrix3X& x) { refit(x, 0, m_patches.size()); }
 
 void SurfacePatches::refit(const Matrix3X& x, std::size_t first, std::size_t end) {
   for (std::size_t i = first; i < end; ++i) {
-    SurfacePatch& patch = m_patches[i];
-    patch.normal_sum.setZero();
-    patch.least_stretch = std::numeric_limits<double>::infinity();
-    bool degenerate = false;
-    for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
-      const auto t = static_cast<std::size_t>(patch.triangles[k]);
+    const bool degenerate = fit_patch(m_patches[i], [&](std::size_t t) {
       const auto& tri = m_triangles[t];
       const Vec3 a = vertex(x, tri[0]), b = vertex(x, tri[1]), c = vertex(x, tri[2]);
-      const Aabb box = bounding_box(a, b, c);
-      patch.box = k == 0 ? box : merged(patch.box, box);
       m_normals[t] = (b - a).cross(c - a);
-      degenerate = degenerate || !(m_normals[t].squaredNorm() > 0.0);
-      patch.normal_sum += m_normals[t];
       Eigen::Matrix<double, 3, 2> edges;
       edges << b - a, c - a;
-      patch.least_stretch =
-          std::min(patch.least_stretch, least_singular_value(edges * m_rest_inverse[t]));
-    }
-    set_cone(patch, degenerate, 1);
+      return TriangleFit{bounding_box(a, b, c), m_normals[t],
+                         least_singular_value(edges * m_rest_inverse[t]),
+                         !(m_normals[t].squaredNorm() > 0.0)};
+    });
+    set_cone(m_patches[i], degenerate, 1);
   }
 }
 
@@ -206,27 +223,19 @@ void SurfacePatches::refit_swept(const Matrix3X& x_start, const Matrix3X& x,
   m_normals.resize(3 * m_triangles.size());
   for (std::size_t i = 0; i < m_patches.size(); ++i) {
     if (only && !(*only)[i]) continue;
-    SurfacePatch& patch = m_patches[i];
-    patch.normal_sum.setZero();
-    patch.least_stretch = std::numeric_limits<double>::infinity();
-    bool degenerate = false;
-    for (std::size_t k = 0; k < patch.triangles.size(); ++k) {
-      const auto t = static_cast<std::size_t>(patch.triangles[k]);
+    const bool degenerate = fit_patch(m_patches[i], [&](std::size_t t) {
       const auto& tri = m_triangles[t];
       const Vec3 a0 = vertex(x_start, tri[0]), a1 = vertex(x, tri[0]);
       const Vec3 e0 = vertex(x_start, tri[1]) - a0, f0 = vertex(x_start, tri[2]) - a0;
       const Vec3 e1 = vertex(x, tri[1]) - a1, f1 = vertex(x, tri[2]) - a1;
       const Aabb box = merged(bounding_box(a0, vertex(x_start, tri[1]), vertex(x_start, tri[2])),
                               bounding_box(a1, vertex(x, tri[1]), vertex(x, tri[2])));
-      patch.box = k == 0 ? box : merged(patch.box, box);
       // n(t) = (1−t)² n₀ + 2t(1−t) n_mid + t² n₁ along the straight paths: a positive
       // combination of the three, so within any convex cone that holds them.
       Vec3* n = &m_normals[3 * t];
       n[0] = e0.cross(f0);
       n[1] = 0.5 * (e0.cross(f1) + e1.cross(f0));
       n[2] = e1.cross(f1);
-      degenerate = degenerate || !(n[0].squaredNorm() > 0.0) || !(n[2].squaredNorm() > 0.0);
-      patch.normal_sum += n[0] + n[2];
       // F(t) = F₀ + t (F₁ − F₀): by Weyl's inequality σ_min(F(t)) ≥ σ_min(F₀) − t‖ΔF‖ and
       // ≥ σ_min(F₁) − (1−t)‖ΔF‖, so at least (σ₀ + σ₁ − ‖ΔF‖)/2 over the step.
       Eigen::Matrix<double, 3, 2> start_edges, end_edges;
@@ -236,9 +245,10 @@ void SurfacePatches::refit_swept(const Matrix3X& x_start, const Matrix3X& x,
       const Eigen::Matrix<double, 3, 2> F1 = end_edges * m_rest_inverse[t];
       const double least =
           0.5 * (least_singular_value(F0) + least_singular_value(F1) - (F1 - F0).norm());
-      patch.least_stretch = std::min(patch.least_stretch, std::max(0.0, least));
-    }
-    set_cone(patch, degenerate, 3);
+      return TriangleFit{box, n[0] + n[2], std::max(0.0, least),
+                         !(n[0].squaredNorm() > 0.0) || !(n[2].squaredNorm() > 0.0)};
+    });
+    set_cone(m_patches[i], degenerate, 3);
   }
 }
 
