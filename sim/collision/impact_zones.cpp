@@ -269,11 +269,11 @@ void ImpactZones::find_patch_candidates(const Matrix3X& x_start, const Matrix3X&
   };
   // The edges a patch owns whose boxes reach another patch's box (an edge box holds eta/2).
   std::vector<Index> edges_a, edges_b;
-  const auto reaching = [&](const SurfacePatch& from, const SurfacePatch& to, std::vector<Index>& out) {
-    out.clear();
+  const auto reaching = [&](const SurfacePatch& from, const SurfacePatch& to, std::vector<Index>& kept) {
+    kept.clear();
     const Aabb reach = inflated(to.box, 0.5 * m_eta_m);
     for (const Index e : from.owned_edges)
-      if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)], reach)) out.push_back(e);
+      if (boxes_overlap(m_edge_boxes[static_cast<std::size_t>(e)], reach)) kept.push_back(e);
   };
   for (const auto& [p, q] : m_patch_pairs) {
     const SurfacePatch& a = (*m_patches)[p];
