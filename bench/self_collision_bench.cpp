@@ -15,8 +15,10 @@
 // conjugate gradients to 1e-3 (h = 1/120 s), the inextensible model bench/inextensibility_sweep
 // times.
 //
+// --failsafe-interval S: SelfCollisionSettings::failsafe_interval_s (0: the failsafe every step).
+//
 // Run: build/bench/self_collision_bench [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0]
-//                                       [--inextensible]
+//                                       [--inextensible] [--failsafe-interval 0.001]
 
 #include <algorithm>
 #include <array>
@@ -55,7 +57,8 @@ double process_cpu_s() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bool inextensible) {
+Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bool inextensible,
+                   double failsafe_interval_s) {
   GridSpec grid;
   grid.nu = grid.nv = n;
   grid.origin = Vec3(-0.5, -0.5, 0.72);
@@ -66,6 +69,7 @@ Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bo
   settings.self_collision.enabled = self_collision;
   settings.self_collision.thickness_m = 3e-3;
   settings.self_collision.threads = threads;
+  settings.self_collision.failsafe_interval_s = failsafe_interval_s;
   settings.solver_threads = threads;
   if (inextensible) {
     settings.integrator = Integrator::implicit_euler;
@@ -124,6 +128,7 @@ int main(int argc, char** argv) {
   int repeats = 3;
   int threads = 0;
   bool inextensible = false;
+  double failsafe_interval_s = SelfCollisionSettings{}.failsafe_interval_s;
   for (int i = 1; i < argc; ++i) {
     const bool has_value = i + 1 < argc;
     if (!std::strcmp(argv[i], "--inextensible")) inextensible = true;
@@ -131,20 +136,25 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--seconds") && has_value) seconds = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--repeats") && has_value) repeats = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && has_value) threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--failsafe-interval") && has_value)
+      failsafe_interval_s = std::atof(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: %s [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0] [--inextensible]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0] [--inextensible] "
+                   "[--failsafe-interval 0.001]\n",
+                   argv[0]);
       return 1;
     }
   }
-  if (n < 2 || seconds <= 0.0 || repeats < 1 || threads < 0) {
-    std::fprintf(stderr,
-                 "self_collision_bench: need --n >= 2, --seconds > 0, --repeats >= 1, --threads >= 0\n");
+  if (n < 2 || seconds <= 0.0 || repeats < 1 || threads < 0 || !(failsafe_interval_s >= 0.0)) {
+    std::fprintf(stderr, "self_collision_bench: need --n >= 2, --seconds > 0, --repeats >= 1, "
+                         "--threads >= 0, --failsafe-interval >= 0 (seconds)\n");
     return 1;
   }
   std::vector<Run> off, on;
   for (int k = 0; k < repeats; ++k) {
-    off.push_back(drop_on_sphere(n, seconds, false, threads, inextensible));
-    on.push_back(drop_on_sphere(n, seconds, true, threads, inextensible));
+    off.push_back(drop_on_sphere(n, seconds, false, threads, inextensible, failsafe_interval_s));
+    on.push_back(drop_on_sphere(n, seconds, true, threads, inextensible, failsafe_interval_s));
   }
   std::printf("%d^2 cloth dropped on a sphere (%s), %.2f s simulated, %d interleaved repeats "
               "(medians), candidate list on %s\n",
