@@ -31,9 +31,9 @@ void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, I
   }
 }
 
-// Where entry (row, col) lives (row-major within its block).
+// Where entry (row, col) lives (column-major within its block).
 BlockConjugateGradient::Slot BlockConjugateGradient::slot(int row, int col) const {
-  const int p = row / 3, q = col / 3, within = 3 * (row % 3) + col % 3;
+  const int p = row / 3, q = col / 3, within = 3 * (col % 3) + row % 3;
   if (p == q) return {9 * p + within, true};
   return {9 * m_matrix.find(p, q) + within, false};
 }

@@ -64,7 +64,7 @@ class BlockConjugateGradient {
 
  private:
   // Where a value of the lower triangle goes: an off-diagonal block or a diagonal one, at
-  // `index` (block × 9 + row-major position); index −1: nowhere (a diagonal value's mirror).
+  // `index` (block × 9 + column-major position); index −1: nowhere (a diagonal value's mirror).
   struct Slot {
     int index = -1;
     bool diagonal = false;

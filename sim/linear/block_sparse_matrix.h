@@ -1,7 +1,7 @@
 #pragma once
 // A symmetric matrix of 3×3 blocks, both triangles stored: the diagonal block of each block row
 // apart, then its off-diagonal blocks in block compressed rows (one column index per 9 values,
-// row-major within a block). The form of implicit Euler's 3#V system that conjugate gradients
+// column-major within a block: the product adds a block's three columns as vectors). The form of implicit Euler's 3#V system that conjugate gradients
 // (block_conjugate_gradient.h) and its multigrid (grid_multigrid.h) multiply.
 //
 // y = A x sums every block row in one fixed order (its diagonal block, then its other blocks by

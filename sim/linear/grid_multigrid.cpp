@@ -139,8 +139,8 @@ void GridMultigrid::accumulate_galerkin(const BlockSparseMatrix& A, Index nu, st
       const Index du = I % level.nu - ci, dv = I / level.nu - cj;  // from J to I
       const int mirror = level.slot[static_cast<std::size_t>(I) * row_slots +
                                     static_cast<std::size_t>((level.radius - dv) * width + level.radius - du)];
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(level.A.off_diagonal(mirror)) =
-          Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(level.A.off_diagonal(k)).transpose();
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::ColMajor>>(level.A.off_diagonal(mirror)) =
+          Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::ColMajor>>(level.A.off_diagonal(k)).transpose();
     }
   }
 }
