@@ -42,7 +42,8 @@ void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
   WEFT_CHECK(lower.nonZeros() == static_cast<Eigen::Index>(m_to_block.size()) &&
                  lower.rows() == 3 * static_cast<Eigen::Index>(m_block_inverse.size()),
              "BlockConjugateGradient::set_matrix: not the analysed pattern");
-  m_matrix.set_zero();
+  // The slots are fixed, so a stored value no slot writes (the off-diagonal entries of a pinned
+  // vertex's identity block) keeps the zero analyze() gave it: no zeroing first.
   double* diagonal = m_matrix.diagonal(0);
   double* off_diagonal = m_matrix.off_diagonal_blocks() > 0 ? m_matrix.off_diagonal(0) : nullptr;
   const auto store = [&](Slot s, double value) {
