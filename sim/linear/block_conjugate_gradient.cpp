@@ -15,13 +15,15 @@ BlockConjugateGradient::~BlockConjugateGradient() = default;
 
 void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, Index grid_nv) {
   m_matrix = BlockSparseMatrix(block_pattern(lower));
-  m_to_block.assign(static_cast<std::size_t>(lower.nonZeros()), Slot{});
-  m_to_mirror.assign(static_cast<std::size_t>(lower.nonZeros()), Slot{});
+  m_source = Sources{};
+  m_source.nonzeros = lower.nonZeros();
+  m_source.diagonal.assign(9 * m_matrix.block_rows(), -1);
+  m_source.off_diagonal.assign(9 * m_matrix.off_diagonal_blocks(), -1);
   for (int col = 0; col < lower.cols(); ++col)
     for (int k = lower.outerIndexPtr()[col]; k < lower.outerIndexPtr()[col + 1]; ++k) {
       const int row = lower.innerIndexPtr()[k];
-      m_to_block[static_cast<std::size_t>(k)] = slot(row, col);
-      if (row != col) m_to_mirror[static_cast<std::size_t>(k)] = slot(col, row);
+      m_source.at(m_matrix, row, col) = k;
+      m_source.at(m_matrix, col, row) = k;
     }
   m_block_inverse.assign(m_matrix.block_rows(), Eigen::Matrix3d::Identity());
   m_multigrid.reset();
@@ -31,29 +33,27 @@ void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, I
   }
 }
 
-// Where entry (row, col) lives (column-major within its block).
-BlockConjugateGradient::Slot BlockConjugateGradient::slot(int row, int col) const {
-  const int p = row / 3, q = col / 3, within = 3 * (col % 3) + row % 3;
-  if (p == q) return {9 * p + within, true};
-  return {9 * m_matrix.find(p, q) + within, false};
+// Entry (row, col) of the block matrix, column-major within its block.
+int& BlockConjugateGradient::Sources::at(const BlockSparseMatrix& matrix, int row, int col) {
+  const int p = row / 3, q = col / 3;
+  const auto within = static_cast<std::size_t>(3 * (col % 3) + row % 3);
+  if (p == q) return diagonal[9 * static_cast<std::size_t>(p) + within];
+  return off_diagonal[9 * static_cast<std::size_t>(matrix.find(p, q)) + within];
 }
 
+// Each stored value read from its source in `lower`, in storage order (a gather: the writes
+// stream; a value without a source — off the diagonal of a held vertex's identity block — is
+// 0).
 void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
-  WEFT_CHECK(lower.nonZeros() == static_cast<Eigen::Index>(m_to_block.size()) &&
+  WEFT_CHECK(lower.nonZeros() == m_source.nonzeros &&
                  lower.rows() == 3 * static_cast<Eigen::Index>(m_block_inverse.size()),
              "BlockConjugateGradient::set_matrix: not the analysed pattern");
-  // The slots are fixed, so a stored value no slot writes (the off-diagonal entries of a pinned
-  // vertex's identity block) keeps the zero analyze() gave it: no zeroing first.
-  double* diagonal = m_matrix.diagonal(0);
-  double* off_diagonal = m_matrix.off_diagonal_blocks() > 0 ? m_matrix.off_diagonal(0) : nullptr;
-  const auto store = [&](Slot s, double value) {
-    if (s.index >= 0) (s.diagonal ? diagonal : off_diagonal)[s.index] = value;
-  };
   const double* values = lower.valuePtr();
-  for (std::size_t k = 0; k < m_to_block.size(); ++k) {
-    store(m_to_block[k], values[k]);
-    store(m_to_mirror[k], values[k]);
-  }
+  const auto gather = [values](const std::vector<int>& from, double* to) {
+    for (std::size_t j = 0; j < from.size(); ++j) to[j] = from[j] >= 0 ? values[from[j]] : 0.0;
+  };
+  gather(m_source.diagonal, m_matrix.diagonal(0));
+  if (m_matrix.off_diagonal_blocks() > 0) gather(m_source.off_diagonal, m_matrix.off_diagonal(0));
   m_matrix.invert_diagonal(m_block_inverse);
   if (m_multigrid) m_multigrid->update(m_matrix);
 }

@@ -5,7 +5,7 @@
 //
 // The system arrives as SparseSpdSolver takes it: the lower triangle, column-major. analyze()
 // builds a full (both triangles) copy of its pattern in 3×3 blocks (block compressed rows: one
-// column index per 9 values) once; set_matrix() scatters the values into it. Each thread
+// column index per 9 values) once; set_matrix() gathers the values into it. Each thread
 // multiplies a contiguous range of block rows, and every block row is summed in one fixed
 // order, so the product — and with the sequential vector updates and dot products, every
 // iterate — is the same bits for any number of threads.
@@ -63,21 +63,20 @@ class BlockConjugateGradient {
   int multigrid_levels() const;
 
  private:
-  // Where a value of the lower triangle goes: an off-diagonal block or a diagonal one, at
-  // `index` (block × 9 + column-major position); index −1: nowhere (a diagonal value's mirror).
-  struct Slot {
-    int index = -1;
-    bool diagonal = false;
+  // Where each stored value of the block matrix comes from: its index in the lower triangle's
+  // values (a value above the diagonal: its mirror's), −1 for none.
+  struct Sources {
+    std::vector<int> diagonal, off_diagonal;  // 9 per block, as the block matrix stores them
+    Eigen::Index nonzeros = 0;                // of the analysed lower triangle
+    int& at(const BlockSparseMatrix& matrix, int row, int col);
   };
-  Slot slot(int row, int col) const;
   Result iterate(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
                  int max_iterations, bool multigrid) const;
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z, bool multigrid) const;
 
   std::unique_ptr<base::ThreadPool> m_pool;
   BlockSparseMatrix m_matrix;
-  // For each value of the lower triangle, its slot and its mirror's.
-  std::vector<Slot> m_to_block, m_to_mirror;
+  Sources m_source;
   std::vector<Eigen::Matrix3d> m_block_inverse;  // per vertex
   std::unique_ptr<GridMultigrid> m_multigrid;
 };
