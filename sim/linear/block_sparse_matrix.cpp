@@ -43,15 +43,17 @@ namespace {
 // Four doubles; the fourth lane carries a value nobody reads.
 typedef double Lanes __attribute__((vector_size(32)));
 
-// The column-major 3×3 block a times x as (a_0 x_0 + a_1 x_1) + a_2 x_2, a_j its columns, each
-// read as four doubles (the fourth is the next column's first, or the storage's padding).
-// Always inlined into the product's clones: no call passes a vector.
-[[gnu::always_inline]] inline Lanes column_sum(const double* a, const double* x) {
+// product = the column-major 3×3 block a times x, as (a_0 x_0 + a_1 x_1) + a_2 x_2, a_j its
+// columns, each read as four doubles (the fourth is the next column's first, or the storage's
+// padding). Always inlined into the product's clones; the vector is passed by reference, never
+// returned, as compilers warn (GCC) or refuse (Clang) where the baseline and AVX would pass it
+// differently.
+[[gnu::always_inline]] inline void block_times(const double* a, const double* x, Lanes& product) {
   Lanes c0, c1, c2;
   std::memcpy(&c0, a, sizeof c0);
   std::memcpy(&c1, a + 3, sizeof c1);
   std::memcpy(&c2, a + 6, sizeof c2);
-  return (c0 * x[0] + c1 * x[1]) + c2 * x[2];
+  product = (c0 * x[0] + c1 * x[1]) + c2 * x[2];
 }
 
 // y_p = Σ_k A_pk x_k for block rows [begin, end): each block's three columns scaled by x's three
@@ -64,11 +66,12 @@ __attribute__((target_clones("avx2", "default"))) void multiply_block_rows(
   for (std::size_t p = begin; p < end; ++p) {
     const double* d = diagonal + 9 * p;
     const double* xp = x + 3 * p;
-    Lanes sum = column_sum(d, xp);
+    Lanes sum, product;
+    block_times(d, xp, sum);
     for (int k = start[p]; k < start[p + 1]; ++k) {
-      const double* a = values + 9 * static_cast<std::size_t>(k);
-      const double* xq = x + 3 * static_cast<std::size_t>(column[k]);
-      sum += column_sum(a, xq);
+      block_times(values + 9 * static_cast<std::size_t>(k),
+                  x + 3 * static_cast<std::size_t>(column[k]), product);
+      sum += product;
     }
     y[3 * p] = sum[0];
     y[3 * p + 1] = sum[1];
