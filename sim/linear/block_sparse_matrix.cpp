@@ -21,7 +21,6 @@ BlockSparseMatrix::BlockSparseMatrix(const std::vector<std::vector<int>>& column
     m_column.insert(m_column.end(), columns[p].begin(), columns[p].end());
     m_start.push_back(static_cast<int>(m_column.size()));
   }
-  // One more value after the last block of each: the product reads a column as four doubles.
   m_values.assign(9 * m_column.size() + 1, 0.0);
   m_diagonal.assign(9 * columns.size() + 1, 0.0);
 }

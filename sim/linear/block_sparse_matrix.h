@@ -1,8 +1,9 @@
 #pragma once
 // A symmetric matrix of 3×3 blocks, both triangles stored: the diagonal block of each block row
 // apart, then its off-diagonal blocks in block compressed rows (one column index per 9 values,
-// column-major within a block: the product adds a block's three columns as vectors). The form of implicit Euler's 3#V system that conjugate gradients
-// (block_conjugate_gradient.h) and its multigrid (grid_multigrid.h) multiply.
+// column-major within a block: the product adds a block's three columns as vectors). The form
+// of implicit Euler's 3#V system that conjugate gradients (block_conjugate_gradient.h) and its
+// multigrid (grid_multigrid.h) multiply.
 //
 // y = A x sums every block row in one fixed order (its diagonal block, then its other blocks by
 // column), so the product is the same bits however its rows are shared among threads. A product
@@ -25,7 +26,7 @@ class BlockSparseMatrix {
   // (sorted, unique, none equal to p).
   explicit BlockSparseMatrix(const std::vector<std::vector<int>>& columns);
 
-  std::size_t block_rows() const { return m_diagonal.size() / 9; }
+  std::size_t block_rows() const { return m_start.size() - 1; }
   std::size_t off_diagonal_blocks() const { return m_column.size(); }
   const std::vector<int>& row_start() const { return m_start; }
   const std::vector<int>& column() const { return m_column; }
@@ -55,8 +56,10 @@ class BlockSparseMatrix {
 
  private:
   std::vector<int> m_start{0}, m_column;
-  std::vector<double> m_values;    // 9 per off-diagonal block
-  std::vector<double> m_diagonal;  // 9 per block row
+  // 9 per block, and one padding value after the last: the product reads a column as four
+  // doubles.
+  std::vector<double> m_values;    // the off-diagonal blocks
+  std::vector<double> m_diagonal;  // one block per block row
 };
 
 // The block pattern of `lower` (a compressed lower triangle of 3k rows, as SparseSpdSolver
