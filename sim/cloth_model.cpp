@@ -11,7 +11,7 @@
 namespace weft::sim {
 
 ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
-                            bool with_stretch) {
+                            bool with_stretch, bool bending_in_time_step) {
   const bool grid_springs = model == ClothModel::mass_spring && mesh.has_grid();
   if ((material.bend_law_warp || material.bend_law_weft) && !grid_springs)
     throw MaterialError(std::string("a nonlinear bending law needs cloth.model mass_spring on a "
@@ -24,7 +24,8 @@ ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, Clo
                                     "inextensibility constraints); cloth.model is ") +
                         cloth_model_name(model) + (mesh.has_grid() ? "" : " on a mesh") +
                         (with_stretch ? "" : " with stretch left to constraints"));
-  if (model == ClothModel::mass_spring) return MassSpringModel(mesh, material, with_stretch).terms();
+  if (model == ClothModel::mass_spring)
+    return MassSpringModel(mesh, material, with_stretch, bending_in_time_step).terms();
   ForceTerms terms;
   const bool bends = material.bend_warp_Nm > 0.0 || material.bend_weft_Nm > 0.0;
   switch (model) {

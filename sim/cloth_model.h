@@ -36,7 +36,17 @@ inline const char* cloth_model_name(ClothModel model) {
 // The terms of a model. Only what the material needs is built: no bending term at zero
 // bending rigidity, no membrane term (mass-spring: no warp/weft springs) when stretch is left
 // to constraints (with_stretch false), none at all when neither stretch nor shear remains.
+// bending_in_time_step: the mass-spring grid's bending stiffness enters implicit Euler's matrix
+// (the other models' bending always does).
 ForceTerms make_force_terms(const ClothMesh& mesh, const Material& material, ClothModel model,
-                            bool with_stretch);
+                            bool with_stretch, bool bending_in_time_step = false);
+
+// Whether implicit Euler takes a mass-spring grid's bending into its matrix (simulation.bending_in_step):
+// when explicit bending would be unstable at the step (automatic), always, or never.
+enum class BendingInStep { automatic, explicit_forces, implicit };
+inline constexpr base::EnumNames<BendingInStep, 3> bending_in_step_names{
+    {{BendingInStep::automatic, "auto"},
+     {BendingInStep::explicit_forces, "explicit"},
+     {BendingInStep::implicit, "implicit"}}};
 
 }  // namespace weft::sim

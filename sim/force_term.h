@@ -60,6 +60,12 @@ class ForceTerm {
   virtual bool stiffness_in_time_step() const { return has_stiffness(); }
   virtual void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
                                  bool project_psd) const = 0;
+  // K_e as implicit Euler's matrix takes it: the PSD-projected Hessian, unless the term says
+  // otherwise in its header (an approximation that is PSD by construction; the forces stay
+  // exact, so the step is still consistent).
+  virtual void time_step_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K) const {
+    element_stiffness(x, e, K, true);
+  }
   // bound[i] += an upper bound on Σ_j |K_ij| (3×3 block norms) over vertex i's block row of the
   // rest stiffness, N/m: with masses m, the largest eigenvalue of M⁻¹K is at most
   // max_i bound_i / m_i (Gershgorin), which sets the explicit integrators' critical step.

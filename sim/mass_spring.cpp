@@ -126,7 +126,8 @@ std::shared_ptr<SpringTerm> grid_springs(const GridCells& g, const Material& m, 
 
 // Angular bending stencils along warp and weft lines, where both of a stencil's edges exist,
 // each standing for the mean width of the two.
-std::shared_ptr<AngularBendingTerm> grid_bends(const GridCells& g, const Material& m) {
+std::shared_ptr<AngularBendingTerm> grid_bends(const GridCells& g, const Material& m,
+                                               bool in_time_step) {
   const ClothMesh& mesh = g.mesh;
   const double hu = g.hu, hv = g.hv;
   std::vector<AngularSpring> bends;
@@ -157,12 +158,13 @@ std::shared_ptr<AngularBendingTerm> grid_bends(const GridCells& g, const Materia
     const Vec3 x0 = vertex(mesh.rest_positions, b.v0), x1 = vertex(mesh.rest_positions, b.v1);
     b.rest_angle = turning_angle(x1 - x0, vertex(mesh.rest_positions, b.v2) - x1);
   }
-  return std::make_shared<AngularBendingTerm>(std::move(bends), std::move(laws));
+  return std::make_shared<AngularBendingTerm>(std::move(bends), std::move(laws), in_time_step);
 }
 
 }  // namespace
 
-MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs) {
+MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool structural_springs,
+                                 bool bending_in_time_step) {
   if (!mesh.has_grid()) {
     std::vector<Spring> springs;
     if (structural_springs) springs = triangle_edge_springs(mesh, m);
@@ -173,7 +175,7 @@ MassSpringModel::MassSpringModel(const ClothMesh& mesh, const Material& m, bool 
   }
   const GridCells cells(mesh);
   m_springs = grid_springs(cells, m, structural_springs);
-  m_bends = grid_bends(cells, m);
+  m_bends = grid_bends(cells, m, bending_in_time_step);
 }
 
 ForceTerms MassSpringModel::terms() const {
@@ -266,7 +268,8 @@ void SpringTerm::add_stiffness_row_bound(Eigen::VectorXd& bound) const {
 }
 
 std::string AngularBendingTerm::describe() const {
-  return std::to_string(m_bends.size()) + " bending stencils";
+  return std::to_string(m_bends.size()) + " bending stencils" +
+         (m_in_time_step ? " (stiffness in the step's matrix)" : "");
 }
 
 void AngularBendingTerm::stencil(std::size_t e, Index* vertices) const {
@@ -275,8 +278,9 @@ void AngularBendingTerm::stencil(std::size_t e, Index* vertices) const {
   vertices[2] = m_bends[e].v2;
 }
 
-AngularBendingTerm::AngularBendingTerm(std::vector<AngularSpring> bends, std::vector<BendingLaw> laws)
-    : m_bends(std::move(bends)), m_laws(std::move(laws)) {
+AngularBendingTerm::AngularBendingTerm(std::vector<AngularSpring> bends, std::vector<BendingLaw> laws,
+                                       bool in_time_step)
+    : m_bends(std::move(bends)), m_laws(std::move(laws)), m_in_time_step(in_time_step) {
   for (const AngularSpring& b : m_bends)
     WEFT_CHECK(b.law >= -1 && b.law < static_cast<int>(m_laws.size()),
                "AngularBendingTerm: bending law " + std::to_string(b.law) + " of " +
@@ -324,6 +328,24 @@ void AngularBendingTerm::element_stiffness(const Matrix3X& x, std::size_t e, Ele
   bend_angle_hessian(vertex(x, b.v0), vertex(x, b.v1), vertex(x, b.v2), b.rest_angle,
                      [&](double theta) { return slope(b, theta); }, project_psd, H);
   K = H;
+}
+
+void AngularBendingTerm::time_step_stiffness(const Matrix3X& x, std::size_t e,
+                                             ElementMatrix& K) const {
+  const AngularSpring& b = m_bends[e];
+  const Vec3 x0 = vertex(x, b.v0), x1 = vertex(x, b.v1), x2 = vertex(x, b.v2);
+  const double k = std::max(0.0, slope(b, turning_angle(x1 - x0, x2 - x1)).d2E);
+  const double c = k / (b.rest_l_m * b.rest_l_m);
+  Mat3 across = Mat3::Identity();  // P = I − t tᵀ; all of I for a collapsed stencil
+  const Vec3 chord = x2 - x0;
+  if (const double length = chord.norm(); length > 0.0) {
+    const Vec3 t = chord / length;
+    across -= t * t.transpose();
+  }
+  constexpr double w[3] = {1.0, -2.0, 1.0};
+  K.resize(9, 9);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) K.block<3, 3>(3 * i, 3 * j) = (c * w[i] * w[j]) * across;
 }
 
 void AngularBendingTerm::add_stiffness_row_bound(Eigen::VectorXd& bound) const {

@@ -78,20 +78,29 @@ class SpringTerm final : public PairForceTerm {
 class AngularBendingTerm final : public ForceTerm {
  public:
   // Each bend's law indexes `laws` (or is −1: linear); a bad index is a bug (WEFT_CHECK).
-  explicit AngularBendingTerm(std::vector<AngularSpring> bends, std::vector<BendingLaw> laws = {});
+  // in_time_step: the stiffness enters implicit Euler's matrix (time_step_stiffness).
+  explicit AngularBendingTerm(std::vector<AngularSpring> bends, std::vector<BendingLaw> laws = {},
+                              bool in_time_step = false);
   std::string describe() const override;  // "7936 bending stencils"
   std::size_t element_count() const override { return m_bends.size(); }
   int stencil_size(std::size_t) const override { return 3; }
   void stencil(std::size_t e, Index* vertices) const override;
   double energy(const Matrix3X& x) const override;
   void add_forces(const Matrix3X& x, Matrix3X& f) const override;
-  // Left out of implicit Euler's matrix: the bending of the grid's skip-one stencils stays
-  // explicit in a time step (docs/models.md; its forces are small beside the springs'), as
-  // every scene and test was tuned; static solves use the stiffness.
-  bool stiffness_in_time_step() const override { return false; }
+  // By default left out of implicit Euler's matrix: the bending stays explicit in a time step
+  // (its forces are small beside the springs'), which is stable while h² ω_bend² is small
+  // (bending_in_time_step(), sim/simulator.cpp); static solves always use the stiffness.
+  bool stiffness_in_time_step() const override { return m_in_time_step; }
   // The exact 9×9 Hessian of each stencil (bend_angle_hessian).
   void element_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K,
                          bool project_psd) const override;
+  // In a time step, the near-flat Hessian: across a nearly straight line θ ≈ |P(x0 − 2x1 + x2)|/l̄
+  // (P = I − t tᵀ, t the line's direction x2 − x0), so ½ k θ² has the Hessian
+  // (k/l̄²)·[1 −2 1]ᵀ[1 −2 1] ⊗ P, with k the law's tangent stiffness d²E/dθ² at the current
+  // angle. PSD by construction (no eigen-decomposition), exact for a straight stencil, and what
+  // inextensible bending is to second order (Bergou et al. 2006, "A quadratic bending model for
+  // inextensible surfaces"). The exact Hessian's indefinite part along a bent line is left out.
+  void time_step_stiffness(const Matrix3X& x, std::size_t e, ElementMatrix& K) const override;
   // Near flat, θ ≈ (δ0 − 2δ1 + δ2)/l across the line: Hessian (k/l²)·[1 −2 1]ᵀ[1 −2 1], whose
   // block rows sum to 4k/l² at the ends and 8k/l² in the middle.
   void add_stiffness_row_bound(Eigen::VectorXd& bound) const override;
@@ -102,6 +111,7 @@ class AngularBendingTerm final : public ForceTerm {
   AngleEnergySlope slope(const AngularSpring& b, double theta) const;
   std::vector<AngularSpring> m_bends;
   std::vector<BendingLaw> m_laws;
+  bool m_in_time_step = false;
 };
 
 // Stiffnesses for a cell of hu × hv metres (derivations in docs/models.md):
@@ -116,7 +126,10 @@ class MassSpringModel {
   // springs, bending).
   // Springs or stencils whose stiffness would be zero (zero shear or bending rigidity) are left
   // out. The default-constructed model is empty (a continuum model's, sim/cloth_model.h).
-  MassSpringModel(const ClothMesh& mesh, const Material& material, bool structural_springs = true);
+  // bending_in_time_step: the grid's bending stiffness enters implicit Euler's matrix
+  // (AngularBendingTerm::time_step_stiffness).
+  MassSpringModel(const ClothMesh& mesh, const Material& material, bool structural_springs = true,
+                  bool bending_in_time_step = false);
   MassSpringModel() = default;
 
   // The model's terms, springs then bending, each only when it has elements.

@@ -89,6 +89,19 @@ struct SimSettings {
   TimeStep time_step;
   double time_step_safety = 0.8;
   double implicit_default_step_s = 1.0 / 120.0;
+  // Implicit Euler with the mass-spring grid: whether its bending stiffness enters the step's
+  // matrix. Automatic: with a fixed step, when explicit bending would be unstable at it,
+  // h² ω² > kExplicitBendingLimit with ω² ≤ max_i bound_i / m_i over the bending alone (fine
+  // grids: ω² grows as 1/l⁴); the adaptive step keeps it explicit, since it shortens the steps
+  // where the explicit bending's growth shows as prediction strain (docs/models.md, "Bending in
+  // the time step").
+  BendingInStep bending_in_step = BendingInStep::automatic;
+  // Symplectic Euler's limit is h² ω² < 4. Inside implicit Euler, with the membrane implicit,
+  // explicit bending was measured to hold far beyond it: the 1 m wool hang (h = 1/120 s) runs
+  // at 54 (160²) and diverges at 111 (192²); on the sphere drape at 54 the explicit bending's
+  // frames are 23 % farther from a 10× finer step's than the implicit bending's, and at 22
+  // (128²) the hang's are as close either way — where the bending in the matrix costs 2–3×.
+  static constexpr double kExplicitBendingLimit = 32.0;
   // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
   // explosion, not physics: free fall reaches 100 m/s only after 10 s).
   double max_speed_m_s = 200.0;

@@ -30,6 +30,24 @@ DivergenceError::DivergenceError(long step, double time_s, std::string quantity)
 
 namespace {
 
+// Whether implicit Euler should take the grid's bending into its matrix: on request, or, with
+// a fixed step h, when the bending left explicit would be unstable at it: h² ω² above
+// SimSettings::kExplicitBendingLimit, with ω² ≤ max_i bound_i / m_i over the terms whose
+// stiffness stays out of the matrix (Gershgorin).
+bool bending_in_time_step(const System& system, const SimSettings& settings) {
+  if (settings.integrator != Integrator::implicit_euler) return false;
+  if (settings.bending_in_step != BendingInStep::automatic)
+    return settings.bending_in_step == BendingInStep::implicit;
+  if (settings.time_step.is_adaptive() || system.vertex_count() == 0) return false;
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(system.vertex_count());
+  for (const auto& term : system.terms)
+    if (term->has_stiffness() && !term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
+  const double h = settings.time_step.kind == TimeStep::Kind::fixed ? settings.time_step.fixed_s
+                                                                     : settings.implicit_default_step_s;
+  const double h2_omega2 = h * h * (bound.array() * system.inv_mass.array()).maxCoeff();
+  return h2_omega2 > SimSettings::kExplicitBendingLimit;
+}
+
 // The physical system of a mesh, material and pins under the settings: lumped masses (inverse
 // mass 0 at pins and at unused vertices outside a trimmed specimen, which never move), the
 // cloth model's force terms and, when enabled, air drag.
@@ -45,8 +63,10 @@ System make_system(const ClothMesh& mesh, const Material& material,
   system.gravity_m_s2 = settings.gravity_m_s2;
   system.damping_1_s = settings.air_damping_1_s;
   // With a projection method the warp/weft stretch is left to the constraints.
-  system.terms = make_force_terms(mesh, material, settings.model,
-                                  settings.projection.method == ProjectionMethod::none);
+  const bool with_stretch = settings.projection.method == ProjectionMethod::none;
+  system.terms = make_force_terms(mesh, material, settings.model, with_stretch);
+  if (bending_in_time_step(system, settings))
+    system.terms = make_force_terms(mesh, material, settings.model, with_stretch, true);
   if (settings.aero.enabled)
     system.velocity_terms.push_back(std::make_shared<Aerodynamics>(mesh.quads, mesh.faces, settings.aero));
   return system;

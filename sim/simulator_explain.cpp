@@ -1,4 +1,5 @@
 // Simulator::explain(): which terms and phases a scene's simulation actually runs.
+#include <algorithm>
 #include <sstream>
 
 #include "sim/simulator.h"
@@ -55,6 +56,11 @@ std::string Simulator::explain_integrate() const {
       line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance << " ("
            << base::enum_name(cg_preconditioner_names, m_settings.implicit_cg_preconditioner)
            << ")";
+    const bool explicit_stiffness =
+        std::any_of(m_system.terms.begin(), m_system.terms.end(), [](const auto& term) {
+          return term->has_stiffness() && !term->stiffness_in_time_step();
+        });
+    if (explicit_stiffness) line << ", bending explicit";
   }
   if (const DynamicRelaxation* relaxation = this->relaxation()) {
     const Eigen::ArrayXd ratio =

@@ -341,6 +341,8 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
       r.number("cg_tolerance", s.implicit_cg_tolerance, Range::gt(0.0).lt(1.0));
   s.implicit_cg_preconditioner = r.enumeration("cg_preconditioner", sim::cg_preconditioner_names,
                                                {s.implicit_cg_preconditioner});
+  s.bending_in_step =
+      r.enumeration("bending_in_step", sim::bending_in_step_names, {s.bending_in_step});
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));

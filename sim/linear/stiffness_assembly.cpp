@@ -38,7 +38,8 @@ void for_each_element_block(const Index* vertices, int size, const std::vector<c
 
 }  // namespace
 
-StiffnessAssembly::StiffnessAssembly(const System& system, Terms terms, const char* who) {
+StiffnessAssembly::StiffnessAssembly(const System& system, Terms terms, const char* who)
+    : m_time_step(terms == Terms::time_step) {
   system.check();
   const Index n = system.vertex_count();
   m_pinned.resize(static_cast<std::size_t>(n));
@@ -154,7 +155,10 @@ void StiffnessAssembly::fill(const Matrix3X& x, const Eigen::VectorXd& d, double
   for (const ForceTerm* term : m_element_terms)
     for (std::size_t e = 0; e < term->element_count(); ++e) {
       term->stencil(e, stencil);
-      term->element_stiffness(x, e, K, project_psd);
+      if (m_time_step && project_psd)
+        term->time_step_stiffness(x, e, K);
+      else
+        term->element_stiffness(x, e, K, project_psd);
       k = add_element(stencil, term->stencil_size(e), K, s, v, kv, k);
     }
 }

@@ -36,7 +36,8 @@ class StiffnessAssembly {
   // A = diag(d) + s K(x) on the free DOFs (d: #V, per vertex, kg or N/m as the caller means),
   // identity on the pinned ones. With kv non-null, also kv = K(x) v (#V×3; every pair, so that
   // a moving pin is seen by its neighbours). project_psd false: each element's exact Hessian,
-  // which may make A indefinite (a static solve near a stable equilibrium uses it).
+  // which may make A indefinite (a static solve near a stable equilibrium uses it). A time
+  // step's matrix (Terms::time_step, project_psd) takes each element's time_step_stiffness.
   void fill(const Matrix3X& x, const Eigen::VectorXd& d, double s, const Matrix3X* v = nullptr,
             Matrix3X* kv = nullptr, bool project_psd = true);
 
@@ -58,6 +59,7 @@ class StiffnessAssembly {
   std::size_t add_element(const Index* vertices, int size, const ElementMatrix& K, double s,
                           const Matrix3X* v, Matrix3X* kv, std::size_t k);
 
+  bool m_time_step;  // Terms::time_step: elements enter by ForceTerm::time_step_stiffness
   std::vector<char> m_pinned;  // #V, inv_mass == 0
   // Pair terms first, then the other terms with stiffness: the order of the pattern and fill.
   std::vector<const PairForceTerm*> m_pair_terms;

@@ -139,6 +139,42 @@ TEST(AngularBending, FlatStiffnessIsTheSmallAngleLimit) {
     }
 }
 
+TEST(AngularBending, TimeStepStiffnessIsTheExactHessianOfAStraightStencilInAnyDirection) {
+  const double k = 2e-4, l = 0.01;
+  AngularBendingTerm term({{0, 1, 2, 0.0, k, l}});
+  const Vec3 t = Vec3(0.3, -0.5, 0.8).normalized();
+  Matrix3X x(3, 3);
+  for (int i = 0; i < 3; ++i) x.row(i) = (Vec3(0.2, 0.1, -0.4) + i * l * t).transpose();
+  ElementMatrix exact, step;
+  term.element_stiffness(x, 0, exact, false);
+  term.time_step_stiffness(x, 0, step);
+  ASSERT_EQ(step.rows(), 9);
+  EXPECT_LT((step - exact).cwiseAbs().maxCoeff(), 1e-9 * k / (l * l));
+}
+
+TEST(AngularBending, TimeStepStiffnessOfABentStencilIsPsdAndIgnoresRigidAndChordMotion) {
+  Material m = fd::anisotropic_fabric();
+  m.bend_law_warp = BendingLaw::frictional(0.009, 0.22, 0.45);
+  m.bend_warp_Nm = m.bend_law_warp->initial_rigidity();
+  const ClothMesh mesh = fd::flat_sheet(6, 4, 0.05, 0.03);
+  const auto term = angular_term(mesh, m);
+  ASSERT_TRUE(term);
+  const Matrix3X x = bent_sheet(mesh, 25.0, 5);
+  Index stencil[kMaxStencil];
+  ElementMatrix K;
+  for (std::size_t e = 0; e < term->element_count(); ++e) {
+    term->stencil(e, stencil);
+    term->time_step_stiffness(x, e, K);
+    fd::expect_positive_semidefinite(K);
+    const Vec3 chord = vertex(x, stencil[2]) - vertex(x, stencil[0]);
+    Eigen::Matrix<double, 9, 1> shift, along;  // a rigid translation; the ends along the chord
+    shift << 1, -2, 3, 1, -2, 3, 1, -2, 3;
+    along << -chord, Vec3::Zero(), chord;
+    EXPECT_LT((K * shift).norm(), 1e-9 * K.norm() * shift.norm());
+    EXPECT_LT((K * along).norm(), 1e-9 * K.norm() * along.norm());
+  }
+}
+
 TEST(BendingLaw, OnlyTheMassSpringGridBendsByALaw) {
   Material m;
   m.bend_law_weft = BendingLaw::cubic(m.bend_weft_Nm, 1e-6);

@@ -11,6 +11,7 @@
 
 #include "tests/sim/test_cloth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -54,9 +55,9 @@ struct Cloth {
   }
 
   Cloth(ClothMesh m, const Material& material, std::vector<Index> pins,
-        const ImplicitSolveSettings& solve)
+        const ImplicitSolveSettings& solve, bool bending_in_step = false)
       : mesh(std::move(m)),
-        model(mesh, material),
+        model(mesh, material, /*structural_springs=*/true, bending_in_step),
         pinned(std::move(pins)),
         mass_kg(material.density_kg_m2 * mesh.vertex_area_m2),
         inv_mass(inverse_masses(mass_kg, pinned)),
@@ -227,6 +228,56 @@ TEST_P(ImplicitEulerTest, StiffClothFarPastTheExplicitLimitLosesEnergyEveryStep)
     energy = next;
   }
   EXPECT_LT(energy, 1e-12 * initial);
+}
+
+// Explicit bending inside the implicit step is stable only while h² ω_bend² stays small. On a
+// fine sheet (4 mm edges) at h = 1/120 s the bending's Gershgorin bound gives h² ω² ≈ 450: a
+// small out-of-plane checkerboard, free of gravity and damping, grows when the bending is
+// left explicit (a hundredfold within a step), and never gains energy with the bending's
+// near-flat stiffness in the matrix.
+TEST_P(ImplicitEulerTest, BendingInTheMatrixKeepsAFineSheetStableWhereExplicitBendingGrows) {
+  const ClothMesh mesh = square(64, 0.25, Vec3(0, 0, 1));
+  const Material material = fabric(1e3);
+  const double h = 1.0 / 120.0;
+  {
+    System bending_only;
+    bending_only.mass_kg = material.density_kg_m2 * mesh.vertex_area_m2;
+    bending_only.inv_mass = bending_only.mass_kg.cwiseInverse();
+    const MassSpringModel model(mesh, material);
+    Eigen::VectorXd bound = Eigen::VectorXd::Zero(mesh.vertex_count());
+    for (const auto& term : model.terms())
+      if (!term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
+    ASSERT_GT(h * h * (bound.array() * bending_only.inv_mass.array()).maxCoeff(), 100.0);
+  }
+  const Vec3 no_gravity = Vec3::Zero();
+  const double amplitude = 1e-2 * 0.25 / 63.0;  // 1 % of an edge
+  const auto perturbed = [&](Cloth& cloth) {
+    for (Index j = 0; j < mesh.nv; ++j)
+      for (Index i = 0; i < mesh.nu; ++i)
+        cloth.x(mesh.index(i, j), 2) += (i + j) % 2 == 0 ? amplitude : -amplitude;
+  };
+  Cloth explicit_bending(mesh, material, {}, GetParam());
+  perturbed(explicit_bending);
+  const double start = explicit_bending.energy(no_gravity);
+  ASSERT_GT(start, 0.0);
+  double largest = start;  // it grows hundredfold within a step, then swings (θ saturates)
+  for (int n = 0; n < 10; ++n) {
+    explicit_bending.step(h, no_gravity, 0.0);
+    largest = std::max(largest, explicit_bending.energy(no_gravity));
+  }
+  EXPECT_GT(largest, 100.0 * start);
+
+  Cloth implicit_bending(mesh, material, {}, GetParam(), /*bending_in_step=*/true);
+  perturbed(implicit_bending);
+  double energy = implicit_bending.energy(no_gravity);
+  EXPECT_DOUBLE_EQ(energy, start);
+  for (int n = 1; n <= 10; ++n) {
+    implicit_bending.step(h, no_gravity, 0.0);
+    const double next = implicit_bending.energy(no_gravity);
+    ASSERT_LE(next, energy * (1.0 + 1e-9)) << "step " << n;
+    energy = next;
+  }
+  EXPECT_LT(energy, 0.5 * start);
 }
 
 // The same stiff cloth falling from horizontal, hanging from two corners, h = 1/24 s: far from

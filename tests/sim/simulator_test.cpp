@@ -5,6 +5,7 @@
 
 #include "tests/sim/test_cloth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -243,6 +244,29 @@ TEST(Simulator, ClothOnASlopeSlidesWithoutFrictionAndStaysWithFrictionAboveTanTh
   // Only the fall onto the plane moves it along the slope: 1 cm / cos θ · sin θ = 3.6 mm at most.
   EXPECT_LT(std::abs(sticking), 0.0037);
   EXPECT_LT(std::abs(sticking), 0.01 * frictionless);
+}
+
+// Implicit Euler takes the grid's bending into its matrix when explicit bending would be
+// unstable at its step (h² ω² above SimSettings::kExplicitBendingLimit), or when asked.
+TEST(Simulator, BendingEntersTheImplicitStepWhereExplicitBendingWouldBeUnstable) {
+  const auto bending_explicit = [](const ClothMesh& mesh, Integrator integrator,
+                                   BendingInStep choice) {
+    SimSettings s;
+    s.integrator = integrator;
+    s.bending_in_step = choice;
+    const Simulator sim(mesh, fabric(1e3), {}, s);
+    return std::any_of(sim.system().terms.begin(), sim.system().terms.end(), [](const auto& t) {
+      return t->has_stiffness() && !t->stiffness_in_time_step();
+    });
+  };
+  const ClothMesh coarse = square(16, 1.0);  // h² ω² ≈ 0.02 at h = 1/120 s
+  const ClothMesh fine = square(64, 0.25);   // h² ω² ≈ 450
+  EXPECT_TRUE(bending_explicit(coarse, Integrator::implicit_euler, BendingInStep::automatic));
+  EXPECT_FALSE(bending_explicit(fine, Integrator::implicit_euler, BendingInStep::automatic));
+  EXPECT_TRUE(bending_explicit(fine, Integrator::implicit_euler, BendingInStep::explicit_forces));
+  EXPECT_FALSE(bending_explicit(coarse, Integrator::implicit_euler, BendingInStep::implicit));
+  // The explicit integrators have no matrix: their step follows the critical step instead.
+  EXPECT_TRUE(bending_explicit(fine, Integrator::symplectic_euler, BendingInStep::automatic));
 }
 
 }  // namespace
