@@ -13,7 +13,7 @@
 //                                     [--cg TOLERANCE] [--quick] [--methods SUBSTRING]
 //                                     [--reuse N] [--threads N] [--frames N] [--no-hold]
 //                                     [--adaptive STRAIN] [--max-step SECONDS]
-//                                     [--block-jacobi | --multigrid]
+//                                     [--block-jacobi | --multigrid] [--bending auto|explicit|implicit]
 // --reuse: fast projection's CG iterations on a reused factorization (0: a factorization per
 // iteration, the paper's); --threads: implicit Euler's CG threads (0: all); --frames: fewer
 // frames for the largest sizes (the rows then cover only that start); --no-hold: project the
@@ -21,7 +21,9 @@
 // what holding it buys; --adaptive: fast projection with the adaptive step
 // (sim/adaptive_step.h) aiming its prediction's strain at STRAIN, its steps at most --max-step
 // (default 1/24 s; --step is then unused); --block-jacobi, --multigrid: CG's preconditioner
-// (default: "auto", the multigrid from 150² vertices). After the rows, the speed
+// (default: "auto", the multigrid from 150² vertices); --bending: simulation.bending_in_step
+// (default "auto": in implicit Euler's matrix when explicit bending would be unstable at a
+// fixed step, docs/models.md). After the rows, the speed
 // targets for fast projection at tol 1e-2, with the growth exponent.
 #include <algorithm>
 #include <cmath>
@@ -75,6 +77,7 @@ struct Options {
   double adaptive_strain = 0.0;  // > 0: the adaptive step, aiming at this prediction strain
   double max_step_s = 1.0 / 24.0;
   CgPreconditioner preconditioner = CgPreconditioner::automatic;
+  BendingInStep bending = BendingInStep::automatic;
 };
 
 Row run(Index n, const Method& method, const Options& options) {
@@ -97,6 +100,7 @@ Row run(Index n, const Method& method, const Options& options) {
     s.implicit_cg_tolerance = options.cg_tolerance;
     s.implicit_cg_preconditioner = options.preconditioner;
   }
+  s.bending_in_step = options.bending;
   s.projection.method = method.projection;
   s.projection.tolerance = method.tolerance;
   s.projection.max_iterations = method.iterations;
@@ -210,8 +214,16 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options.max_step_s = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--block-jacobi")) options.preconditioner = CgPreconditioner::block_jacobi;
     else if (!std::strcmp(argv[i], "--multigrid")) options.preconditioner = CgPreconditioner::multigrid;
+    else if (!std::strcmp(argv[i], "--bending") && i + 1 < argc) {
+      const auto bending = weft::base::enum_from_name(bending_in_step_names, argv[++i]);
+      if (!bending) {
+        std::fprintf(stderr, "--bending: expected auto, explicit or implicit, got %s\n", argv[i]);
+        return 1;
+      }
+      options.bending = *bending;
+    }
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --multigrid]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --multigrid] [--bending auto|explicit|implicit]\n", argv[0]);
       return 1;
     }
   }
@@ -240,12 +252,13 @@ int main(int argc, char** argv) {
   else
     std::snprintf(step, sizeof step, "h = %.4g s", options.step_s);
   std::printf("two-corner hang, 1 m wool, %d frames at 24 fps, implicit Euler %s (%s), "
-              "projection %s, top edge %s; strain over frames after 0.5 s\n",
+              "projection %s, top edge %s, bending %s; strain over frames after 0.5 s\n",
               options.frames, step,
               options.cg_tolerance > 0.0 ? ("CG to " + std::to_string(options.cg_tolerance)).c_str()
                                          : "direct",
               sparse_backend_name(options.backend),
-              options.hold_taut_chains ? "held (taut chain)" : "projected (--no-hold)");
+              options.hold_taut_chains ? "held (taut chain)" : "projected (--no-hold)",
+              weft::base::enum_name(bending_in_step_names, options.bending));
   std::printf("%-6s %-26s %10s %8s %9s %9s %8s %7s %11s %11s %7s %11s %8s\n", "size", "method", "ms/frame",
               "cpu ms", "iter/step", "fact/step", "CG/step", "max it", "max strain", "mean strain", "unconv", "steps/frame", "rejected");
   std::vector<std::pair<int, Row>> target_rows;  // fast projection at tol 1e-2, by size
