@@ -343,6 +343,10 @@ void read_simulation(ObjectReader r, sim::SimSettings& s, bool& dynamics,
                                                {s.implicit_cg_preconditioner});
   s.bending_in_step =
       r.enumeration("bending_in_step", sim::bending_in_step_names, {s.bending_in_step});
+  if (s.bending_in_step == sim::BendingInStep::implicit &&
+      s.integrator != sim::Integrator::implicit_euler)
+    r.fail("bending_in_step", "\"implicit\" applies only with integrator \"implicit_euler\" "
+                              "(the explicit integrators have no matrix to take it into)");
   s.gravity_m_s2 = r.quantity_vec3("gravity", Quantity::acceleration, s.gravity_m_s2);
   s.air_damping_1_s =
       r.quantity("air_damping", Quantity::inverse_time, s.air_damping_1_s, Range::ge(0.0));

@@ -156,6 +156,24 @@ TEST(SolverScene, RestingContactsNeedTheImplicitSolve) {
             "\"implicit_euler\" (it holds contacts inside the implicit solve)");
 }
 
+TEST(SolverScene, BendingInStepIsReadAndImplicitNeedsTheImplicitSolve) {
+  Json j = solver_scene();
+  EXPECT_EQ(parse_json_scene(j).sim.bending_in_step, sim::BendingInStep::automatic);
+  j["simulation"]["integrator"] = "implicit_euler";
+  j["simulation"]["bending_in_step"] = "implicit";
+  EXPECT_EQ(parse_json_scene(j).sim.bending_in_step, sim::BendingInStep::implicit);
+  j["simulation"]["bending_in_step"] = "explicit";
+  EXPECT_EQ(parse_json_scene(j).sim.bending_in_step, sim::BendingInStep::explicit_forces);
+  j["simulation"]["bending_in_step"] = "sometimes";
+  EXPECT_CONTAINS(scene_error_of(j), "simulation.bending_in_step: expected one of 'auto', "
+                                     "'explicit', 'implicit', got the string 'sometimes'");
+  j["simulation"]["bending_in_step"] = "implicit";
+  j["simulation"]["integrator"] = "symplectic_euler";
+  EXPECT_EQ(scene_error_of(j),
+            "scene.json: simulation.bending_in_step: \"implicit\" applies only with integrator "
+            "\"implicit_euler\" (the explicit integrators have no matrix to take it into)");
+}
+
 TEST(SolverScene, AdaptiveStepMistakesNameTheirKeys) {
   Json j = solver_scene();
   j["simulation"]["time_step"] = "adaptve";
