@@ -192,6 +192,41 @@ void print_targets(const std::vector<std::pair<int, Row>>& rows) {
   }
 }
 
+// The command line into sizes, options, --quick and --methods; false (after a message) when it
+// is not understood.
+bool parse_arguments(int argc, char** argv, std::vector<int>* sizes, Options* options,
+                     bool* quick, std::string* only) {
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) *sizes = parse_list(argv[++i]);
+    else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) options->step_s = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) options->backend = sparse_backend_from_name(argv[++i]);
+    else if (!std::strcmp(argv[i], "--cg") && i + 1 < argc) options->cg_tolerance = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--reuse") && i + 1 < argc) options->reuse_iterations = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) options->threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) options->frames = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--quick")) *quick = true;
+    else if (!std::strcmp(argv[i], "--no-hold")) options->hold_taut_chains = false;
+    else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) *only = argv[++i];
+    else if (!std::strcmp(argv[i], "--adaptive") && i + 1 < argc) options->adaptive_strain = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options->max_step_s = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--block-jacobi")) options->preconditioner = CgPreconditioner::block_jacobi;
+    else if (!std::strcmp(argv[i], "--multigrid")) options->preconditioner = CgPreconditioner::multigrid;
+    else if (!std::strcmp(argv[i], "--bending") && i + 1 < argc) {
+      const auto bending = weft::base::enum_from_name(bending_in_step_names, argv[++i]);
+      if (!bending) {
+        std::fprintf(stderr, "--bending: expected auto, explicit or implicit, got %s\n", argv[i]);
+        return false;
+      }
+      options->bending = *bending;
+    }
+    else {
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --multigrid] [--bending auto|explicit|implicit]\n", argv[0]);
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -199,34 +234,7 @@ int main(int argc, char** argv) {
   Options options;
   bool quick = false;
   std::string only;  // run only the methods whose name contains this
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = parse_list(argv[++i]);
-    else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) options.step_s = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) options.backend = sparse_backend_from_name(argv[++i]);
-    else if (!std::strcmp(argv[i], "--cg") && i + 1 < argc) options.cg_tolerance = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--reuse") && i + 1 < argc) options.reuse_iterations = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) options.threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) options.frames = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--quick")) quick = true;
-    else if (!std::strcmp(argv[i], "--no-hold")) options.hold_taut_chains = false;
-    else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) only = argv[++i];
-    else if (!std::strcmp(argv[i], "--adaptive") && i + 1 < argc) options.adaptive_strain = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options.max_step_s = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--block-jacobi")) options.preconditioner = CgPreconditioner::block_jacobi;
-    else if (!std::strcmp(argv[i], "--multigrid")) options.preconditioner = CgPreconditioner::multigrid;
-    else if (!std::strcmp(argv[i], "--bending") && i + 1 < argc) {
-      const auto bending = weft::base::enum_from_name(bending_in_step_names, argv[++i]);
-      if (!bending) {
-        std::fprintf(stderr, "--bending: expected auto, explicit or implicit, got %s\n", argv[i]);
-        return 1;
-      }
-      options.bending = *bending;
-    }
-    else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --multigrid] [--bending auto|explicit|implicit]\n", argv[0]);
-      return 1;
-    }
-  }
+  if (!parse_arguments(argc, argv, &sizes, &options, &quick, &only)) return 1;
   const int cap = ProjectionSettings{}.max_iterations;
   std::vector<Method> methods{
       {"fast_projection tol 1e-2", ProjectionMethod::fast_projection, 1e-2, cap, 1.0},

@@ -334,7 +334,9 @@ void AngularBendingTerm::time_step_stiffness(const Matrix3X& x, std::size_t e,
                                              ElementMatrix& K) const {
   const AngularSpring& b = m_bends[e];
   const Vec3 x0 = vertex(x, b.v0), x1 = vertex(x, b.v1), x2 = vertex(x, b.v2);
-  const double k = std::max(0.0, slope(b, turning_angle(x1 - x0, x2 - x1)).d2E);
+  // A linear stencil's stiffness is k_Nm at every angle: no angle to compute.
+  const double k =
+      b.law < 0 ? b.k_Nm : std::max(0.0, slope(b, turning_angle(x1 - x0, x2 - x1)).d2E);
   const double c = k / (b.rest_l_m * b.rest_l_m);
   Mat3 across = Mat3::Identity();  // P = I − t tᵀ; all of I for a collapsed stencil
   const Vec3 chord = x2 - x0;

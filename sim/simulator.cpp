@@ -30,6 +30,15 @@ DivergenceError::DivergenceError(long step, double time_s, std::string quantity)
 
 namespace {
 
+// max_i bound_i / m_i over the free vertices: with `bound` a Gershgorin row bound of a
+// stiffness, an upper bound on the largest ω² of M⁻¹K; 0 without free vertices.
+double largest_omega2(const Eigen::VectorXd& bound, const Eigen::VectorXd& inv_mass) {
+  double omega2 = 0.0;
+  for (Eigen::Index i = 0; i < bound.size(); ++i)
+    if (inv_mass[i] > 0.0) omega2 = std::max(omega2, bound[i] * inv_mass[i]);
+  return omega2;
+}
+
 // Whether implicit Euler should take the grid's bending into its matrix: on request, or, with
 // a fixed step h, when the bending left explicit would be unstable at it: h² ω² above
 // SimSettings::kExplicitBendingLimit, with ω² ≤ max_i bound_i / m_i over the terms whose
@@ -38,14 +47,13 @@ bool bending_in_time_step(const System& system, const SimSettings& settings) {
   if (settings.integrator != Integrator::implicit_euler) return false;
   if (settings.bending_in_step != BendingInStep::automatic)
     return settings.bending_in_step == BendingInStep::implicit;
-  if (settings.time_step.is_adaptive() || system.vertex_count() == 0) return false;
+  if (settings.time_step.is_adaptive()) return false;
   Eigen::VectorXd bound = Eigen::VectorXd::Zero(system.vertex_count());
   for (const auto& term : system.terms)
     if (term->has_stiffness() && !term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
   const double h = settings.time_step.kind == TimeStep::Kind::fixed ? settings.time_step.fixed_s
                                                                      : settings.implicit_default_step_s;
-  const double h2_omega2 = h * h * (bound.array() * system.inv_mass.array()).maxCoeff();
-  return h2_omega2 > SimSettings::kExplicitBendingLimit;
+  return h * h * largest_omega2(bound, system.inv_mass) > SimSettings::kExplicitBendingLimit;
 }
 
 // The physical system of a mesh, material and pins under the settings: lumped masses (inverse
@@ -76,10 +84,7 @@ System make_system(const ClothMesh& mesh, const Material& material,
 // h < 2√2/ω_max, explicit Euler never without damping); ω_max² ≤ max_i bound_i / m_i
 // (Gershgorin).
 double critical_step_s(const System& system) {
-  const Eigen::VectorXd bound = system.stiffness_row_bound();
-  double omega2 = 0.0;
-  for (Index i = 0; i < system.vertex_count(); ++i)
-    if (system.inv_mass[i] > 0.0) omega2 = std::max(omega2, bound[i] * system.inv_mass[i]);
+  const double omega2 = largest_omega2(system.stiffness_row_bound(), system.inv_mass);
   return omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : 1.0;
 }
 

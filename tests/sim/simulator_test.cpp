@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "base/constants.h"
 #include "sim/collision/obstacle.h"
@@ -267,6 +268,20 @@ TEST(Simulator, BendingEntersTheImplicitStepWhereExplicitBendingWouldBeUnstable)
   EXPECT_FALSE(bending_explicit(coarse, Integrator::implicit_euler, BendingInStep::implicit));
   // The explicit integrators have no matrix: their step follows the critical step instead.
   EXPECT_TRUE(bending_explicit(fine, Integrator::symplectic_euler, BendingInStep::automatic));
+  // --explain says which: on the integrate line, or after the bending stencils.
+  const auto explained = [](const ClothMesh& mesh) {
+    SimSettings s;
+    s.integrator = Integrator::implicit_euler;
+    std::string all;
+    for (const std::string& line : Simulator(mesh, fabric(1e3), {}, s).explain()) all += line + "\n";
+    return all;
+  };
+  const std::string coarse_text = explained(coarse), fine_text = explained(fine);
+  EXPECT_NE(coarse_text.find(", bending explicit"), std::string::npos) << coarse_text;
+  EXPECT_EQ(coarse_text.find("(stiffness in the step's matrix)"), std::string::npos) << coarse_text;
+  EXPECT_EQ(fine_text.find(", bending explicit"), std::string::npos) << fine_text;
+  EXPECT_NE(fine_text.find("bending stencils (stiffness in the step's matrix)"), std::string::npos)
+      << fine_text;
 }
 
 }  // namespace
