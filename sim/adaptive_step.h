@@ -36,6 +36,7 @@ class AdaptiveStep {
   // After a step of h_s whose projection took `iterations` Newton iterations and met its
   // tolerance or not: plans the next step's length.
   void accept(double h_s, int iterations, bool converged);
+  const AdaptiveStepSettings& settings() const { return m_settings; }
   double planned_step_s() const { return m_next_s; }
   void set_planned_step_s(double h_s) { m_next_s = h_s; }  // a checkpoint's
 

@@ -90,18 +90,18 @@ struct SimSettings {
   double time_step_safety = 0.8;
   double implicit_default_step_s = 1.0 / 120.0;
   // Implicit Euler with the mass-spring grid: whether its bending stiffness enters the step's
-  // matrix. Automatic: with a fixed step, when explicit bending would be unstable at it,
-  // h² ω² > kExplicitBendingLimit with ω² ≤ max_i bound_i / m_i over the bending alone (fine
-  // grids: ω² grows as 1/l⁴); the adaptive step keeps it explicit, since it shortens the steps
-  // where the explicit bending's growth shows as prediction strain (docs/models.md, "Bending in
-  // the time step").
+  // matrix. Automatic: when explicit bending would not be stable at the run's steps, h ω > 2
+  // (with time_step_safety) with ω² ≤ max_i bound_i / m_i over the bending alone — exact for
+  // the out-of-plane checkerboard mode, and fine grids reach it: ω² grows as 1/l⁴. With the
+  // adaptive step, explicit bending keeps the steps within that limit instead, unless that
+  // would hold them shorter than kExplicitBendingShortestStep × implicit_default_step_s
+  // (docs/models.md, "Bending in the time step").
   BendingInStep bending_in_step = BendingInStep::automatic;
-  // Symplectic Euler's limit is h² ω² < 4. Inside implicit Euler, with the membrane implicit,
-  // explicit bending was measured to hold far beyond it: the 1 m wool hang (h = 1/120 s) runs
-  // at 54 (160²) and diverges at 111 (192²); on the sphere drape at 54 the explicit bending's
-  // frames are 23 % farther from a 10× finer step's than the implicit bending's, and at 22
-  // (128²) the hang's are as close either way — where the bending in the matrix costs 2–3×.
-  static constexpr double kExplicitBendingLimit = 32.0;
+  // Measured on the adaptive two-corner hang: explicit bending's steps, held within its limit,
+  // cost about a third of the steps with the bending in the matrix, which take 5–6 a frame;
+  // explicit bending took 0.80 of the CPU time at 128² (steps ≤ 2.9 ms) and 1.24 at 160²
+  // (≤ 1.8 ms), so it pays down to a quarter of 1/120 s (2.1 ms).
+  static constexpr double kExplicitBendingShortestStep = 0.25;
   // Divergence guard: a non-finite position or velocity, or any vertex faster than this (an
   // explosion, not physics: free fall reaches 100 m/s only after 10 s).
   double max_speed_m_s = 200.0;

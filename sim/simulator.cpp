@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -39,21 +40,37 @@ double largest_omega2(const Eigen::VectorXd& bound, const Eigen::VectorXd& inv_m
   return omega2;
 }
 
-// Whether implicit Euler should take the grid's bending into its matrix: on request, or, with
-// a fixed step h, when the bending left explicit would be unstable at it: h² ω² above
-// SimSettings::kExplicitBendingLimit, with ω² ≤ max_i bound_i / m_i over the terms whose
-// stiffness stays out of the matrix (Gershgorin).
+// The longest step at which the stiffness left out of implicit Euler's matrix (the grid's
+// bending, when explicit) stays stable: 2/ω, with ω² ≤ max_i bound_i / m_i over those terms
+// (Gershgorin); infinity when there are none. For bending stencils the bound is exact: it is
+// the out-of-plane checkerboard mode's ω². Inside implicit Euler an explicit force steps as in
+// symplectic Euler, stable for h ω < 2; the string stiffness of a tension in the matrix
+// steadies it where the cloth is taut, but not at a free hem, which tension never reaches.
+double explicit_stiffness_step_s(const System& system) {
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(system.vertex_count());
+  for (const auto& term : system.terms)
+    if (term->has_stiffness() && !term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
+  const double omega2 = largest_omega2(bound, system.inv_mass);
+  return omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();
+}
+
+// Whether implicit Euler should take the grid's bending into its matrix: on request, or when
+// the bending left explicit would not be stable at the run's steps (with the explicit
+// integrators' safety factor): with a fixed step, when the step is longer than that; with the
+// adaptive step, whose steps are then kept within it (Simulator), when that would hold them
+// shorter than SimSettings::kExplicitBendingShortestStep of implicit Euler's default step.
 bool bending_in_time_step(const System& system, const SimSettings& settings) {
   if (settings.integrator != Integrator::implicit_euler) return false;
   if (settings.bending_in_step != BendingInStep::automatic)
     return settings.bending_in_step == BendingInStep::implicit;
-  if (settings.time_step.is_adaptive()) return false;
-  Eigen::VectorXd bound = Eigen::VectorXd::Zero(system.vertex_count());
-  for (const auto& term : system.terms)
-    if (term->has_stiffness() && !term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
+  const double stable_s = settings.time_step_safety * explicit_stiffness_step_s(system);
+  if (settings.time_step.is_adaptive())
+    return stable_s < std::max(SimSettings::kExplicitBendingShortestStep *
+                                   settings.implicit_default_step_s,
+                               settings.time_step.adaptive.min_step_s);
   const double h = settings.time_step.kind == TimeStep::Kind::fixed ? settings.time_step.fixed_s
                                                                      : settings.implicit_default_step_s;
-  return h * h * largest_omega2(bound, system.inv_mass) > SimSettings::kExplicitBendingLimit;
+  return h > stable_s;
 }
 
 // The physical system of a mesh, material and pins under the settings: lumped masses (inverse
@@ -106,6 +123,7 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
   m_state.v = Matrix3X::Zero(n, 3);
   m_initial_x = m_state.x;
   m_critical_step_s = critical_step_s(m_system);
+  m_explicit_stable_step_s = settings.time_step_safety * explicit_stiffness_step_s(m_system);
   const double automatic = settings.integrator == Integrator::implicit_euler
                                ? settings.implicit_default_step_s
                                : settings.time_step_safety * m_critical_step_s;
@@ -116,8 +134,12 @@ Simulator::Simulator(ClothMesh mesh, const Material& material, std::vector<Index
                    settings.projection.method == ProjectionMethod::fast_projection,
                "the adaptive step follows fast projection's iterations: it needs implicit Euler "
                "and fast projection (the scene reader checks simulation.time_step)");
-    m_adaptive = std::make_unique<AdaptiveStep>(settings.time_step.adaptive);
-    m_time_step_s = settings.time_step.adaptive.max_step_s;
+    // Explicit bending holds only at steps within its stability (bending_in_time_step).
+    AdaptiveStepSettings adaptive = settings.time_step.adaptive;
+    adaptive.max_step_s =
+        std::max(adaptive.min_step_s, std::min(adaptive.max_step_s, m_explicit_stable_step_s));
+    m_adaptive = std::make_unique<AdaptiveStep>(adaptive);
+    m_time_step_s = adaptive.max_step_s;
   }
   m_integrator_settings.implicit_solve.method = settings.implicit_solve;
   m_integrator_settings.implicit_solve.backend = settings.sparse_backend;
@@ -374,6 +396,7 @@ void Simulator::rebuild_for_mesh() {
   m_warp_weft_edges = make_edge_constraints(m_mesh, ConstrainedEdges::warp_weft,
                                             Eigen::VectorXd::Ones(m_mesh.vertex_count()));
   m_critical_step_s = critical_step_s(m_system);
+  m_explicit_stable_step_s = m_settings.time_step_safety * explicit_stiffness_step_s(m_system);
   m_taut = {};  // none without fast projection
   build_solvers();
 }

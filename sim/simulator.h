@@ -220,6 +220,9 @@ class Simulator {
   std::optional<double> m_start_energy_J;
   double m_energy_margin_J = 0.0;
   double m_critical_step_s = 0.0;
+  // Implicit Euler: the longest step at which the stiffness left explicit (the grid's bending)
+  // is stable, with the safety factor; infinity when all of it is in the matrix.
+  double m_explicit_stable_step_s = 0.0;
   double m_time_step_s = 0.0;
   long m_steps = 0;
   long m_remeshes = 0;

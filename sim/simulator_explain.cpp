@@ -44,8 +44,8 @@ std::string Simulator::explain_integrate() const {
   std::ostringstream line;
   line << "integrate: " << integrator_name(m_settings.integrator);
   if (m_adaptive)
-    line << ", adaptive h from " << 1e3 * m_settings.time_step.adaptive.min_step_s << " to "
-         << 1e3 * m_settings.time_step.adaptive.max_step_s
+    line << ", adaptive h from " << 1e3 * m_adaptive->settings().min_step_s << " to "
+         << 1e3 * m_adaptive->settings().max_step_s
          << " ms (following the projection's iterations)";
   else
     line << ", h = " << 1e3 * m_time_step_s << " ms";
@@ -60,7 +60,8 @@ std::string Simulator::explain_integrate() const {
         std::any_of(m_system.terms.begin(), m_system.terms.end(), [](const auto& term) {
           return term->has_stiffness() && !term->stiffness_in_time_step();
         });
-    if (explicit_stiffness) line << ", bending explicit";
+    if (explicit_stiffness)
+      line << ", bending explicit (stable at h ≤ " << 1e3 * m_explicit_stable_step_s << " ms)";
   }
   if (const DynamicRelaxation* relaxation = this->relaxation()) {
     const Eigen::ArrayXd ratio =

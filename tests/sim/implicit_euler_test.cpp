@@ -12,6 +12,7 @@
 #include "tests/sim/test_cloth.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -278,6 +279,49 @@ TEST_P(ImplicitEulerTest, BendingInTheMatrixKeepsAFineSheetStableWhereExplicitBe
     energy = next;
   }
   EXPECT_LT(energy, 0.5 * start);
+}
+
+// Bending left out of the matrix steps as in symplectic Euler: stable for h ω < 2, with ω² at
+// most max_i bound_i / m_i (Gershgorin), which the out-of-plane checkerboard mode reaches (a
+// stencil's row bound is its own mode's). On a flat sheet without tension (springs at rest
+// have no transverse stiffness) that mode's energy, perturbed, swings but stops growing at
+// 0.8 × 2/ω_G (the simulator's safety factor) and grows a hundredfold at 1.3 × (where h² ω² > 4
+// even for the interior's ω² = 0.8 ω_G²).
+TEST_P(ImplicitEulerTest, ExplicitBendingIsStableBelowTwoOverOmegaAndGrowsAbove) {
+  const ClothMesh mesh = square(24, 0.25, Vec3(0, 0, 1));
+  const Material material = fabric(1e3);
+  const Vec3 no_gravity = Vec3::Zero();
+  double omega2 = 0.0;
+  {
+    const Cloth probe(mesh, material, {}, GetParam());
+    Eigen::VectorXd bound = Eigen::VectorXd::Zero(mesh.vertex_count());
+    for (const auto& term : probe.model.terms())
+      if (!term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
+    omega2 = (bound.array() * probe.inv_mass.array()).maxCoeff();
+  }
+  // The largest energy over the first and the second 60 steps, over the start's.
+  const auto largest = [&](double h_s) {
+    Cloth cloth(mesh, material, {}, GetParam());
+    const double amplitude = 1e-3 * 0.25 / 23.0;  // 0.1 % of an edge
+    for (Index j = 0; j < mesh.nv; ++j)
+      for (Index i = 0; i < mesh.nu; ++i)
+        cloth.x(mesh.index(i, j), 2) += (i + j) % 2 == 0 ? amplitude : -amplitude;
+    const double start = cloth.energy(no_gravity);
+    std::array<double, 2> most = {start, start};
+    for (int n = 0; n < 120; ++n) {
+      cloth.step(h_s, no_gravity, 0.0);
+      most[n / 60] = std::max(most[n / 60], cloth.energy(no_gravity));
+    }
+    return std::array<double, 2>{most[0] / start, most[1] / start};
+  };
+  const double limit_s = 2.0 / std::sqrt(omega2);
+  const std::array<double, 2> safe = largest(0.8 * limit_s), past = largest(1.3 * limit_s);
+  std::printf("2/omega_G = %.3g ms; largest energy / start over steps 1-60, 61-120: at 0.8x "
+              "%.3g, %.3g; at 1.3x %.3g, %.3g\n",
+              1e3 * limit_s, safe[0], safe[1], past[0], past[1]);
+  EXPECT_LE(safe[1], safe[0] * (1.0 + 1e-6));  // no growth
+  EXPECT_LT(safe[0], 10.0);
+  EXPECT_GT(past[0], 100.0);
 }
 
 // The same stiff cloth falling from horizontal, hanging from two corners, h = 1/24 s: far from

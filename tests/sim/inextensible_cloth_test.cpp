@@ -310,6 +310,104 @@ TEST(InextensibleCloth, ReusedFactorizationsMeetTheToleranceWithFewerFactorizati
   EXPECT_LT((x_paper - x_reused).rowwise().norm().maxCoeff(), 5e-3);
 }
 
+// The largest second difference along the free hem (the v = 0 row) over the edge length: 0 for
+// a straight hem, 2 sin(θ/2) at a kink of θ; a smooth hem of radius R gives l/R.
+double hem_kink(const Simulator& sim) {
+  const ClothMesh& mesh = sim.mesh();
+  const Matrix3X& x = sim.state().x;
+  double worst = 0.0;
+  for (Index i = 1; i + 1 < mesh.nu; ++i) {
+    const Vec3 second = x.row(mesh.index(i - 1, 0)) - 2.0 * x.row(mesh.index(i, 0)) +
+                        x.row(mesh.index(i + 1, 0));
+    const double l = (mesh.material_coords[mesh.index(i + 1, 0)] -
+                      mesh.material_coords[mesh.index(i, 0)]).norm();
+    worst = std::max(worst, second.norm() / l);
+  }
+  return worst;
+}
+
+// The safety factor times 2/ω over the stiffness the simulator left out of implicit Euler's
+// matrix (Gershgorin), as the simulator computes it; infinity when none is left out.
+double explicit_stable_step_s(const Simulator& sim) {
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(sim.mesh().vertex_count());
+  for (const auto& term : sim.system().terms)
+    if (term->has_stiffness() && !term->stiffness_in_time_step()) term->add_stiffness_row_bound(bound);
+  const double omega2 = (bound.array() * sim.system().inv_mass.array()).maxCoeff();
+  return omega2 > 0.0 ? SimSettings{}.time_step_safety * 2.0 / std::sqrt(omega2)
+                      : std::numeric_limits<double>::infinity();
+}
+
+// The largest hem kink over the frames (24 fps) from `from_s` to `to_s`.
+double worst_hem_kink(Simulator& sim, double from_s, double to_s) {
+  double worst = 0.0;
+  for (int frame = 1; frame <= std::lround(24.0 * to_s); ++frame) {
+    sim.advance(frame / 24.0 - sim.state().time_s);
+    if (frame >= std::lround(24.0 * from_s)) worst = std::max(worst, hem_kink(sim));
+  }
+  return worst;
+}
+
+// Bending left out of implicit Euler's matrix steps as in symplectic Euler, stable only for
+// h ω < 2. The two-corner hang of a wool sheet with 100 times its bending rigidity, 32²: at
+// h = 1/120 s past that limit (as the real wool is from about 90² up). The carried tension's
+// string stiffness steadies it where the sheet hangs, but not at the free hem, which tension
+// does not reach: explicit bending crumples the hem edge by edge (kinks of ~40°), and the
+// automatic choice takes the bending into the matrix, where the hem stays smooth.
+TEST(InextensibleCloth, BendingPastItsExplicitLimitEntersTheMatrixAndTheHemStaysSmooth) {
+  Hang h;
+  Material stiff;
+  stiff.bend_warp_Nm *= 100.0;
+  stiff.bend_weft_Nm *= 100.0;
+  const ClothMesh mesh = hang_mesh(h);
+  const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
+  double kink[2];
+  for (const BendingInStep choice : {BendingInStep::automatic, BendingInStep::explicit_forces}) {
+    SimSettings s = hang_settings(h);
+    s.bending_in_step = choice;
+    Simulator sim(mesh, stiff, pins, s);
+    const bool automatic = choice == BendingInStep::automatic;
+    if (automatic) {
+      EXPECT_EQ(explicit_stable_step_s(sim), std::numeric_limits<double>::infinity());
+    } else {
+      EXPECT_LT(explicit_stable_step_s(sim), h.step_s);  // past the limit
+    }
+    kink[automatic ? 0 : 1] = worst_hem_kink(sim, 0.25, 1.0);
+  }
+  std::printf("hem kink, largest over 0.25-1 s: bending in the matrix %.4f, explicit %.4f\n",
+              kink[0], kink[1]);
+  EXPECT_LT(kink[0], 0.05);  // < 3°
+  EXPECT_GT(kink[1], 0.2);   // > 11°
+}
+
+// With the adaptive step, explicit bending holds the steps within its stability limit instead
+// (ExplicitBendingIsStableBelowTwoOverOmegaAndGrowsAbove), where that leaves them no shorter
+// than a quarter of 1/120 s: with 10 times the wool's bending, 32², at 0.8 × 2/ω ≈ 15 ms, where
+// the steps would otherwise grow to 1/24 s; with 1000 times, the limit (≈ 1.5 ms) would hold
+// them shorter, and the bending enters the matrix.
+TEST(InextensibleCloth, TheAdaptiveStepStaysWithinTheExplicitBendingsStability) {
+  Hang h;
+  const ClothMesh mesh = hang_mesh(h);
+  const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
+  SimSettings s = hang_settings(h);
+  s.time_step = adaptive_time_step();
+  for (const double scale : {10.0, 1000.0}) {
+    Material stiffer;
+    stiffer.bend_warp_Nm *= scale;
+    stiffer.bend_weft_Nm *= scale;
+    const Simulator sim(mesh, stiffer, pins, s);
+    const double stable_s = explicit_stable_step_s(sim);
+    if (scale == 10.0) {
+      ASSERT_LT(stable_s, s.time_step.adaptive.max_step_s);
+      ASSERT_GT(stable_s, 1.0 / 120.0);
+      EXPECT_DOUBLE_EQ(sim.adaptive_step()->settings().max_step_s, stable_s);
+      EXPECT_DOUBLE_EQ(sim.time_step(), stable_s);
+    } else {
+      EXPECT_EQ(stable_s, std::numeric_limits<double>::infinity());  // all in the matrix
+      EXPECT_DOUBLE_EQ(sim.adaptive_step()->settings().max_step_s, s.time_step.adaptive.max_step_s);
+    }
+  }
+}
+
 // Implicit Euler's conjugate gradients share the matrix–vector product among threads; the result
 // must be the same bits for any number of threads. 40² vertices: a 4800-row system, large enough to
 // be split.

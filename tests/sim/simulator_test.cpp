@@ -248,7 +248,7 @@ TEST(Simulator, ClothOnASlopeSlidesWithoutFrictionAndStaysWithFrictionAboveTanTh
 }
 
 // Implicit Euler takes the grid's bending into its matrix when explicit bending would be
-// unstable at its step (h² ω² above SimSettings::kExplicitBendingLimit), or when asked.
+// unstable at its step (h ω > 2 with the safety factor, ω over the bending), or when asked.
 TEST(Simulator, BendingEntersTheImplicitStepWhereExplicitBendingWouldBeUnstable) {
   const auto bending_explicit = [](const ClothMesh& mesh, Integrator integrator,
                                    BendingInStep choice) {
