@@ -124,6 +124,9 @@ class Simulator {
   // The adaptive step's controller; null unless simulation.time_step is "adaptive".
   const AdaptiveStep* adaptive_step() const { return m_adaptive.get(); }
   double critical_time_step() const { return m_critical_step_s; }
+  // Implicit Euler: the longest step at which the stiffness left out of its matrix (the grid's
+  // bending, when explicit) is stable, with time_step_safety; infinity when none is left out.
+  double explicit_stable_time_step() const { return m_explicit_stable_step_s; }
   long steps_taken() const { return m_steps; }
   Diagnostics diagnostics() const;
   const PhaseTimers& timers() const { return m_timers; }

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <sstream>
 #include <string>
 
 #include "base/constants.h"
@@ -269,15 +271,23 @@ TEST(Simulator, BendingEntersTheImplicitStepWhereExplicitBendingWouldBeUnstable)
   // The explicit integrators have no matrix: their step follows the critical step instead.
   EXPECT_TRUE(bending_explicit(fine, Integrator::symplectic_euler, BendingInStep::automatic));
   // --explain says which: on the integrate line, or after the bending stencils.
-  const auto explained = [](const ClothMesh& mesh) {
-    SimSettings s;
-    s.integrator = Integrator::implicit_euler;
+  SimSettings implicit;
+  implicit.integrator = Integrator::implicit_euler;
+  const auto explained = [&](const ClothMesh& mesh) {
     std::string all;
-    for (const std::string& line : Simulator(mesh, fabric(1e3), {}, s).explain()) all += line + "\n";
+    for (const std::string& line : Simulator(mesh, fabric(1e3), {}, implicit).explain())
+      all += line + "\n";
     return all;
   };
   const std::string coarse_text = explained(coarse), fine_text = explained(fine);
-  EXPECT_NE(coarse_text.find(", bending explicit"), std::string::npos) << coarse_text;
+  // The limit it prints is the one it uses: far above the step at 16², none at 64².
+  const double coarse_limit_s = Simulator(coarse, fabric(1e3), {}, implicit).explicit_stable_time_step();
+  EXPECT_GT(coarse_limit_s, 5.0 * implicit.implicit_default_step_s);
+  std::ostringstream stated;
+  stated << ", bending explicit (stable at h ≤ " << 1e3 * coarse_limit_s << " ms)";
+  EXPECT_NE(coarse_text.find(stated.str()), std::string::npos) << coarse_text;
+  EXPECT_EQ(Simulator(fine, fabric(1e3), {}, implicit).explicit_stable_time_step(),
+            std::numeric_limits<double>::infinity());
   EXPECT_EQ(coarse_text.find("(stiffness in the step's matrix)"), std::string::npos) << coarse_text;
   EXPECT_EQ(fine_text.find(", bending explicit"), std::string::npos) << fine_text;
   EXPECT_NE(fine_text.find("bending stencils (stiffness in the step's matrix)"), std::string::npos)
