@@ -253,7 +253,7 @@ void ImpactZones::find_patch_candidates(const Matrix3X& x_start, const Matrix3X&
   for (std::size_t p = 0; p < patches.size(); ++p)
     m_patch_moved[p] = std::any_of(patches[p].vertices.begin(), patches[p].vertices.end(), moved);
   m_patches->refit_swept(x_start, x, &m_patch_moved);
-  m_patches->near_pairs(m_eta_m, m_culling, m_patch_pairs, nullptr, &m_patch_moved);
+  m_patches->near_pairs(m_eta_m, m_culling, m_patch_pairs, &m_patch_moved);
   const auto add_vertex_triangle = [&](const SurfacePatch& a, const SurfacePatch& b) {
     const Aabb reach = inflated(b.box, m_eta_m);
     for (const Index v : a.owned_vertices) {

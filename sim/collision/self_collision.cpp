@@ -314,7 +314,7 @@ void SelfCollision::rebuild(const Matrix3X& x) {
           inflated(bounding_box(vertex(x, m_edges[e][0]), vertex(x, m_edges[e][1])), 0.5 * reach_m);
   });
   const double patch_reach_m = std::max(reach_m, marble_reach_m);
-  m_patches.pairs_within(m_watch_m, patch_reach_m, m_culling, m_watched, m_pool.get());
+  m_patches.pairs_within(m_watch_m, patch_reach_m, m_culling, m_watched);
   m_patch_pairs.clear();
   for (const PatchPair& pair : m_watched)
     if (!pair.culled && pair.gap_m <= patch_reach_m) m_patch_pairs.push_back(pair.ids);

@@ -27,8 +27,8 @@
 // likewise. Faster crossings are left to the failsafe after the step's corrections
 // (impact_zones.h); the per-frame intersection count (self_intersection.h) reports any left.
 //
-// Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired by
-// sorting and sweeping their boxes; normal cones drop flat patches and flat pairs of
+// Broad phase: the cloth's 2×2-cell patches (surface_patches.h) are refitted and paired on a
+// grid of their boxes; normal cones drop flat patches and flat pairs of
 // neighbouring patches (cone_culling() says how flat, by how much each is stretched); the
 // remaining patch pairs give the candidate pairs within the contact distance plus a margin,
 // shared out in contiguous runs among `threads` threads and then merged in order. Two

@@ -315,92 +315,50 @@ bool SurfacePatches::union_flat(Index p, Index q, const std::vector<double>& fla
 }
 
 void SurfacePatches::near_pairs(double reach_m, const ConeCulling& culling,
-                                std::vector<std::array<Index, 2>>& pairs, base::ThreadPool* pool,
-                                const std::vector<char>* wanted) const {
-  std::vector<PatchPair> within;
-  pairs_within(reach_m, reach_m, culling, within, pool, wanted);
+                                std::vector<std::array<Index, 2>>& pairs,
+                                const std::vector<char>* wanted) {
+  pairs_within(reach_m, reach_m, culling, m_within, wanted);
   pairs.clear();
-  for (const PatchPair& pair : within)
+  for (const PatchPair& pair : m_within)
     if (!pair.culled) pairs.push_back(pair.ids);
-  std::sort(pairs.begin(), pairs.end());
 }
 
 void SurfacePatches::pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
-                                  std::vector<PatchPair>& pairs, base::ThreadPool* pool,
-                                  const std::vector<char>* wanted) const {
+                                  std::vector<PatchPair>& pairs, const std::vector<char>* wanted) {
   const auto is_wanted = [&](Index p) { return !wanted || (*wanted)[static_cast<std::size_t>(p)]; };
   pairs.clear();
-  if (m_patches.empty()) return;
-  // Sort and sweep (Baraff 1992) along the axis the boxes spread most: the patches are few
-  // and of one size, so this beats hashing them.
-  std::vector<Aabb> boxes;
-  boxes.reserve(m_patches.size());
-  Vec3 lowest = Vec3::Constant(std::numeric_limits<double>::infinity()), highest = -lowest;
-  for (const SurfacePatch& patch : m_patches) {
-    boxes.push_back(inflated(patch.box, 0.5 * watch_m));
-    lowest = lowest.cwiseMin(boxes.back().lo);
-    highest = highest.cwiseMax(boxes.back().lo);
-  }
-  int axis = 0;
-  (highest - lowest).maxCoeff(&axis);
-  std::vector<Index> order(m_patches.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Index>(i);
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
-    const double la = boxes[static_cast<std::size_t>(a)].lo[axis];
-    const double lb = boxes[static_cast<std::size_t>(b)].lo[axis];
-    return la < lb || (la == lb && a < b);
-  });
+  // The boxes grown by half the watch distance overlap where the boxes come within it along
+  // every axis: found on a grid (box_pairs.h), where a sweep along one axis would meet every
+  // patch across the draped cloth at that coordinate.
+  m_grown_boxes.resize(m_patches.size());
+  for (std::size_t i = 0; i < m_patches.size(); ++i)
+    m_grown_boxes[i] = inflated(m_patches[i].box, 0.5 * watch_m);
+  m_box_pairs.find(m_grown_boxes, m_overlaps);
   // Each patch's flat angle, by its least stretch.
-  std::vector<double> flat_angles_rad(m_patches.size());
+  m_flat_angles_rad.resize(m_patches.size());
   bool any_flat = false;
   for (std::size_t i = 0; i < m_patches.size(); ++i) {
-    flat_angles_rad[i] =
+    m_flat_angles_rad[i] =
         m_cone_culling ? culling.flat_angle_rad(reach_m, m_patches[i].least_stretch) : 0.0;
-    any_flat = any_flat || flat_angles_rad[i] > 0.0;
+    any_flat = any_flat || m_flat_angles_rad[i] > 0.0;
   }
-  // The boxes in sweep order, one array per bound: the inner loop reads them in sequence.
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  std::array<std::vector<double>, 6> bound;
-  for (auto& b : bound) b.resize(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Aabb& box = boxes[static_cast<std::size_t>(order[i])];
-    bound[0][i] = box.lo[axis], bound[1][i] = box.hi[axis];
-    bound[2][i] = box.lo[u], bound[3][i] = box.hi[u];
-    bound[4][i] = box.lo[v], bound[5][i] = box.hi[v];
-  }
-  // The sweep's outer loop in contiguous shares; their pairs joined in order.
-  const std::size_t shares = std::clamp<std::size_t>(pool ? pool->size() : 1, 1,
-                                                     std::max<std::size_t>(1, order.size() / 64));
-  std::vector<std::vector<PatchPair>> found(shares);
-  const auto sweep = [&](std::size_t k) {
-    std::vector<PatchPair>& out = found[k];
-    const std::size_t end = base::share_begin(order.size(), shares, k + 1);
-    for (std::size_t i = base::share_begin(order.size(), shares, k); i < end; ++i) {
-      const Index p = order[i];
-      const SurfacePatch& a = m_patches[static_cast<std::size_t>(p)];
-      const bool p_wanted = is_wanted(p);
-      if (p_wanted)
-        out.push_back({{p, p}, 0.0, a.cone_angle_rad < flat_angles_rad[static_cast<std::size_t>(p)]});
-      for (std::size_t j = i + 1; j < order.size() && bound[0][j] <= bound[1][i]; ++j) {
-        if (bound[2][j] > bound[3][i] || bound[2][i] > bound[3][j] || bound[4][j] > bound[5][i] ||
-            bound[4][i] > bound[5][j])
-          continue;
-        const Index q = order[j];
-        if (!p_wanted && !is_wanted(q)) continue;
-        const SurfacePatch& b = m_patches[static_cast<std::size_t>(q)];
-        const double gap_m =
-            std::max(0.0, (b.box.lo - a.box.hi).cwiseMax(a.box.lo - b.box.hi).maxCoeff());
-        const bool culled = any_flat && gap_m <= reach_m && neighbours(p, q) &&
-                            union_flat(p, q, flat_angles_rad);
-        out.push_back({{std::min(p, q), std::max(p, q)}, gap_m, culled});
-      }
+  // The patches against themselves and the overlapping pairs, in the order of their ids.
+  auto overlap = m_overlaps.begin();
+  for (std::size_t i = 0; i < m_patches.size(); ++i) {
+    const auto p = static_cast<Index>(i);
+    const SurfacePatch& a = m_patches[i];
+    if (is_wanted(p)) pairs.push_back({{p, p}, 0.0, a.cone_angle_rad < m_flat_angles_rad[i]});
+    for (; overlap != m_overlaps.end() && (*overlap)[0] == p; ++overlap) {
+      const Index q = (*overlap)[1];
+      if (!is_wanted(p) && !is_wanted(q)) continue;
+      const SurfacePatch& b = m_patches[static_cast<std::size_t>(q)];
+      const double gap_m =
+          std::max(0.0, (b.box.lo - a.box.hi).cwiseMax(a.box.lo - b.box.hi).maxCoeff());
+      const bool culled = any_flat && gap_m <= reach_m && neighbours(p, q) &&
+                          union_flat(p, q, m_flat_angles_rad);
+      pairs.push_back({{p, q}, gap_m, culled});
     }
-  };
-  if (pool)
-    pool->run(shares, sweep);
-  else
-    sweep(0);
-  for (const auto& share : found) pairs.insert(pairs.end(), share.begin(), share.end());
+  }
 }
 
 void SurfacePatches::motions(const Matrix3X& x, const Matrix3X& reference,

@@ -4,8 +4,8 @@
 // vertex and every edge is owned by exactly one patch (the patch of the first triangle that
 // has it). Each rebuild gives a patch its bounding box and its normal cone — the axis of its
 // summed area-weighted normals and the largest angle between that axis and a triangle's
-// normal — then finds the patch pairs that can hold a contact by sorting and sweeping the
-// boxes along one axis, and drops the pairs the normal cones rule out:
+// normal — then finds the patch pairs that can hold a contact, those whose grown boxes overlap
+// (box_pairs.h), and drops the pairs the normal cones rule out:
 //
 //  - a patch whose cone is narrower than its flat angle (ConeCulling) cannot come near
 //    itself, and
@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "base/constants.h"
-#include "base/thread_pool.h"
+#include "sim/collision/box_pairs.h"
 #include "sim/collision/spatial_hash.h"
 #include "sim/grid.h"
 #include "sim/types.h"
@@ -113,19 +113,17 @@ class SurfacePatches {
 
   // The patch pairs (first ≤ second; (p, p) is a patch against itself) whose boxes come
   // within reach_m of each other and that the normal cones do not rule out (`culling`; a
-  // default ConeCulling rules out nothing). Sorted. Call refit first. The threads of `pool`
-  // (base/thread_pool.h; none: this thread alone) sweep; the pairs are the same. With
-  // `wanted` (one flag per patch), only the pairs with a wanted patch.
+  // default ConeCulling rules out nothing). Sorted. Call refit first. With `wanted` (one flag
+  // per patch), only the pairs with a wanted patch.
   void near_pairs(double reach_m, const ConeCulling& culling,
-                  std::vector<std::array<Index, 2>>& pairs, base::ThreadPool* pool = nullptr,
-                  const std::vector<char>* wanted = nullptr) const;
+                  std::vector<std::array<Index, 2>>& pairs,
+                  const std::vector<char>* wanted = nullptr);
   // Every patch pair whose boxes are at most watch_m apart along each axis (a pair left out
   // is farther apart than watch_m), with its gap; those within reach_m (≤ watch_m) that the
-  // cones rule out, as near_pairs() drops them, are marked culled. In the order of a sweep
-  // along one axis, the same for any number of shares. `wanted` as for near_pairs.
+  // cones rule out, as near_pairs() drops them, are marked culled. Sorted. `wanted` as for
+  // near_pairs.
   void pairs_within(double watch_m, double reach_m, const ConeCulling& culling,
-                    std::vector<PatchPair>& pairs, base::ThreadPool* pool = nullptr,
-                    const std::vector<char>* wanted = nullptr) const;
+                    std::vector<PatchPair>& pairs, const std::vector<char>* wanted = nullptr);
 
   // Each patch's motion from `reference` to x (both #V×3), one per patch.
   void motions(const Matrix3X& x, const Matrix3X& reference,
@@ -154,6 +152,12 @@ class SurfacePatches {
   // Per triangle: the inverse of its rest edge matrix in a frame of its own plane, for the
   // deformation gradient F = [x1 − x0, x2 − x0] · m_rest_inverse (3×2).
   std::vector<Eigen::Matrix2d> m_rest_inverse;
+  // pairs_within's scratch: the grown boxes, their overlapping pairs, the flat angles.
+  BoxPairs m_box_pairs;
+  std::vector<Aabb> m_grown_boxes;
+  std::vector<std::array<Index, 2>> m_overlaps;
+  std::vector<double> m_flat_angles_rad;
+  std::vector<PatchPair> m_within;  // near_pairs'
 };
 
 }  // namespace weft::sim
