@@ -134,6 +134,16 @@ void print_header(const Scene& scene, const sim::Simulator& simulator,
                  "of the explicit integrator: the run will probably diverge (lower "
                  "simulation.time_step or use implicit_euler)\n",
                  1e3 * simulator.time_step(), 1e3 * simulator.critical_time_step());
+  // Bending left out of implicit Euler's matrix steps as in symplectic Euler: past its limit
+  // the out-of-plane checkerboard grows where no tension steadies it (docs/models.md).
+  if (scene.sim.integrator == sim::Integrator::implicit_euler &&
+      simulator.time_step() > simulator.explicit_stable_time_step())
+    std::fprintf(stderr,
+                 "weft: warning: the bending is explicit (simulation.bending_in_step \"%s\") at "
+                 "steps of %.3g ms, past its stable %.3g ms: free edges will crumple into a "
+                 "saw-tooth (use \"auto\" or \"implicit\")\n",
+                 base::enum_name(sim::bending_in_step_names, scene.sim.bending_in_step),
+                 1e3 * simulator.time_step(), 1e3 * simulator.explicit_stable_time_step());
   if (const std::string jitter = projection_jitter_warning(scene, simulator.time_step());
       !jitter.empty())
     std::fprintf(stderr, "weft: warning: %s\n", jitter.c_str());

@@ -93,6 +93,30 @@ TEST_F(MessagesCli, AnExplicitStepWithAProjectionThatWouldJitterIsWarnedOf) {
   EXPECT_LT(tight, 1e-5);
 }
 
+// Explicit bending past its limit crumples the free hem (sim's InextensibleCloth tests): the
+// inextensible hang on 96² vertices at 1/120 s is past it (the 1 m wool's limit there is about
+// 5 ms), so forcing "explicit" is warned of up front, and "auto", which then takes the bending
+// into the matrix, is not.
+TEST_F(MessagesCli, ExplicitBendingPastItsStableStepIsWarnedOf) {
+  const auto run = [&](const std::string& bending) {
+    return run_weft("run " + std::string(WEFT_SOURCE_DIR) + "/assets/scenes/hang_inextensible.json" +
+                    " --set cloth.resolution=[96,96] --set simulation.bending_in_step=" + bending +
+                    " --frames 1 --size 64x48 --out " + (m_dir / bending).string());
+  };
+  const auto forced = run("explicit");
+  EXPECT_EQ(forced.exit_code, 0) << forced.output;
+  const std::string warning = "warning: the bending is explicit (simulation.bending_in_step \"explicit\") at steps of 8.33 ms, past its stable ";
+  const std::size_t at = forced.output.find(warning);
+  ASSERT_NE(at, std::string::npos) << forced.output;
+  const double stable_ms = std::stod(forced.output.substr(at + warning.size()));
+  EXPECT_GT(stable_ms, 3.0);
+  EXPECT_LT(stable_ms, 8.33);
+  EXPECT_LT(at, forced.output.find("frame 1/1")) << "warned before the first frame";
+  const auto automatic = run("auto");
+  EXPECT_EQ(automatic.exit_code, 0) << automatic.output;
+  EXPECT_EQ(automatic.output.find("bending is explicit"), std::string::npos) << automatic.output;
+}
+
 // The inextensible hang on 41² vertices with one 1/24 s step per frame and at most 2 projection
 // iterations per step: the predictions lie far from the constraints and nearly every step
 // misses; the adaptive step shortens the steps until 2 iterations do.
