@@ -66,13 +66,20 @@ void BoxPairs::find(const std::vector<Aabb>& boxes, std::vector<std::array<Index
       for (std::int32_t j = r[1]; j <= r[4]; ++j)
         for (std::int32_t i = r[0]; i <= r[3]; ++i) visit(cell_index(i, j, k));
   };
+  m_oversized.clear();
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     auto& r = m_ranges[b];
-    if (!usable(boxes[b])) {
-      r = {0, 0, 0, -1, -1, -1};
+    r = {0, 0, 0, -1, -1, -1};  // no cells
+    if (!usable(boxes[b])) continue;
+    std::array<std::int32_t, 6> range{};
+    for (int k = 0; k < 3; ++k) range[k] = cell_of(boxes[b].lo[k], k), range[k + 3] = cell_of(boxes[b].hi[k], k);
+    std::int64_t cells = 1;
+    for (int k = 0; k < 3; ++k) cells *= range[k + 3] - range[k] + 1;
+    if (cells > max_cells_per_box) {
+      m_oversized.push_back(static_cast<Index>(b));
       continue;
     }
-    for (int k = 0; k < 3; ++k) r[k] = cell_of(boxes[b].lo[k], k), r[k + 3] = cell_of(boxes[b].hi[k], k);
+    r = range;
     for_cells(r, [&](std::size_t c) { ++m_cell_start[c + 1]; });
   }
   for (std::size_t c = 0; c < cell_count; ++c) m_cell_start[c + 1] += m_cell_start[c];
@@ -103,6 +110,15 @@ void BoxPairs::find(const std::vector<Aabb>& boxes, std::vector<std::array<Index
           }
         }
       }
+  // The oversized boxes against every box; a pair of two of them once.
+  for (const Index a : m_oversized)
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+      const auto other = static_cast<Index>(b);
+      if (other == a || !usable(boxes[b]) || !boxes_overlap(boxes[static_cast<std::size_t>(a)], boxes[b]))
+        continue;
+      if (std::binary_search(m_oversized.begin(), m_oversized.end(), other) && other < a) continue;
+      pairs.push_back({std::min(a, other), std::max(a, other)});
+    }
   std::sort(pairs.begin(), pairs.end());
 }
 

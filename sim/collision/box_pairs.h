@@ -6,9 +6,11 @@
 // monotone in it), so the answer is that of testing every pair (tests/sim/box_pairs_test.cpp),
 // at a cost that grows with the boxes and their neighbours rather than with their square.
 //
-// The cells are cubes about as large as the median box, made larger when that would need more
-// than a few cells a box. Boxes that are not finite overlap nothing. Deterministic: the pairs
-// come sorted.
+// The cells are cubes about as large as the median box, made larger when the grid would need
+// more than cells_per_box cells a box. A box over more than max_cells_per_box cells (one far
+// larger than the rest, as a cloth torn across the scene would give) is kept out of the grid and
+// tested against every box, so that no box fills the grid. Boxes that are not finite or have lo
+// above hi overlap nothing. Deterministic: the pairs come sorted.
 
 #include <array>
 #include <cstdint>
@@ -24,8 +26,10 @@ class BoxPairs {
   // The pairs (a, b), a < b, of boxes that overlap (boxes_overlap), sorted, into `pairs`.
   void find(const std::vector<Aabb>& boxes, std::vector<std::array<Index, 2>>& pairs);
 
-  // At most this many cells a box in the grid (the cells grow when the boxes' spread needs more).
+  // The grid has at most this many cells a box (its cells grow when the boxes' spread needs more).
   static constexpr std::size_t cells_per_box = 8;
+  // A box over more cells than this is tested against every box instead.
+  static constexpr std::int64_t max_cells_per_box = 64;
 
  private:
   // Scratch kept between calls: each box's cell range, the cells' starts and their boxes.
@@ -33,6 +37,7 @@ class BoxPairs {
   std::vector<std::int32_t> m_cell_start;
   std::vector<Index> m_entries;
   std::vector<double> m_sizes;
+  std::vector<Index> m_oversized;  // ascending
 };
 
 }  // namespace weft::sim

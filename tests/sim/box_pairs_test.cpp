@@ -1,6 +1,6 @@
 // Overlapping box pairs on a grid (sim/collision/box_pairs.h) against testing every pair: boxes
-// of mixed sizes, boxes that only touch, points, one box far from the rest, a box larger than
-// the grid's cells, and boxes that are not finite.
+// of mixed sizes, boxes that only touch, points, one box far from the rest, boxes far larger
+// than the grid's cells, and boxes that are not finite.
 
 #include <gtest/gtest.h>
 
@@ -54,6 +54,25 @@ TEST(BoxPairs, CountsTouchingBoxesPointsAndOutliersAsTestingEveryPairDoes) {
   grid.find(boxes, found);
   EXPECT_EQ(found, every_overlapping_pair(boxes));
   EXPECT_FALSE(found.empty());
+}
+
+// Boxes far larger than the grid's cells (a torn cloth's patches spanning the scene) stay out
+// of the grid, which would otherwise hold each of them in every cell: each is tested against
+// every box, and a pair of two of them is reported once.
+TEST(BoxPairs, BoxesFarLargerThanTheRestArePairedOnceWithEveryBoxTheyOverlap) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> where(0.0, 1.0);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 600; ++i)
+    boxes.push_back(box_at(Vec3(where(rng), where(rng), where(rng)), Vec3::Constant(0.02)));
+  for (int i = 0; i < 5; ++i)  // overlapping one another and much of the rest
+    boxes.insert(boxes.begin() + 100 * i, box_at(Vec3(0.1 * i, 0.0, 0.0), Vec3(0.6, 1.0, 1.0)));
+  BoxPairs grid;
+  std::vector<std::array<Index, 2>> found;
+  grid.find(boxes, found);
+  const auto expected = every_overlapping_pair(boxes);
+  EXPECT_EQ(found, expected);
+  EXPECT_GT(expected.size(), 5u * 200u);
 }
 
 TEST(BoxPairs, BoxesThatAreNotFiniteOverlapNothing) {
