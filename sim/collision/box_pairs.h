@@ -32,6 +32,19 @@ class BoxPairs {
   static constexpr std::int64_t max_cells_per_box = 64;
 
  private:
+  // The grid over the usable boxes: its corner, cell edge and cells along each axis; false
+  // when fewer than two boxes are usable.
+  bool lay_out(const std::vector<Aabb>& boxes);
+  void enter(const std::vector<Aabb>& boxes);
+  void pair_in_cells(const std::vector<Aabb>& boxes, std::vector<std::array<Index, 2>>& pairs) const;
+  void pair_oversized(const std::vector<Aabb>& boxes, std::vector<std::array<Index, 2>>& pairs) const;
+  std::size_t cell_index(std::int32_t i, std::int32_t j, std::int32_t k) const;
+  template <class Visit>
+  void for_cells(const std::array<std::int32_t, 6>& range, Visit&& visit) const;
+
+  Vec3 m_lo = Vec3::Zero();
+  double m_edge = 1.0;
+  std::array<std::int32_t, 3> m_dims{1, 1, 1};
   // Scratch kept between calls: each box's cell range, the cells' starts and their boxes.
   std::vector<std::array<std::int32_t, 6>> m_ranges;
   std::vector<std::int32_t> m_cell_start;
