@@ -166,17 +166,19 @@ std::vector<int> parse_list(const char* text) {
 }
 
 // The speed targets for fast projection at tol 1e-2 (max strain ≤ 1 %, every step converged),
-// wall time per frame, and the growth exponent of the time with the vertex count between the
-// smallest and the largest size run.
+// CPU time per frame over the whole run (the median frame's wall time hides a frame with a
+// crawling projection), and the growth exponent of the time with the vertex count between the
+// smallest and the largest size run. The targets: 0.1, 0.12 and 0.15 times
+// Blender's cloth at 64², 128² and 256² (bench/cloth_vs_blender.py).
 void print_targets(const std::vector<std::pair<int, Row>>& rows) {
   if (rows.empty()) return;
-  const auto target_ms = [](int n) { return n == 64 ? 17.0 : n == 128 ? 80.0 : n == 256 ? 400.0 : 0.0; };
-  std::printf("\ntargets, fast projection tol 1e-2 (wall ms per frame, median):\n");
+  const auto target_ms = [](int n) { return n == 64 ? 17.0 : n == 128 ? 80.0 : n == 256 ? 500.0 : 0.0; };
+  std::printf("\ntargets, fast projection tol 1e-2 (CPU ms per frame over the run; beside it the median frame's wall ms):\n");
   std::printf("%-6s %10s %8s %8s %11s %7s %s\n", "size", "ms/frame", "cpu ms", "target",
               "max strain", "unconv", "met");  // strain: every frame
   for (const auto& [n, r] : rows) {
     const double target = target_ms(n);
-    const bool met = target > 0.0 && r.ms_per_frame <= target && r.max_strain_every_frame <= 0.01 &&
+    const bool met = target > 0.0 && r.cpu_ms_per_frame <= target && r.max_strain_every_frame <= 0.01 &&
                      r.unconverged == 0;
     std::printf("%-6s %10.1f %8.1f %8.0f %10.4f%% %7ld %s\n", (std::to_string(n) + "²").c_str(),
                 r.ms_per_frame, r.cpu_ms_per_frame, target, 100 * r.max_strain_every_frame, r.unconverged,
