@@ -168,13 +168,14 @@ std::vector<int> parse_list(const char* text) {
 // The speed targets for fast projection at tol 1e-2 (max strain ≤ 1 %, every step converged),
 // CPU time per frame over the whole run (the median frame's wall time hides a frame with a
 // crawling projection), and the growth exponent of the time with the vertex count between the
-// smallest and the largest size run. The targets: 0.1, 0.12 and 0.15 times
-// Blender's cloth at 64², 128² and 256² (bench/cloth_vs_blender.py).
+// smallest and the largest size run. The targets: 0.1, 0.12 and 0.15 times Blender's cloth
+// at 64², 128² and 256² (bench/cloth_vs_blender.py).
 void print_targets(const std::vector<std::pair<int, Row>>& rows) {
   if (rows.empty()) return;
   const auto target_ms = [](int n) { return n == 64 ? 17.0 : n == 128 ? 80.0 : n == 256 ? 500.0 : 0.0; };
-  std::printf("\ntargets, fast projection tol 1e-2 (CPU ms per frame over the run; beside it the median frame's wall ms):\n");
-  std::printf("%-6s %10s %8s %8s %11s %7s %s\n", "size", "ms/frame", "cpu ms", "target",
+  std::printf("\ntargets, fast projection tol 1e-2 (CPU ms per frame over the run, against the "
+              "target; the median frame's wall ms beside it):\n");
+  std::printf("%-6s %10s %8s %8s %11s %7s %s\n", "size", "median ms", "cpu ms", "target",
               "max strain", "unconv", "met");  // strain: every frame
   for (const auto& [n, r] : rows) {
     const double target = target_ms(n);
