@@ -15,7 +15,7 @@ CPU time per frame at 32² was measured at 24–293 ms unpinned against 20 ms pi
 
   python3 bench/cloth_vs_blender.py [--sizes 32,64,128,256] [--frames 48] [--quality 5]
       [--sweep build/bench/inextensibility_sweep] [--blender blender] [--wool-mass]
-      [--preconditioner auto|multigrid|block_jacobi] [--cpu N]
+      [--preconditioner auto|multigrid|lines|block_jacobi] [--cpu N]
 """
 import argparse
 import math
@@ -42,6 +42,8 @@ def sweep_cpu_ms(sweep, n, frames, adaptive, preconditioner, cpu):
         command.append("--multigrid")
     elif preconditioner == "block_jacobi":
         command.append("--block-jacobi")
+    elif preconditioner == "lines":
+        command.append("--lines")
     out = subprocess.run(pinned(command, cpu), check=True, capture_output=True, text=True).stdout
     for line in out.splitlines():
         if line.startswith("%d²" % n) and "fast_projection" in line:
@@ -83,7 +85,7 @@ def main():
     parser.add_argument("--blender", default=shutil.which("blender"))
     parser.add_argument("--wool-mass", action="store_true")
     parser.add_argument("--preconditioner", default="auto",
-                        choices=["auto", "multigrid", "block_jacobi"])
+                        choices=["auto", "multigrid", "lines", "block_jacobi"])
     parser.add_argument("--cpu", type=int, default=(os.cpu_count() or 1) - 1)
     args = parser.parse_args()
     if not os.path.exists(args.sweep):

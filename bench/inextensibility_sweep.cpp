@@ -13,15 +13,15 @@
 //                                     [--cg TOLERANCE] [--quick] [--methods SUBSTRING]
 //                                     [--reuse N] [--threads N] [--frames N] [--no-hold]
 //                                     [--adaptive STRAIN] [--max-step SECONDS]
-//                                     [--block-jacobi | --multigrid] [--bending auto|explicit|implicit]
+//                                     [--block-jacobi | --lines | --multigrid] [--bending auto|explicit|implicit]
 // --reuse: fast projection's CG iterations on a reused factorization (0: a factorization per
 // iteration, the paper's); --threads: implicit Euler's CG threads (0: all); --frames: fewer
 // frames for the largest sizes (the rows then cover only that start); --no-hold: project the
 // top edge between the pins instead of holding it (sim/constraints/taut_chains.h), to measure
 // what holding it buys; --adaptive: fast projection with the adaptive step
 // (sim/adaptive_step.h) aiming its prediction's strain at STRAIN, its steps at most --max-step
-// (default 1/24 s; --step is then unused); --block-jacobi, --multigrid: CG's preconditioner
-// (default: "auto", the multigrid from 150² vertices); --bending: simulation.bending_in_step
+// (default 1/24 s; --step is then unused); --block-jacobi, --lines, --multigrid: CG's preconditioner
+// (default: "auto", the multigrid from 150² vertices, the lines below); --bending: simulation.bending_in_step
 // (default "auto": in implicit Euler's matrix when explicit bending would be unstable at a
 // fixed step, docs/models.md). After the rows, the speed
 // targets for fast projection at tol 1e-2, with the growth exponent.
@@ -214,6 +214,7 @@ bool parse_arguments(int argc, char** argv, std::vector<int>* sizes, Options* op
     else if (!std::strcmp(argv[i], "--max-step") && i + 1 < argc) options->max_step_s = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--block-jacobi")) options->preconditioner = CgPreconditioner::block_jacobi;
     else if (!std::strcmp(argv[i], "--multigrid")) options->preconditioner = CgPreconditioner::multigrid;
+    else if (!std::strcmp(argv[i], "--lines")) options->preconditioner = CgPreconditioner::lines;
     else if (!std::strcmp(argv[i], "--bending") && i + 1 < argc) {
       const auto bending = weft::base::enum_from_name(bending_in_step_names, argv[++i]);
       if (!bending) {
@@ -223,7 +224,7 @@ bool parse_arguments(int argc, char** argv, std::vector<int>* sizes, Options* op
       options->bending = *bending;
     }
     else {
-      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --multigrid] [--bending auto|explicit|implicit]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 32,64,128] [--step SECONDS] [--backend NAME] [--cg TOLERANCE] [--quick] [--methods SUBSTRING] [--reuse N] [--threads N] [--frames N] [--no-hold] [--adaptive STRAIN] [--max-step SECONDS] [--block-jacobi | --lines | --multigrid] [--bending auto|explicit|implicit]\n", argv[0]);
       return false;
     }
   }

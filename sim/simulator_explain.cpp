@@ -55,7 +55,7 @@ std::string Simulator::explain_integrate() const {
     else
       line << ", conjugate gradients to " << m_settings.implicit_cg_tolerance << " ("
            << base::enum_name(cg_preconditioner_names, m_settings.implicit_cg_preconditioner)
-           << ")";
+           << ": " << preconditioner_in_use(m_integrator_settings.implicit_solve) << ")";
     const bool explicit_stiffness =
         std::any_of(m_system.terms.begin(), m_system.terms.end(), [](const auto& term) {
           return term->has_stiffness() && !term->stiffness_in_time_step();

@@ -49,8 +49,10 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
     solver->analyze(assembly.matrix());
   } else {
     cg = std::make_unique<BlockConjugateGradient>(solve.threads);
-    const bool multigrid = uses_multigrid(solve);
-    cg->analyze(assembly.matrix(), multigrid ? solve.grid_nu : 0, multigrid ? solve.grid_nv : 0);
+    using Grid = BlockConjugateGradient::GridPreconditioner;
+    const bool on_grid = uses_multigrid(solve) || uses_lines(solve);
+    cg->analyze(assembly.matrix(), on_grid ? solve.grid_nu : 0, on_grid ? solve.grid_nv : 0,
+                uses_lines(solve) ? Grid::lines : Grid::multigrid);
     last_dv = Eigen::VectorXd::Zero(3 * n);
   }
 }

@@ -55,13 +55,16 @@ inline constexpr base::EnumNames<ImplicitSolve, 2> implicit_solve_names{
     {{ImplicitSolve::direct, "direct"}, {ImplicitSolve::conjugate_gradient, "conjugate_gradient"}}};
 
 // Conjugate gradients' preconditioner (sim/linear/block_conjugate_gradient.h): a multigrid
-// V-cycle on the cloth's warp/weft grid (block Jacobi on a mesh without one), block Jacobi, or
-// automatic: the multigrid on grids of at least kMultigridMinVertices vertices, where it was
-// measured to pay (docs/benchmarks.md, "Multigrid for the implicit step"), block Jacobi below.
-enum class CgPreconditioner { automatic, multigrid, block_jacobi };
-inline constexpr base::EnumNames<CgPreconditioner, 3> cg_preconditioner_names{
+// V-cycle on the cloth's warp/weft grid, exact solves along its lines (grid_line_preconditioner.h;
+// either is block Jacobi on a mesh without a grid), block Jacobi, or automatic: the multigrid on
+// grids of at least kMultigridMinVertices vertices, where it was measured to pay
+// (docs/benchmarks.md, "Multigrid for the implicit step"), the lines on smaller grids
+// ("Line solves for the implicit step"), block Jacobi on triangle meshes.
+enum class CgPreconditioner { automatic, multigrid, lines, block_jacobi };
+inline constexpr base::EnumNames<CgPreconditioner, 4> cg_preconditioner_names{
     {{CgPreconditioner::automatic, "auto"},
      {CgPreconditioner::multigrid, "multigrid"},
+     {CgPreconditioner::lines, "lines"},
      {CgPreconditioner::block_jacobi, "block_jacobi"}}};
 inline constexpr Index kMultigridMinVertices = 150 * 150;
 
@@ -85,6 +88,19 @@ inline bool uses_multigrid(const ImplicitSolveSettings& s) {
   return s.preconditioner == CgPreconditioner::multigrid ||
          (s.preconditioner == CgPreconditioner::automatic &&
           s.grid_nu * s.grid_nv >= kMultigridMinVertices);
+}
+
+// Whether conjugate gradients use the line preconditioner: asked for, or automatic on a grid
+// below the multigrid's size. (Without a grid: block Jacobi.)
+inline bool uses_lines(const ImplicitSolveSettings& s) {
+  return s.grid_nu > 0 && s.grid_nv > 0 &&
+         (s.preconditioner == CgPreconditioner::lines ||
+          (s.preconditioner == CgPreconditioner::automatic && !uses_multigrid(s)));
+}
+
+// The preconditioner conjugate gradients use for these settings, by its scene name.
+inline const char* preconditioner_in_use(const ImplicitSolveSettings& s) {
+  return uses_multigrid(s) && s.grid_nu > 0 ? "multigrid" : uses_lines(s) ? "lines" : "block_jacobi";
 }
 
 struct IntegratorSettings {

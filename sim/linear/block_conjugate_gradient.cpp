@@ -13,7 +13,8 @@ BlockConjugateGradient::BlockConjugateGradient(int threads)
 
 BlockConjugateGradient::~BlockConjugateGradient() = default;
 
-void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, Index grid_nv) {
+void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, Index grid_nv,
+                                     GridPreconditioner grid) {
   m_matrix = BlockSparseMatrix(block_pattern(lower));
   m_source = Sources{};
   m_source.nonzeros = lower.nonZeros();
@@ -27,7 +28,11 @@ void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, I
     }
   m_block_inverse.assign(m_matrix.block_rows(), Eigen::Matrix3d::Identity());
   m_multigrid.reset();
-  if (grid_nu > 0 && grid_nv > 0) {
+  m_line.reset();
+  m_line_ok = false;
+  if (grid_nu > 0 && grid_nv > 0 && grid == GridPreconditioner::lines) {
+    m_line = std::make_unique<GridLinePreconditioner>(m_matrix, grid_nu, grid_nv);
+  } else if (grid_nu > 0 && grid_nv > 0) {
     if (std::optional<GridMultigrid> mg = GridMultigrid::make(m_matrix, grid_nu, grid_nv))
       m_multigrid = std::make_unique<GridMultigrid>(std::move(*mg));
   }
@@ -56,6 +61,7 @@ void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
   if (m_matrix.off_diagonal_blocks() > 0) gather(m_source.off_diagonal, m_matrix.off_diagonal(0));
   m_matrix.invert_diagonal(m_block_inverse);
   if (m_multigrid) m_multigrid->update(m_matrix);
+  if (m_line) m_line_ok = m_line->update(m_matrix);
 }
 
 void BlockConjugateGradient::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
@@ -70,6 +76,10 @@ void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::Vecto
                                           bool multigrid) const {
   if (multigrid) {
     m_multigrid->apply(m_matrix, m_block_inverse, r, z, m_pool.get());
+    return;
+  }
+  if (m_line_ok) {
+    m_line->apply(r, z);
     return;
   }
   for (std::size_t v = 0; v < m_block_inverse.size(); ++v) {

@@ -10,10 +10,13 @@
 // order, so the product — and with the sequential vector updates and dot products, every
 // iterate — is the same bits for any number of threads.
 //
-// On a warp/weft grid (analyze() given its size) the preconditioner is a geometric multigrid
-// V-cycle instead (grid_multigrid.h), whose iteration count does not grow with the
-// resolution; should its cycle not be positive definite for some matrix (a breakdown), that
-// solve is redone with block Jacobi.
+// On a warp/weft grid (analyze() given its size) the preconditioner is instead a geometric
+// multigrid V-cycle (grid_multigrid.h), whose iteration count does not grow with the
+// resolution, or exact solves along the grid's lines in each vertex's shear frame
+// (grid_line_preconditioner.h), which remove the stiff shear and tension couplings at the cost
+// of about one product. Should the cycle not be positive definite for some matrix (a
+// breakdown), that solve is redone with block Jacobi; should a line's factorization fail, that
+// matrix is preconditioned by block Jacobi.
 //
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.
@@ -27,6 +30,7 @@
 
 #include "base/thread_pool.h"
 #include "sim/linear/block_sparse_matrix.h"
+#include "sim/linear/grid_line_preconditioner.h"
 #include "sim/linear/grid_multigrid.h"
 #include "sim/linear/sparse_spd_solver.h"
 
@@ -45,10 +49,12 @@ class BlockConjugateGradient {
   explicit BlockConjugateGradient(int threads);
   ~BlockConjugateGradient();
 
+  enum class GridPreconditioner { multigrid, lines };
   // The pattern of `lower` (square, 3k rows, lower triangle, compressed). Once per pattern.
   // grid_nu × grid_nv = k: the vertices form that warp/weft grid (vertex (i, j) is block row
-  // j·grid_nu + i), and the multigrid preconditions where it can (0 × 0: block Jacobi).
-  void analyze(const SparseMatrix& lower, Index grid_nu = 0, Index grid_nv = 0);
+  // j·grid_nu + i), and `grid` preconditions where it can (0 × 0: block Jacobi).
+  void analyze(const SparseMatrix& lower, Index grid_nu = 0, Index grid_nv = 0,
+               GridPreconditioner grid = GridPreconditioner::multigrid);
   // The values of `lower` (the analysed pattern), the inverses of its 3×3 diagonal blocks and
   // the multigrid's coarse matrices.
   void set_matrix(const SparseMatrix& lower);
@@ -59,8 +65,11 @@ class BlockConjugateGradient {
   // y = A x (y sized like x beforehand).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   const BlockSparseMatrix& matrix() const { return m_matrix; }
-  // The multigrid's levels, the fine grid's included; 0 without one (block Jacobi).
+  // The multigrid's levels, the fine grid's included; 0 without one.
   int multigrid_levels() const;
+  // Whether the last set_matrix() left the line preconditioner in use (false: none, or a
+  // line's factorization failed and block Jacobi preconditions).
+  bool lines_in_use() const { return m_line && m_line_ok; }
 
  private:
   // Where each stored value of the block matrix comes from: its index in the lower triangle's
@@ -79,6 +88,8 @@ class BlockConjugateGradient {
   Sources m_source;
   std::vector<Eigen::Matrix3d> m_block_inverse;  // per vertex
   std::unique_ptr<GridMultigrid> m_multigrid;
+  std::unique_ptr<GridLinePreconditioner> m_line;
+  bool m_line_ok = false;  // the last set_matrix() factored every line
 };
 
 }  // namespace weft::sim

@@ -3,8 +3,8 @@
 // implicit Euler's conjugate gradients (block_conjugate_gradient.h) on grid meshes.
 //
 // Block Jacobi's iteration count grows with the resolution (37, 48, 83 iterations a step at
-// 64², 128², 256² on the two-corner hang), because the string stiffness of a taut cloth couples
-// it over its whole extent, and a point smoother removes only the error that varies from vertex
+// 64², 128², 256² on the two-corner hang), because the shear springs and the string stiffness
+// of a taut cloth couple it over its whole extent (h²k/m grows as the vertex count), and a point smoother removes only the error that varies from vertex
 // to vertex. A grid hierarchy removes the smooth error on coarser grids, where it varies fast:
 //   - level l + 1 keeps every other vertex of level l along warp and weft (nu/2 + 1 of nu: the
 //     last vertex of an even row then has one coarse neighbour beyond it);

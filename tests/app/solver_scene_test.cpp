@@ -257,7 +257,7 @@ TEST(SolverScene, OutOfRange) {
   j["simulation"]["cg_preconditioner"] = "amg";
   EXPECT_EQ(scene_error_of(j),
             "scene.json: simulation.cg_preconditioner: expected one of 'auto', 'multigrid', "
-            "'block_jacobi', got the string 'amg'");
+            "'lines', 'block_jacobi', got the string 'amg'");
   j["simulation"]["implicit_solver"] = "cg";
   EXPECT_CONTAINS(scene_error_of(j), "scene.json: simulation.implicit_solver:");
   EXPECT_CONTAINS(scene_error_of(j), "conjugate_gradient");

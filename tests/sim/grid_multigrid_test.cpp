@@ -14,8 +14,7 @@
 #include "sim/grid.h"
 #include "sim/integrators/time_integrator.h"
 #include "sim/linear/block_conjugate_gradient.h"
-#include "sim/pins.h"
-#include "sim/simulator.h"
+#include "tests/sim/cg_hang.h"
 #include "tests/support/block_grid_matrix.h"
 
 namespace weft::sim {
@@ -182,26 +181,35 @@ TEST(GridMultigrid, NoHierarchyForSmallGridsOrFarCouplings) {
   EXPECT_TRUE(GridMultigrid::make(cg.matrix(), 12, 12));
 }
 
-// "auto" takes the multigrid from 150 × 150 vertices (where it was measured to pay), block
-// Jacobi below and on a triangle mesh (no grid); an explicit choice holds at any size.
+// "auto" takes the multigrid from 150 × 150 vertices (where it was measured to pay), the lines
+// below, and block Jacobi on a triangle mesh (no grid); an explicit choice holds at any size.
 TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   ImplicitSolveSettings s;
   ASSERT_EQ(s.preconditioner, CgPreconditioner::automatic);
   s.grid_nu = s.grid_nv = 149;
   EXPECT_FALSE(uses_multigrid(s));
+  EXPECT_TRUE(uses_lines(s));
   s.grid_nu = s.grid_nv = 150;
   EXPECT_TRUE(uses_multigrid(s));
+  EXPECT_FALSE(uses_lines(s));
   s.grid_nu = 300;
   s.grid_nv = 75;
   EXPECT_TRUE(uses_multigrid(s));
   s.grid_nu = s.grid_nv = 0;
   EXPECT_FALSE(uses_multigrid(s));
-  s.preconditioner = CgPreconditioner::block_jacobi;
+  EXPECT_FALSE(uses_lines(s));
+  s.preconditioner = CgPreconditioner::lines;
+  EXPECT_FALSE(uses_lines(s));
   s.grid_nu = s.grid_nv = 256;
+  EXPECT_TRUE(uses_lines(s));
   EXPECT_FALSE(uses_multigrid(s));
+  s.preconditioner = CgPreconditioner::block_jacobi;
+  EXPECT_FALSE(uses_multigrid(s));
+  EXPECT_FALSE(uses_lines(s));
   s.preconditioner = CgPreconditioner::multigrid;
   s.grid_nu = s.grid_nv = 16;
   EXPECT_TRUE(uses_multigrid(s));
+  EXPECT_FALSE(uses_lines(s));
 }
 
 // Through the simulator: a 33² mass-spring hang stepped by implicit Euler with CG to 1e-9 moves
@@ -209,29 +217,12 @@ TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
 // the multigrid, chosen by name below the automatic threshold, is the one that ran (far fewer
 // iterations).
 TEST(GridMultigrid, TheSimulatorTakesTheSameStepsWithEitherPreconditioner) {
-  GridSpec grid;
-  grid.nu = grid.nv = 33;
-  grid.origin = Vec3(-0.5, 0.0, 1.6);
-  const ClothMesh mesh = make_grid(grid);
-  const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
-  Matrix3X x[2];
-  long iterations[2];
-  for (int k = 0; k < 2; ++k) {
-    SimSettings s;
-    s.integrator = Integrator::implicit_euler;
-    s.time_step = fixed_time_step(1.0 / 120.0);
-    s.implicit_solve = ImplicitSolve::conjugate_gradient;
-    s.implicit_cg_tolerance = 1e-9;
-    s.implicit_cg_preconditioner = k == 0 ? CgPreconditioner::block_jacobi : CgPreconditioner::multigrid;
-    Simulator sim(mesh, Material{}, pins, s);
-    sim.advance(0.1);
-    x[k] = sim.state().x;
-    iterations[k] = sim.take_step_statistics().cg_iterations;
-  }
-  std::printf("33² hang, 12 steps: block Jacobi %ld, multigrid %ld CG iterations\n", iterations[0],
-              iterations[1]);
-  EXPECT_LT((x[0] - x[1]).cwiseAbs().maxCoeff(), 1e-6);
-  EXPECT_LT(2 * iterations[1], iterations[0]);
+  const test_cloth::CgHang jacobi = test_cloth::cg_hang(CgPreconditioner::block_jacobi);
+  const test_cloth::CgHang other = test_cloth::cg_hang(CgPreconditioner::multigrid);
+  std::printf("33² hang, 12 steps: block Jacobi %ld, multigrid %ld CG iterations\n",
+              jacobi.cg_iterations, other.cg_iterations);
+  EXPECT_LT((jacobi.x - other.x).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT(2 * other.cg_iterations, jacobi.cg_iterations);
 }
 
 }  // namespace
