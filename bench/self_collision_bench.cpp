@@ -4,8 +4,8 @@
 // alike. The table gives the medians over repeats of the wall time and of the process's CPU
 // time per frame (24 fps; CPU time is less disturbed by other work on the machine, and counts
 // every thread: self-collision builds its candidate list on --threads threads, 0 for all
-// hardware threads, while the rest of the step runs on one), the step count, the
-// self-contacts per step, the candidate pairs in the list, the broad- and narrow-phase shares
+// hardware threads, while the rest of the step runs on one), the step count, implicit Euler's
+// conjugate-gradient iterations per step (0 with symplectic Euler), the self-contacts per step, the candidate pairs in the list, the broad- and narrow-phase shares
 // of the frame time, the rebuilds of the proximity candidates, the pairs the impact zones test
 // by continuous collision per step (sim/collision/impact_zones.h), the most edge–triangle
 // crossings in a frame (counted outside the timed steps), the steps a projection left above
@@ -16,9 +16,11 @@
 // times.
 //
 // --failsafe-interval S: SelfCollisionSettings::failsafe_interval_s (0: the failsafe every step).
+// --block-jacobi: conjugate gradients preconditioned by block Jacobi instead of "auto" (the
+// lines on this grid).
 //
 // Run: build/bench/self_collision_bench [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0]
-//                                       [--inextensible] [--failsafe-interval 0.001]
+//                                       [--inextensible] [--failsafe-interval 0.001] [--block-jacobi]
 
 #include <algorithm>
 #include <array>
@@ -48,6 +50,7 @@ struct Run {
   double candidates = 0.0;  // candidate pairs in the list, averaged over frames
   Index crossings = 0;      // edge–triangle crossings, the most in a frame (not timed)
   long unconverged_steps = 0;  // steps the projection left above its tolerance
+  long cg_iterations = 0;      // implicit Euler's conjugate gradients, over the run
   double worst_strain = 0.0;   // the largest strain a projection left
 };
 
@@ -57,8 +60,20 @@ double process_cpu_s() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bool inextensible,
-                   double failsafe_interval_s) {
+// How each drop is stepped, besides whether it collides with itself.
+struct DropSettings {
+  Index n = 64;
+  double seconds = 1.5;
+  int threads = 0;
+  bool inextensible = false;
+  double failsafe_interval_s = SelfCollisionSettings{}.failsafe_interval_s;
+  CgPreconditioner preconditioner = CgPreconditioner::automatic;
+};
+
+Run drop_on_sphere(const DropSettings& drop, bool self_collision) {
+  const Index n = drop.n;
+  const double seconds = drop.seconds;
+  const int threads = drop.threads;
   GridSpec grid;
   grid.nu = grid.nv = n;
   grid.origin = Vec3(-0.5, -0.5, 0.72);
@@ -69,12 +84,13 @@ Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bo
   settings.self_collision.enabled = self_collision;
   settings.self_collision.thickness_m = 3e-3;
   settings.self_collision.threads = threads;
-  settings.self_collision.failsafe_interval_s = failsafe_interval_s;
+  settings.self_collision.failsafe_interval_s = drop.failsafe_interval_s;
   settings.solver_threads = threads;
-  if (inextensible) {
+  if (drop.inextensible) {
     settings.integrator = Integrator::implicit_euler;
     settings.implicit_solve = ImplicitSolve::conjugate_gradient;
     settings.implicit_cg_tolerance = 1e-3;
+    settings.implicit_cg_preconditioner = drop.preconditioner;
     settings.projection.method = ProjectionMethod::fast_projection;
   }
   Material wool;  // the defaults: Kang & Yu wool (seed 002)
@@ -95,6 +111,7 @@ Run drop_on_sphere(Index n, double seconds, bool self_collision, int threads, bo
     const StepStatistics s = sim.take_step_statistics();
     r.steps += s.steps;
     r.unconverged_steps += s.unconverged_steps;
+    r.cg_iterations += s.cg_iterations;
     r.worst_strain = std::max(r.worst_strain, s.worst_projected_strain);
     contact_sum += static_cast<double>(s.max_self_contacts);
     if (const SelfCollision* self = sim.self_collision())
@@ -123,47 +140,47 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Index n = 64;
-  double seconds = 1.5;
+  DropSettings drop;
   int repeats = 3;
-  int threads = 0;
-  bool inextensible = false;
-  double failsafe_interval_s = SelfCollisionSettings{}.failsafe_interval_s;
   for (int i = 1; i < argc; ++i) {
     const bool has_value = i + 1 < argc;
-    if (!std::strcmp(argv[i], "--inextensible")) inextensible = true;
-    else if (!std::strcmp(argv[i], "--n") && has_value) n = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--seconds") && has_value) seconds = std::atof(argv[++i]);
+    if (!std::strcmp(argv[i], "--inextensible")) drop.inextensible = true;
+    else if (!std::strcmp(argv[i], "--block-jacobi")) drop.preconditioner = CgPreconditioner::block_jacobi;
+    else if (!std::strcmp(argv[i], "--n") && has_value) drop.n = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--seconds") && has_value) drop.seconds = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--repeats") && has_value) repeats = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--threads") && has_value) threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--threads") && has_value) drop.threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--failsafe-interval") && has_value)
-      failsafe_interval_s = std::atof(argv[++i]);
+      drop.failsafe_interval_s = std::atof(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: %s [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0] [--inextensible] "
-                   "[--failsafe-interval 0.001]\n",
+                   "[--failsafe-interval 0.001] [--block-jacobi]\n",
                    argv[0]);
       return 1;
     }
   }
-  if (n < 2 || seconds <= 0.0 || repeats < 1 || threads < 0 || !(failsafe_interval_s >= 0.0)) {
+  if (drop.n < 2 || drop.seconds <= 0.0 || repeats < 1 || drop.threads < 0 ||
+      !(drop.failsafe_interval_s >= 0.0)) {
     std::fprintf(stderr, "self_collision_bench: need --n >= 2, --seconds > 0, --repeats >= 1, "
                          "--threads >= 0, --failsafe-interval >= 0 (seconds)\n");
     return 1;
   }
   std::vector<Run> off, on;
   for (int k = 0; k < repeats; ++k) {
-    off.push_back(drop_on_sphere(n, seconds, false, threads, inextensible, failsafe_interval_s));
-    on.push_back(drop_on_sphere(n, seconds, true, threads, inextensible, failsafe_interval_s));
+    off.push_back(drop_on_sphere(drop, false));
+    on.push_back(drop_on_sphere(drop, true));
   }
   std::printf("%d^2 cloth dropped on a sphere (%s), %.2f s simulated, %d interleaved repeats "
               "(medians), candidate list on %s\n",
-              n, inextensible ? "fast projection after implicit Euler" : "mass-spring, symplectic Euler",
-              seconds, repeats,
-              threads == 0 ? "all hardware threads" : (std::to_string(threads) + " thread(s)").c_str());
-  std::printf("%-15s %9s %13s %8s %14s %11s %7s %7s %9s %11s %10s %10s %8s\n", "self-collision",
-              "ms/frame", "cpu ms/frame", "steps", "contacts/step", "candidates", "broad", "narrow",
-              "rebuilds", "CCD/step", "crossings", "above tol", "strain");
+              static_cast<int>(drop.n),
+              drop.inextensible ? "fast projection after implicit Euler" : "mass-spring, symplectic Euler",
+              drop.seconds, repeats,
+              drop.threads == 0 ? "all hardware threads"
+                                : (std::to_string(drop.threads) + " thread(s)").c_str());
+  std::printf("%-15s %9s %13s %8s %8s %14s %11s %7s %7s %9s %11s %10s %10s %8s\n", "self-collision",
+              "ms/frame", "cpu ms/frame", "steps", "CG/step", "contacts/step", "candidates", "broad",
+              "narrow", "rebuilds", "CCD/step", "crossings", "above tol", "strain");
   const auto row = [](const char* name, const std::vector<Run>& runs) {
     std::vector<double> ms, cpu_ms, broad, narrow, contacts, candidates;
     for (const Run& r : runs) {
@@ -174,8 +191,10 @@ int main(int argc, char** argv) {
       narrow.push_back(r.narrow_share);
       contacts.push_back(r.contacts_per_step);
     }
-    std::printf("%-15s %9.1f %13.1f %8ld %14.0f %11.0f %6.1f%% %6.1f%% %9ld %11.0f %10d %10ld %7.3f%%\n",
-                name, median(ms), median(cpu_ms), runs.front().steps, median(contacts),
+    std::printf("%-15s %9.1f %13.1f %8ld %8.1f %14.0f %11.0f %6.1f%% %6.1f%% %9ld %11.0f %10d %10ld %7.3f%%\n",
+                name, median(ms), median(cpu_ms), runs.front().steps,
+                static_cast<double>(runs.front().cg_iterations) / static_cast<double>(runs.front().steps),
+                median(contacts),
                 median(candidates), 100.0 * median(broad), 100.0 * median(narrow),
                 runs.front().rebuilds, runs.front().zone_pairs_per_step, runs.back().crossings,
                 runs.back().unconverged_steps, 100.0 * runs.back().worst_strain);

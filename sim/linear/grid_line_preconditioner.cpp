@@ -1,6 +1,7 @@
 #include "sim/linear/grid_line_preconditioner.h"
 
 #include <cmath>
+#include <utility>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -27,22 +28,71 @@ Eigen::Vector3d stiffest_direction(const Eigen::Matrix3d& sum) {
   return norm > 0.0 && std::isfinite(norm) ? Eigen::Vector3d(d / norm) : Eigen::Vector3d::Zero();
 }
 
-// An orthonormal frame whose first axis is a and second b made orthogonal to it; where one of
-// them is zero (a vertex on the border has no coupling along one family), the other keeps its
-// place and the zero one takes an axis orthogonal to it.
-Eigen::Matrix3d frame_of(Eigen::Vector3d a, Eigen::Vector3d b) {
-  if (a.squaredNorm() == 0.0 && b.squaredNorm() == 0.0) return Eigen::Matrix3d::Identity();
+// The orthonormal pair nearest the directions of a and b, and as near the one as the other (the
+// pair's bisectors are theirs): swapping a and b swaps the pair, so a cloth and its mirror image
+// get mirrored frames, and a symmetric scene stays symmetric. Where one of them is zero (a
+// vertex on the border has no coupling along one family) or they are parallel, the other is
+// kept and its partner is any axis orthogonal to it.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> orthonormal_pair(Eigen::Vector3d a, Eigen::Vector3d b) {
+  if (a.squaredNorm() == 0.0 && b.squaredNorm() == 0.0)
+    return {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
   if (a.squaredNorm() == 0.0) {
     b.normalize();
-    a = b.unitOrthogonal();
-  } else {
-    a.normalize();
-    b -= b.dot(a) * a;
-    b = b.squaredNorm() < 1e-6 ? a.unitOrthogonal() : b.normalized();
+    return {b.unitOrthogonal(), b};
   }
+  a.normalize();
+  if (b.squaredNorm() == 0.0) return {a, a.unitOrthogonal()};
+  b.normalize();
+  if (a.dot(b) < 0.0) b = -b;
+  const Eigen::Vector3d u = a + b, w = a - b;
+  if (w.squaredNorm() < 1e-12) return {a, a.unitOrthogonal()};
+  const Eigen::Vector3d un = u.normalized(), wn = w.normalized();
+  return {(un + wn) / std::sqrt(2.0), (un - wn) / std::sqrt(2.0)};
+}
+
+// A frame whose first two axes are the orthonormal pair nearest a and b.
+Eigen::Matrix3d frame_of(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const auto [e1, e2] = orthonormal_pair(a, b);
   Eigen::Matrix3d f;
-  f << a, b, a.cross(b);
+  f << e1, e2, e1.cross(e2);
   return f;
+}
+
+// The frame with the unit axis `kept` in place of the axis nearest it, the other two axes
+// first made orthogonal to it, then the orthonormal pair nearest them: each axis keeps its role
+// (along its family's lines) as far as it can.
+Eigen::Matrix3d frame_keeping(Eigen::Matrix3d f, const Eigen::Vector3d& kept) {
+  Eigen::Index j = 0;
+  (f.transpose() * kept).cwiseAbs().maxCoeff(&j);
+  const Eigen::Index k1 = (j + 1) % 3, k2 = (j + 2) % 3;
+  const Eigen::Vector3d a = f.col(k1) - f.col(k1).dot(kept) * kept;
+  const Eigen::Vector3d b = f.col(k2) - f.col(k2).dot(kept) * kept;
+  auto [e1, e2] = orthonormal_pair(a, b);
+  if (std::abs(e1.dot(kept)) > 1e-6 || std::abs(e2.dot(kept)) > 1e-6) {  // a or b was ~0
+    e1 = kept.unitOrthogonal();
+    e2 = kept.cross(e1);
+  }
+  f.col(j) = kept;
+  f.col(k1) = e1;
+  f.col(k2) = e2;
+  return f;
+}
+
+// Block row p's own stiffness, what does not couple it to other vertices: the sum of its blocks
+// (springs, tension and bending sum to zero along a row, as they do not resist translation),
+// M (1 + h α) plus the penalties that hold contacts (κ n nᵀ, implicit_euler.cpp). Where that is
+// far from isotropic, the axis of its penalty: the vertex's frame must keep it, or the line
+// solves, which drop the coupling of a vertex's components, would drop most of the penalty.
+Eigen::Vector3d penalty_axis(const BlockSparseMatrix& A, std::size_t p) {
+  Eigen::Matrix3d own = Block(A.diagonal(p));
+  for (int k = A.begin(p); k < A.end(p); ++k) own += Block(A.off_diagonal(k));
+  const double mean = own.trace() / 3.0;
+  if (!((own - mean * Eigen::Matrix3d::Identity()).norm() > mean)) return Eigen::Vector3d::Zero();
+  Eigen::Index i = 0;
+  own.diagonal().maxCoeff(&i);
+  const Eigen::Vector3d d = own * (own * own.col(i));  // two power steps
+  const double norm = d.norm();
+  return norm > 0.0 && std::isfinite(norm) ? Eigen::Vector3d(d / norm) : Eigen::Vector3d::Zero();
 }
 
 }  // namespace
@@ -85,12 +135,13 @@ GridLinePreconditioner::GridLinePreconditioner(const BlockSparseMatrix& pattern,
   m_local.resize(3 * n);
 }
 
-// Each vertex's frame: its first axis along the stiffest direction of its couplings along one
-// family of a pair (the warp and weft, or the two diagonals), its second along the other's,
-// made orthogonal. The pair is the one whose couplings are the more directional (the sum of
+// Each vertex's frame: its first two axes the orthonormal pair nearest the stiffest directions
+// of its couplings along the two families of a pair (the warp and weft, or the two diagonals),
+// its third their normal. The pair is the one whose couplings are the more directional (the sum of
 // the deviatoric parts' norms, on a sample of vertices): the shear springs of an inextensible
 // cloth, whose warp and weft carry an isotropic tension; the warp and weft springs of a
-// mass-spring cloth, stiffer than its shear.
+// mass-spring cloth, stiffer than its shear. A contact's penalty takes the place of the axis
+// nearest it.
 void GridLinePreconditioner::update_frames(const BlockSparseMatrix& A) {
   const auto n = static_cast<Index>(m_frame.size());
   const auto coupling_sum = [&](const Family& fam, Index p) {
@@ -109,9 +160,12 @@ void GridLinePreconditioner::update_frames(const BlockSparseMatrix& A) {
     diagonals += directional(m_family[2], p) + directional(m_family[3], p);
   }
   const int first = diagonals >= grid ? 2 : 0;
-  for (Index p = 0; p < n; ++p)
+  for (Index p = 0; p < n; ++p) {
     m_frame[p] = frame_of(stiffest_direction(coupling_sum(m_family[first], p)),
                           stiffest_direction(coupling_sum(m_family[first + 1], p)));
+    const Eigen::Vector3d penalty = penalty_axis(A, static_cast<std::size_t>(p));
+    if (penalty.squaredNorm() > 0.0) m_frame[p] = frame_keeping(m_frame[p], penalty);
+  }
 }
 
 bool GridLinePreconditioner::update(const BlockSparseMatrix& A) {
@@ -128,7 +182,10 @@ bool GridLinePreconditioner::update(const BlockSparseMatrix& A) {
         const Index p = fam.order[k], q = fam.previous_vertex[k];
         weight += std::abs(m_frame[p].col(c).dot(Block(A.off_diagonal(b)) * m_frame[q].col(c)));
       }
-      if (weight > best) best = weight, m_component[c].family = f;
+      if (weight > best) {
+        best = weight;
+        m_component[c].family = f;
+      }
     }
     if (!factor(A, c)) return false;
   }

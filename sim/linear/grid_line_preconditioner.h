@@ -9,15 +9,22 @@
 // conjugate gradients spend their iterations on the rest. But each of these couplings acts
 // along one line of the grid and in one direction: a ↗ diagonal's shear spring pulls along ↗
 // (its block is −h²k d dᵀ at rest), a ↘ one along ↘, tension along its edge, bending across
-// the sheet. So each vertex gets a frame — its first axis along its ↗ shear springs, its
-// second along its ↘ ones made orthogonal, its third the normal; along its warp and weft
-// springs instead where those are the more directional couplings (a mass-spring cloth, whose
-// warp and weft are far stiffer than its shear) — and each of the three
-// components of the displacement in those frames is solved exactly along the lines of one
-// family (u, v, ↗ or ↘: the one whose coupling of that component weighs most), a scalar
-// tridiagonal system per line (the Thomas algorithm). With B the block diagonal over lines of
-// Vᵀ A V (V the frames), the preconditioner is V B⁻¹ Vᵀ: symmetric, and positive definite when
+// the sheet. So each vertex gets a frame: its first two axes the orthonormal pair nearest the
+// axes of its ↗ and ↘ shear springs (as near the one as the other, so that a mirrored cloth
+// gets mirrored frames), its third the normal — or the pair nearest its warp and weft springs,
+// where those are the more directional couplings (a mass-spring cloth, whose warp and weft are
+// far stiffer than its shear). Each of the three components of the displacement in those
+// frames is solved exactly along the lines of one family (u, v, ↗ or ↘: the one whose coupling
+// of that component weighs most), a scalar tridiagonal system per line (the Thomas
+// algorithm). With B the block diagonal over lines of Vᵀ A V (V the frames), the
+// preconditioner is V B⁻¹ Vᵀ: symmetric, and positive definite when
 // every line's pivot is. For a flat sheet held by its shear springs alone it is A⁻¹.
+//
+// The line solves drop what couples a vertex's own components in its frame. A contact that
+// implicit Euler holds by a penalty κ n nᵀ (κ a million times the block's scale) would leave
+// most of itself there, so where a vertex's own stiffness (its block row's sum: what does not
+// couple it to other vertices) is far from isotropic, the axis of that stiffness replaces the
+// frame's axis nearest it.
 //
 // update() costs about as much as a dozen products with A (the frames, the choice of families,
 // the factorization: 11 % of the 64² hang's profile, against 9 % for its ~9 products a step);
