@@ -177,6 +177,8 @@ void Simulator::build_solvers() {
   m_contacts = std::make_unique<ContactsAndConstraints>(m_mesh, m_system.inv_mass, m_settings);
   // The projection's carried tension is one more force term (none before the first projection).
   if (m_contacts->tension_term()) m_system.terms.push_back(m_contacts->tension_term());
+  m_integrator_settings.implicit_solve.edges_constrained =
+      m_settings.projection.method != ProjectionMethod::none;
   m_integrator_settings.implicit_solve.grid_nu = m_mesh.nu;  // 0 × 0 for a triangle mesh
   m_integrator_settings.implicit_solve.grid_nv = m_mesh.nv;
   m_integrator = make_time_integrator(m_settings.integrator, m_system, m_integrator_settings);

@@ -58,8 +58,8 @@ inline constexpr base::EnumNames<ImplicitSolve, 2> implicit_solve_names{
 // V-cycle on the cloth's warp/weft grid, exact solves along its lines (grid_line_preconditioner.h;
 // either is block Jacobi on a mesh without a grid), block Jacobi, or automatic: the multigrid on
 // grids of at least kMultigridMinVertices vertices, where it was measured to pay
-// (docs/benchmarks.md, "Multigrid for the implicit step"), the lines on smaller grids
-// ("Line solves for the implicit step"), block Jacobi on triangle meshes.
+// (docs/benchmarks.md, "Multigrid for the implicit step"), the lines on smaller grids of an
+// inextensible cloth ("Line solves for the implicit step"), block Jacobi otherwise.
 enum class CgPreconditioner { automatic, multigrid, lines, block_jacobi };
 inline constexpr base::EnumNames<CgPreconditioner, 4> cg_preconditioner_names{
     {{CgPreconditioner::automatic, "auto"},
@@ -79,6 +79,9 @@ struct ImplicitSolveSettings {
   CgPreconditioner preconditioner = CgPreconditioner::automatic;
   // The cloth's warp/weft grid, vertex (i, j) at j·grid_nu + i; 0 × 0: none (a triangle mesh).
   Index grid_nu = 0, grid_nv = 0;
+  // Whether the cloth's edges are held by a projection (its shear springs are then the stiffest
+  // couplings in the matrix), which "auto" reads.
+  bool edges_constrained = false;
 };
 
 // Whether conjugate gradients use the multigrid for these settings: asked for, or automatic on
@@ -91,11 +94,13 @@ inline bool uses_multigrid(const ImplicitSolveSettings& s) {
 }
 
 // Whether conjugate gradients use the line preconditioner: asked for, or automatic on a grid
-// below the multigrid's size. (Without a grid: block Jacobi.)
+// below the multigrid's size whose edges are held by a projection, where it was measured to pay
+// (a mass-spring drape ran 1.25 times as long with it). Without a grid: block Jacobi.
 inline bool uses_lines(const ImplicitSolveSettings& s) {
   return s.grid_nu > 0 && s.grid_nv > 0 &&
          (s.preconditioner == CgPreconditioner::lines ||
-          (s.preconditioner == CgPreconditioner::automatic && !uses_multigrid(s)));
+          (s.preconditioner == CgPreconditioner::automatic && s.edges_constrained &&
+           !uses_multigrid(s)));
 }
 
 // The preconditioner conjugate gradients use for these settings, by its scene name.

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -19,6 +20,8 @@
 #include "sim/linear/block_conjugate_gradient.h"
 #include "sim/mass_spring.h"
 #include "sim/material/material.h"
+#include "sim/pins.h"
+#include "sim/simulator.h"
 #include "tests/sim/cg_hang.h"
 #include "tests/support/block_grid_matrix.h"
 #include "tests/support/test_matrices.h"
@@ -235,14 +238,34 @@ TEST(GridLinePreconditioner, GivesTheSameBitsForAnyThreadCount) {
 
 // Through the simulator: a 33² mass-spring hang stepped by implicit Euler with CG to 1e-9 moves
 // the same with block Jacobi and the lines (the solution does not depend on the path to it),
-// and the lines, which "auto" takes on this grid, need far fewer iterations.
+// and the lines need far fewer iterations.
 TEST(GridLinePreconditioner, TheSimulatorTakesTheSameStepsAsWithBlockJacobi) {
   const test_cloth::CgHang jacobi = test_cloth::cg_hang(CgPreconditioner::block_jacobi);
-  const test_cloth::CgHang other = test_cloth::cg_hang(CgPreconditioner::automatic);
+  const test_cloth::CgHang other = test_cloth::cg_hang(CgPreconditioner::lines);
   std::printf("33² hang, 12 steps: block Jacobi %ld, lines %ld CG iterations\n",
               jacobi.cg_iterations, other.cg_iterations);
   EXPECT_LT((jacobi.x - other.x).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_LT(2 * other.cg_iterations, jacobi.cg_iterations);
+}
+
+// "auto" gives an inextensible cloth on a grid the lines, a mass-spring cloth block Jacobi
+// (where the lines were measured slower), and the simulator says which it took.
+TEST(GridLinePreconditioner, AutoTakesTheLinesForAnInextensibleCloth) {
+  GridSpec grid;
+  grid.nu = grid.nv = 12;
+  const ClothMesh mesh = make_grid(grid);
+  const auto pins = resolve_pins({PinCorner{"u0v1"}, PinCorner{"u1v1"}}, mesh);
+  for (const bool inextensible : {true, false}) {
+    SimSettings s;
+    s.integrator = Integrator::implicit_euler;
+    s.implicit_solve = ImplicitSolve::conjugate_gradient;
+    if (inextensible) s.projection.method = ProjectionMethod::fast_projection;
+    const Simulator sim(mesh, Material{}, pins, s);
+    const std::string expected = inextensible ? "(auto: lines)" : "(auto: block_jacobi)";
+    bool found = false;
+    for (const std::string& line : sim.explain()) found = found || line.find(expected) != std::string::npos;
+    EXPECT_TRUE(found) << expected;
+  }
 }
 
 }  // namespace

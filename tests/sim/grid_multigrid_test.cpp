@@ -182,12 +182,15 @@ TEST(GridMultigrid, NoHierarchyForSmallGridsOrFarCouplings) {
 }
 
 // "auto" takes the multigrid from 150 × 150 vertices (where it was measured to pay), the lines
-// below, and block Jacobi on a triangle mesh (no grid); an explicit choice holds at any size.
+// below when the cloth's edges are held by a projection, block Jacobi otherwise and on a
+// triangle mesh (no grid); an explicit choice holds at any size.
 TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   ImplicitSolveSettings s;
   ASSERT_EQ(s.preconditioner, CgPreconditioner::automatic);
   s.grid_nu = s.grid_nv = 149;
   EXPECT_FALSE(uses_multigrid(s));
+  EXPECT_FALSE(uses_lines(s));  // a mass-spring cloth
+  s.edges_constrained = true;
   EXPECT_TRUE(uses_lines(s));
   s.grid_nu = s.grid_nv = 150;
   EXPECT_TRUE(uses_multigrid(s));
