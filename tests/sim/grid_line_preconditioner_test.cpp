@@ -123,11 +123,12 @@ Eigen::MatrixXd dense_preconditioner(const SparseMatrix& A, Index n) {
   return B;
 }
 
-// On a generic grid matrix (random SPD blocks on every edge, one diagonal and two-step
+// On a generic grid matrix (random SPD blocks on every edge, both diagonals and two-step
 // couplings) the preconditioner, as a dense matrix, is symmetric and positive definite.
 TEST(GridLinePreconditioner, IsSymmetricPositiveDefinite) {
   const int n = 7;
-  const Eigen::MatrixXd B = dense_preconditioner(test_matrices::grid_system(n, 0.05, 21, 1.0, true), n);
+  const Eigen::MatrixXd B =
+      dense_preconditioner(test_matrices::grid_system(n, 0.05, 21, 1.0, true, true), n);
   EXPECT_LT((B - B.transpose()).cwiseAbs().maxCoeff(), 1e-12 * B.cwiseAbs().maxCoeff());
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (B + B.transpose()));
   EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
@@ -138,7 +139,7 @@ TEST(GridLinePreconditioner, IsSymmetricPositiveDefinite) {
 // trade places, and a symmetric scene is not pushed to one side by its solves.
 TEST(GridLinePreconditioner, IsTheMirrorImageOfItsMirroredMatrix) {
   const int n = 7;
-  const SparseMatrix A = test_matrices::grid_system(n, 0.05, 31, 1.0, true);
+  const SparseMatrix A = test_matrices::grid_system(n, 0.05, 31, 1.0, true, true);
   std::vector<Eigen::Triplet<double>> q;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)

@@ -13,11 +13,11 @@
 namespace weft::sim::test_matrices {
 
 // n×n vertices (vertex (i, j) at j·n + i), a random SPD 3×3 block H on each grid edge and
-// diagonal (a spring's [H −H; −H H]) scaled by `stiffness`, and, with `reach2`, on each pair two
-// steps apart along warp or weft (a bending spring's coupling), plus `mass` on the diagonal.
-// The full matrix.
+// diagonal (a spring's [H −H; −H H]) scaled by `stiffness`, with `both_diagonals` on each
+// cell's other diagonal too, and, with `reach2`, on each pair two steps apart along warp or
+// weft (a bending spring's coupling), plus `mass` on the diagonal. The full matrix.
 inline SparseMatrix grid_system(int n, double mass, unsigned seed, double stiffness = 1.0,
-                                bool reach2 = false) {
+                                bool reach2 = false, bool both_diagonals = false) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Eigen::Triplet<double, int>> t;
@@ -41,6 +41,7 @@ inline SparseMatrix grid_system(int n, double mass, unsigned seed, double stiffn
       if (i + 1 < n) spring(v, v + 1);
       if (j + 1 < n) spring(v, v + n);
       if (i + 1 < n && j + 1 < n) spring(v, v + n + 1);
+      if (both_diagonals && i > 0 && j + 1 < n) spring(v, v + n - 1);
       if (reach2 && i + 2 < n) spring(v, v + 2);
       if (reach2 && j + 2 < n) spring(v, v + 2 * n);
     }
