@@ -112,7 +112,8 @@ void ContactsAndConstraints::record(const ProjectionResult& r, StepStatistics& s
 // up to kHeldRounds times; the impact zones always come last, so no crossing is left. The
 // projector of these projections is made once and given the held vertices at each round
 // (set_inverse_masses: fast projection keeps its analysis); it starts each step afresh, so
-// nothing of it carries from one step to the next.
+// nothing of it carries from one step to the next. If the last round's zones moved again,
+// the edges they stretched are taken into them (absorb_stretched) without a projection.
 void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats) {
   ImpactZoneCounts counts = m_zones->resolve(x_start, m_inv_mass, x);
   long most = counts.zone_vertices;
@@ -136,21 +137,47 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
       // zone that moves rigidly with them keeps those edges at their start length. Those are
       // the edges leaving a zone, and where the projection stalled (two zones pulling the
       // free cloth between them apart), also edges between free vertices.
-      std::vector<std::array<Index, 2>> stretched;
-      if (m_settings.projection.method == ProjectionMethod::fast_projection)
-        for (const EdgeConstraint& c : m_held_projector->constraints())
-          if ((held[c.a] != 0.0 || held[c.b] != 0.0) &&
-              std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)) >
-                  m_settings.projection.tolerance)
-            stretched.push_back({c.a, c.b});
+      const std::vector<std::array<Index, 2>> stretched = stretched_edges(held, x);
       m_zones->absorb(stretched);
       counts = m_zones->resolve(x_start, m_inv_mass, x, /*grow=*/true);
       if (!stretched.empty()) counts.collisions += static_cast<long>(stretched.size());
       most = std::max(most, counts.zone_vertices);
     }
+    if (counts.collisions > 0) counts = absorb_stretched(x_start, x, counts);
+    most = std::max(most, counts.zone_vertices);
   }
   stats.max_impact_zone_vertices = std::max(stats.max_impact_zone_vertices, most);
   if (!counts.resolved) ++stats.unresolved_impact_steps;
+}
+
+std::vector<std::array<Index, 2>> ContactsAndConstraints::stretched_edges(
+    const Eigen::VectorXd& held, const Matrix3X& x) const {
+  std::vector<std::array<Index, 2>> stretched;
+  if (m_settings.projection.method != ProjectionMethod::fast_projection) return stretched;
+  for (const EdgeConstraint& c : m_projector->constraints())
+    if ((held[c.a] != 0.0 || held[c.b] != 0.0) &&
+        std::abs(edge_strain(x.row(c.a), x.row(c.b), c.rest_m)) > m_settings.projection.tolerance)
+      stretched.push_back({c.a, c.b});
+  return stretched;
+}
+
+// The held rounds ran out with zones that moved again after the last projection. Each edge
+// they left beyond the tolerance joins its zone, which moves rigidly anew, until none is left
+// or the zones stop growing (an edge to a pin, which keeps its own motion). The zones can only
+// grow, and a zone that took in a whole piece of cloth moves it rigidly from its start: its
+// edges keep their start lengths and it crosses nothing.
+ImpactZoneCounts ContactsAndConstraints::absorb_stretched(const Matrix3X& x_start, Matrix3X& x,
+                                                          ImpactZoneCounts counts) {
+  for (;;) {
+    Eigen::VectorXd held = m_inv_mass;
+    for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
+    const std::vector<std::array<Index, 2>> stretched = stretched_edges(held, x);
+    if (stretched.empty()) return counts;
+    const long before = counts.zone_vertices;
+    m_zones->absorb(stretched);
+    counts = m_zones->resolve(x_start, m_inv_mass, x, /*grow=*/true);
+    if (counts.zone_vertices <= before) return counts;
+  }
 }
 
 // Obstacle push-out, with Coulomb friction against the displacement since the start of the

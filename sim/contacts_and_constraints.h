@@ -11,6 +11,7 @@
 // inextensible sphere drape: 30 % strain). Friction acts in the first push-out only: later ones
 // would drag contact vertices back toward their start positions.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,6 +74,11 @@ class ContactsAndConstraints {
   bool collide(const Matrix3X& x_start, Matrix3X& x, bool with_friction, StepStatistics& stats);
   // The failsafe after the last correction: rigid impact zones over x_start → x.
   void failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats);
+  // The edges with a free end (held: inverse masses, 0 in a zone or at a pin) beyond fast
+  // projection's tolerance at x; none for other projections.
+  std::vector<std::array<Index, 2>> stretched_edges(const Eigen::VectorXd& held,
+                                                    const Matrix3X& x) const;
+  ImpactZoneCounts absorb_stretched(const Matrix3X& x_start, Matrix3X& x, ImpactZoneCounts counts);
   static void record(const ProjectionResult& r, StepStatistics& stats);  // a step's, summed
   static constexpr int kContactRounds = 2;  // push-outs between projections, per step
   static constexpr int kHeldRounds = 10;    // projections with the impact zones held, per step
