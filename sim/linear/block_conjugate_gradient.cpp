@@ -59,9 +59,11 @@ void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
   };
   gather(m_source.diagonal, m_matrix.diagonal(0));
   if (m_matrix.off_diagonal_blocks() > 0) gather(m_source.off_diagonal, m_matrix.off_diagonal(0));
-  m_matrix.invert_diagonal(m_block_inverse);
-  if (m_multigrid) m_multigrid->update(m_matrix);
+  // The line solves, where they can be factored, take the place of block Jacobi, whose
+  // inverses are then not needed.
   if (m_line) m_line_ok = m_line->update(m_matrix);
+  if (!m_line_ok) m_matrix.invert_diagonal(m_block_inverse);
+  if (m_multigrid) m_multigrid->update(m_matrix);
 }
 
 void BlockConjugateGradient::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
