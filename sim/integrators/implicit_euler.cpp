@@ -51,8 +51,10 @@ ImplicitEuler::Impl::Impl(const System& system, const ImplicitSolveSettings& sol
     cg = std::make_unique<BlockConjugateGradient>(solve.threads);
     using Grid = BlockConjugateGradient::GridPreconditioner;
     const bool on_grid = uses_multigrid(solve) || uses_lines(solve);
-    cg->analyze(assembly.matrix(), on_grid ? solve.grid_nu : 0, on_grid ? solve.grid_nv : 0,
-                uses_lines(solve) ? Grid::lines : Grid::multigrid);
+    const Grid grid = !uses_lines(solve)     ? Grid::multigrid
+                      : lines_when_slow(solve) ? Grid::lines_when_slow
+                                               : Grid::lines;
+    cg->analyze(assembly.matrix(), on_grid ? solve.grid_nu : 0, on_grid ? solve.grid_nv : 0, grid);
     last_dv = Eigen::VectorXd::Zero(3 * n);
   }
 }

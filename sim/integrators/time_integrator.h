@@ -103,9 +103,18 @@ inline bool uses_lines(const ImplicitSolveSettings& s) {
            !uses_multigrid(s)));
 }
 
-// The preconditioner conjugate gradients use for these settings, by its scene name.
+// Whether the lines are taken only for the solves block Jacobi would make slow
+// (BlockConjugateGradient::GridPreconditioner::lines_when_slow): when "auto" takes them.
+inline bool lines_when_slow(const ImplicitSolveSettings& s) {
+  return uses_lines(s) && s.preconditioner == CgPreconditioner::automatic;
+}
+
+// The preconditioner conjugate gradients use for these settings, by its scene name ("lines"
+// where "auto" takes them for the slow solves only: "block_jacobi, lines when slow").
 inline const char* preconditioner_in_use(const ImplicitSolveSettings& s) {
-  return uses_multigrid(s) && s.grid_nu > 0 ? "multigrid" : uses_lines(s) ? "lines" : "block_jacobi";
+  if (uses_multigrid(s) && s.grid_nu > 0) return "multigrid";
+  if (lines_when_slow(s)) return "block_jacobi, lines when slow";
+  return uses_lines(s) ? "lines" : "block_jacobi";
 }
 
 struct IntegratorSettings {

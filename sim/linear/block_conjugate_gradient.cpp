@@ -30,7 +30,8 @@ void BlockConjugateGradient::analyze(const SparseMatrix& lower, Index grid_nu, I
   m_multigrid.reset();
   m_line.reset();
   m_line_ok = false;
-  if (grid_nu > 0 && grid_nv > 0 && grid == GridPreconditioner::lines) {
+  m_line_when_slow = grid == GridPreconditioner::lines_when_slow;
+  if (grid_nu > 0 && grid_nv > 0 && grid != GridPreconditioner::multigrid) {
     m_line = std::make_unique<GridLinePreconditioner>(m_matrix, grid_nu, grid_nv);
   } else if (grid_nu > 0 && grid_nv > 0) {
     if (std::optional<GridMultigrid> mg = GridMultigrid::make(m_matrix, grid_nu, grid_nv))
@@ -60,8 +61,10 @@ void BlockConjugateGradient::set_matrix(const SparseMatrix& lower) {
   gather(m_source.diagonal, m_matrix.diagonal(0));
   if (m_matrix.off_diagonal_blocks() > 0) gather(m_source.off_diagonal, m_matrix.off_diagonal(0));
   // The line solves, where they can be factored, take the place of block Jacobi, whose
-  // inverses are then not needed.
-  if (m_line) m_line_ok = m_line->update(m_matrix);
+  // inverses are then not needed; with lines_when_slow, solve() sets them up when it needs them.
+  m_line_ok = false;
+  m_line_current = false;
+  if (m_line && !m_line_when_slow) m_line_ok = m_line->update(m_matrix);
   if (!m_line_ok) m_matrix.invert_diagonal(m_block_inverse);
   if (m_multigrid) m_multigrid->update(m_matrix);
 }
@@ -75,12 +78,12 @@ int BlockConjugateGradient::multigrid_levels() const {
 }
 
 void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z,
-                                          bool multigrid) const {
-  if (multigrid) {
+                                          Preconditioner which) const {
+  if (which == Preconditioner::multigrid) {
     m_multigrid->apply(m_matrix, m_block_inverse, r, z, m_pool.get());
     return;
   }
-  if (m_line_ok) {
+  if (which == Preconditioner::lines) {
     m_line->apply(r, z);
     return;
   }
@@ -92,32 +95,48 @@ void BlockConjugateGradient::precondition(const Eigen::VectorXd& r, Eigen::Vecto
 
 BlockConjugateGradient::Result BlockConjugateGradient::solve(const Eigen::VectorXd& b,
                                                              Eigen::VectorXd& x, double tolerance,
-                                                             int max_iterations) const {
+                                                             int max_iterations) {
   WEFT_CHECK(b.size() == 3 * static_cast<Eigen::Index>(m_block_inverse.size()),
              "BlockConjugateGradient::solve: right-hand side has " + std::to_string(b.size()) +
                  " rows, expected " + std::to_string(3 * m_block_inverse.size()));
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
-  if (!m_multigrid) return iterate(b, x, tolerance, max_iterations, false);
+  if (m_line && m_line_when_slow) {
+    const Iteration probe =
+        iterate(b, x, tolerance, max_iterations, Preconditioner::block_jacobi, kProbeIterations);
+    if (!probe.slow) return probe.result;
+    if (!m_line_current) {
+      m_line_ok = m_line->update(m_matrix);
+      m_line_current = true;
+    }
+    Result rest = iterate(b, x, tolerance, max_iterations - probe.result.iterations,
+                          m_line_ok ? Preconditioner::lines : Preconditioner::block_jacobi)
+                      .result;
+    rest.iterations += probe.result.iterations;
+    return rest;
+  }
+  if (m_line_ok) return iterate(b, x, tolerance, max_iterations, Preconditioner::lines).result;
+  if (!m_multigrid)
+    return iterate(b, x, tolerance, max_iterations, Preconditioner::block_jacobi).result;
   const Eigen::VectorXd guess = x;
-  const Result result = iterate(b, x, tolerance, max_iterations, true);
+  const Result result = iterate(b, x, tolerance, max_iterations, Preconditioner::multigrid).result;
   if (!result.breakdown) return result;
   x = guess;  // the cycle was not positive definite for this matrix: block Jacobi instead
-  return iterate(b, x, tolerance, max_iterations, false);
+  return iterate(b, x, tolerance, max_iterations, Preconditioner::block_jacobi).result;
 }
 
-BlockConjugateGradient::Result BlockConjugateGradient::iterate(const Eigen::VectorXd& b,
-                                                               Eigen::VectorXd& x, double tolerance,
-                                                               int max_iterations,
-                                                               bool multigrid) const {
-  Result result;
+BlockConjugateGradient::Iteration BlockConjugateGradient::iterate(
+    const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance, int max_iterations,
+    Preconditioner preconditioner, int probe) const {
+  Iteration out;
+  Result& result = out.result;
   const double b_norm2 = b.squaredNorm();
   if (!std::isfinite(b_norm2)) {
     result.breakdown = true;
-    return result;
+    return out;
   }
   if (b_norm2 == 0.0) {
     x.setZero();
-    return result;
+    return out;
   }
   const double threshold = tolerance * tolerance * b_norm2;
   Eigen::VectorXd r(b.size()), z(b.size()), p(b.size()), q(b.size());
@@ -126,10 +145,11 @@ BlockConjugateGradient::Result BlockConjugateGradient::iterate(const Eigen::Vect
   double r_norm2 = r.squaredNorm();
   if (!std::isfinite(r_norm2)) {  // a non-finite matrix entry or guess
     result.breakdown = true;
-    return result;
+    return out;
   }
+  const double start_norm2 = r_norm2;
   if (r_norm2 > threshold) {
-    precondition(r, z, multigrid);
+    precondition(r, z, preconditioner);
     p = z;
     double rz = r.dot(z);
     while (result.iterations < max_iterations) {
@@ -149,14 +169,28 @@ BlockConjugateGradient::Result BlockConjugateGradient::iterate(const Eigen::Vect
       r -= alpha * q;
       r_norm2 = r.squaredNorm();
       if (r_norm2 <= threshold) break;
-      precondition(r, z, multigrid);
+      if (result.iterations == probe && slow(start_norm2, r_norm2, threshold, probe)) {
+        out.slow = true;
+        break;
+      }
+      precondition(r, z, preconditioner);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
     }
   }
   result.relative_residual = std::sqrt(r_norm2 / b_norm2);
-  return result;
+  return out;
+}
+
+// Whether the mean rate of decrease of the residual's norm over the first `done` iterations,
+// from start_norm2 to now_norm2 (squared norms), would take more than kSlowIterations in all to
+// reach threshold (a squared norm).
+bool BlockConjugateGradient::slow(double start_norm2, double now_norm2, double threshold,
+                                  int done) {
+  const double rate = std::log(now_norm2 / start_norm2) / done;  // < 0 where it decreases
+  if (!(rate < 0.0)) return true;
+  return done + std::log(threshold / now_norm2) / rate > kSlowIterations;
 }
 
 }  // namespace weft::sim

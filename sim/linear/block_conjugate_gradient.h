@@ -18,6 +18,15 @@
 // breakdown), that solve is redone with block Jacobi; should a line's factorization fail, that
 // matrix is preconditioned by block Jacobi.
 //
+// The lines cost about a dozen products to set up and one to apply, against a fifth of one for
+// block Jacobi: they pay where block Jacobi would take many iterations (a taut hanging cloth
+// at a time step of 1/120 s: 37 at 64²), and cost time where it takes few (the shorter steps of
+// a drape: about 4). With GridPreconditioner::lines_when_slow each solve starts with block
+// Jacobi; after kProbeIterations, if the residual's mean rate of decrease so far predicts more
+// than kSlowIterations in all, the lines are set up and the solve goes on with them from the
+// iterate reached. The first iterations remove the error fastest: on the 64² hang the rate of
+// the first four predicted 9–30 iterations where the solves took 36–59, hence the low bar.
+//
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.
 
@@ -49,7 +58,9 @@ class BlockConjugateGradient {
   explicit BlockConjugateGradient(int threads);
   ~BlockConjugateGradient();
 
-  enum class GridPreconditioner { multigrid, lines };
+  enum class GridPreconditioner { multigrid, lines, lines_when_slow };
+  static constexpr int kProbeIterations = 6;
+  static constexpr int kSlowIterations = 10;
   // The pattern of `lower` (square, 3k rows, lower triangle, compressed). Once per pattern.
   // grid_nu × grid_nv = k: the vertices form that warp/weft grid (vertex (i, j) is block row
   // j·grid_nu + i), and `grid` preconditions where it can (0 × 0: block Jacobi).
@@ -60,7 +71,7 @@ class BlockConjugateGradient {
   void set_matrix(const SparseMatrix& lower);
   // From the initial guess x (resized to b's size and zeroed if its size differs).
   Result solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
-               int max_iterations) const;
+               int max_iterations);
 
   // y = A x (y sized like x beforehand).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -68,7 +79,8 @@ class BlockConjugateGradient {
   // The multigrid's levels, the fine grid's included; 0 without one.
   int multigrid_levels() const;
   // Whether the last set_matrix() left the line preconditioner in use (false: none, or a
-  // line's factorization failed and block Jacobi preconditions).
+  // line's factorization failed and block Jacobi preconditions); with lines_when_slow, whether
+  // the last solve went on with them.
   bool lines_in_use() const { return m_line && m_line_ok; }
 
  private:
@@ -79,9 +91,17 @@ class BlockConjugateGradient {
     Eigen::Index nonzeros = 0;                // of the analysed lower triangle
     int& at(const BlockSparseMatrix& matrix, int row, int col);
   };
-  Result iterate(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
-                 int max_iterations, bool multigrid) const;
-  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z, bool multigrid) const;
+  enum class Preconditioner { block_jacobi, multigrid, lines };
+  // probe > 0: after `probe` iterations, stop (slow) if the rate so far predicts more
+  // than kSlowIterations.
+  struct Iteration {
+    Result result;
+    bool slow = false;
+  };
+  Iteration iterate(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                    int max_iterations, Preconditioner preconditioner, int probe = 0) const;
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z, Preconditioner which) const;
+  static bool slow(double start_norm2, double now_norm2, double threshold, int done);
 
   std::unique_ptr<base::ThreadPool> m_pool;
   BlockSparseMatrix m_matrix;
@@ -90,6 +110,8 @@ class BlockConjugateGradient {
   std::unique_ptr<GridMultigrid> m_multigrid;
   std::unique_ptr<GridLinePreconditioner> m_line;
   bool m_line_ok = false;  // the last set_matrix() factored every line
+  bool m_line_when_slow = false;  // GridPreconditioner::lines_when_slow
+  bool m_line_current = false;    // … and the lines were set up for the current matrix
 };
 
 }  // namespace weft::sim

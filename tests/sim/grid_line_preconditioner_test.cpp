@@ -33,11 +33,13 @@ using Grid = BlockConjugateGradient::GridPreconditioner;
 using test_matrices::lower_triangle;
 using test_matrices::random_vector;
 
-// Conjugate gradients on the full matrix A of an nu × nv grid, with the lines or block Jacobi.
+// Conjugate gradients on the full matrix A of an nu × nv grid, with the lines (`grid`) or block
+// Jacobi.
 std::unique_ptr<BlockConjugateGradient> prepared(const SparseMatrix& A, Index nu, Index nv,
-                                                 bool lines, int threads = 1) {
+                                                 bool lines, int threads = 1,
+                                                 Grid grid = Grid::lines) {
   auto cg = std::make_unique<BlockConjugateGradient>(threads);
-  cg->analyze(lower_triangle(A), lines ? nu : 0, lines ? nv : 0, Grid::lines);
+  cg->analyze(lower_triangle(A), lines ? nu : 0, lines ? nv : 0, grid);
   cg->set_matrix(lower_triangle(A));
   return cg;
 }
@@ -209,6 +211,36 @@ TEST(GridLinePreconditioner, NeedsFewerIterationsThanBlockJacobiOnAStiffCloth) {
   EXPECT_LT((y - exact).norm() / exact.norm(), 1e-6);
 }
 
+// lines_when_slow: on the stiff cloth above (block Jacobi: over 100 iterations) the probe's
+// rate sends the solve on to the lines, and it ends in fewer than half block Jacobi's
+// iterations; with a step 15 times shorter (h²k/m 225 times smaller) block Jacobi converges
+// in 9 iterations, past the probe's 6: the lines are not set up, and the solve is block
+// Jacobi's, to the bit.
+TEST(GridLinePreconditioner, WhenSlowTakesTheLinesOnlyWhereBlockJacobiWouldBeSlow) {
+  const Index n = 48;
+  const test_matrices::ClothSample sample = test_matrices::make_cloth_sample(n, 3, 0.05);
+  const Eigen::VectorXd b = random_vector(3 * n * n, 4);
+  for (const double h_s : {1.0 / 120.0, 1.0 / 1800.0}) {
+    const SparseMatrix A = inextensible_matrix(sample, h_s, 41.0, 4.1);
+    Eigen::VectorXd x, y;
+    const auto cg = prepared(A, n, n, true, 1, Grid::lines_when_slow);
+    const auto when_slow = cg->solve(b, x, 1e-8, 2000);
+    const auto jacobi = prepared(A, n, n, false)->solve(b, y, 1e-8, 2000);
+    std::printf("cloth 48², h = %.5f s: lines when slow %d, block Jacobi %d iterations\n", h_s,
+                when_slow.iterations, jacobi.iterations);
+    EXPECT_LE(when_slow.relative_residual, 1e-8);
+    if (h_s > 1e-3) {
+      EXPECT_TRUE(cg->lines_in_use());
+      EXPECT_LT(2 * when_slow.iterations, jacobi.iterations);
+    } else {
+      EXPECT_FALSE(cg->lines_in_use());
+      EXPECT_LE(jacobi.iterations, BlockConjugateGradient::kSlowIterations);
+      EXPECT_EQ(when_slow.iterations, jacobi.iterations);
+      EXPECT_TRUE(x == y);
+    }
+  }
+}
+
 // A 3 × 1 grid whose matrix [1 a c; a 1 a; c a 1] ⊗ I is positive definite (a = 0.75,
 // c = 0.5) but whose line, [1 a 0; a 1 a; 0 a 1], is not (1 − √2 a < 0): the factorization
 // fails, block Jacobi preconditions instead, and the solve still converges.
@@ -251,8 +283,9 @@ TEST(GridLinePreconditioner, TheSimulatorTakesTheSameStepsAsWithBlockJacobi) {
   test_cloth::expect_same_steps_in_fewer_iterations(CgPreconditioner::lines, "lines");
 }
 
-// "auto" gives an inextensible cloth on a grid the lines, a mass-spring cloth block Jacobi
-// (where the lines were measured slower), and the simulator says which it took.
+// "auto" gives an inextensible cloth on a grid the lines for its slow solves, a mass-spring
+// cloth block Jacobi (where the lines were measured slower), and the simulator says which it
+// took.
 TEST(GridLinePreconditioner, AutoTakesTheLinesForAnInextensibleCloth) {
   GridSpec grid;
   grid.nu = grid.nv = 12;
@@ -264,7 +297,7 @@ TEST(GridLinePreconditioner, AutoTakesTheLinesForAnInextensibleCloth) {
     s.implicit_solve = ImplicitSolve::conjugate_gradient;
     if (inextensible) s.projection.method = ProjectionMethod::fast_projection;
     const Simulator sim(mesh, Material{}, pins, s);
-    const std::string expected = inextensible ? "(auto: lines)" : "(auto: block_jacobi)";
+    const std::string expected = inextensible ? "(auto: block_jacobi, lines when slow)" : "(auto: block_jacobi)";
     bool found = false;
     for (const std::string& line : sim.explain()) found = found || line.find(expected) != std::string::npos;
     EXPECT_TRUE(found) << expected;

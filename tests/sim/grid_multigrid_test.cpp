@@ -182,7 +182,8 @@ TEST(GridMultigrid, NoHierarchyForSmallGridsOrFarCouplings) {
 }
 
 // "auto" takes the multigrid from 150 × 150 vertices (where it was measured to pay), the lines
-// below when the cloth's edges are held by a projection, block Jacobi otherwise and on a
+// below when the cloth's edges are held by a projection (for the solves block Jacobi would
+// make slow), block Jacobi otherwise and on a
 // triangle mesh (no grid); an explicit choice holds at any size.
 TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   ImplicitSolveSettings s;
@@ -192,6 +193,7 @@ TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   EXPECT_FALSE(uses_lines(s));  // a mass-spring cloth
   s.edges_constrained = true;
   EXPECT_TRUE(uses_lines(s));
+  EXPECT_TRUE(lines_when_slow(s));  // "auto" takes them for the slow solves only
   s.grid_nu = s.grid_nv = 150;
   EXPECT_TRUE(uses_multigrid(s));
   EXPECT_FALSE(uses_lines(s));
@@ -205,6 +207,7 @@ TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   EXPECT_FALSE(uses_lines(s));
   s.grid_nu = s.grid_nv = 256;
   EXPECT_TRUE(uses_lines(s));
+  EXPECT_FALSE(lines_when_slow(s));
   EXPECT_FALSE(uses_multigrid(s));
   s.preconditioner = CgPreconditioner::block_jacobi;
   EXPECT_FALSE(uses_multigrid(s));
