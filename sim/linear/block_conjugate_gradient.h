@@ -18,14 +18,15 @@
 // breakdown), that solve is redone with block Jacobi; should a line's factorization fail, that
 // matrix is preconditioned by block Jacobi.
 //
-// The lines cost about a dozen products to set up and one to apply, against a fifth of one for
-// block Jacobi: they pay where block Jacobi would take many iterations (a taut hanging cloth
-// at a time step of 1/120 s: 37 at 64²), and cost time where it takes few (the shorter steps of
-// a drape: about 4). With GridPreconditioner::lines_when_slow each solve starts with block
-// Jacobi; after kProbeIterations, if the residual's mean rate of decrease so far predicts more
-// than kSlowIterations in all, the lines are set up and the solve goes on with them from the
-// iterate reached. The first iterations remove the error fastest: on the 64² hang the rate of
-// the first four predicted 9–30 iterations where the solves took 36–59, hence the low bar.
+// The lines cost about a dozen products to set up and one to apply, against about a ninth of
+// one for block Jacobi (one block a row, where the product reads nine): they pay where block
+// Jacobi would take many iterations (a taut hanging cloth at a time step of 1/120 s: 37 at
+// 64²), and cost time where it takes few (the shorter steps of a drape: about 4). With
+// GridPreconditioner::lines_when_slow each solve starts with block Jacobi; after
+// kProbeIterations, if the residual's mean rate of decrease so far predicts more than
+// kSlowIterations in all, the lines are set up and the solve goes on with them from the iterate
+// reached. The first iterations remove the error fastest: on the 64² hang the rate of the
+// first four predicted 9–30 iterations where the solves took 36–59, hence the low bar.
 //
 // Stops at ‖b − A x‖ ≤ tolerance ‖b‖ (the convention of Eigen::ConjugateGradient, which this
 // replaces) or after max_iterations; either way x is the last iterate.
