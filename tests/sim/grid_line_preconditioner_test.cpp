@@ -297,7 +297,8 @@ TEST(GridLinePreconditioner, AutoTakesTheLinesForAnInextensibleCloth) {
     s.implicit_solve = ImplicitSolve::conjugate_gradient;
     if (inextensible) s.projection.method = ProjectionMethod::fast_projection;
     const Simulator sim(mesh, Material{}, pins, s);
-    const std::string expected = inextensible ? "(auto: block_jacobi, lines when slow)" : "(auto: block_jacobi)";
+    const std::string expected =
+        inextensible ? "(auto: block_jacobi, lines when slow)" : "(auto: block_jacobi)";
     bool found = false;
     for (const std::string& line : sim.explain()) found = found || line.find(expected) != std::string::npos;
     EXPECT_TRUE(found) << expected;

@@ -145,7 +145,8 @@ TEST(ImpactZoneDrape, EveryStepEndsWithinTheToleranceAfterTheHeldRoundsRunOut) {
     const StepStatistics st = sim.take_step_statistics();
     EXPECT_EQ(st.unconverged_steps, 0) << "frame " << frame;
     EXPECT_LE(st.worst_projected_strain, s.projection.tolerance) << "frame " << frame;
-    EXPECT_EQ(count_edge_triangle_crossings(sim.state().x, triangles, edges), 0) << "frame " << frame;
+    EXPECT_EQ(count_edge_triangle_crossings(sim.state().x, triangles, edges), 0)
+        << "frame " << frame;
     most_zone_vertices = std::max(most_zone_vertices, st.max_impact_zone_vertices);
   }
   EXPECT_GT(most_zone_vertices, 0);  // zones formed
