@@ -5,19 +5,20 @@
 // time per frame (24 fps; CPU time is less disturbed by other work on the machine, and counts
 // every thread: self-collision builds its candidate list on --threads threads, 0 for all
 // hardware threads, while the rest of the step runs on one), the step count, implicit Euler's
-// conjugate-gradient iterations per step (0 with symplectic Euler), the self-contacts per step, the candidate pairs in the list, the broad- and narrow-phase shares
-// of the frame time, the rebuilds of the proximity candidates, the pairs the impact zones test
-// by continuous collision per step (sim/collision/impact_zones.h), the most edge–triangle
-// crossings in a frame (counted outside the timed steps), the steps a projection left above
-// its tolerance and the largest strain it left; then the on/off ratios of the medians.
+// conjugate-gradient iterations per step (0 with symplectic Euler), the self-contacts per step,
+// the candidate pairs in the list, the broad- and narrow-phase shares of the frame time, the
+// rebuilds of the proximity candidates, the pairs the impact zones test by continuous collision
+// per step (sim/collision/impact_zones.h), the most edge–triangle crossings in a frame (counted
+// outside the timed steps), the steps a projection left above its tolerance and the largest
+// strain it left; then the on/off ratios of the medians.
 //
 // --inextensible: the same drop with fast projection (tol 1e-3) after implicit Euler solved by
 // conjugate gradients to 1e-3 (h = 1/120 s), the inextensible model bench/inextensibility_sweep
 // times.
 //
 // --failsafe-interval S: SelfCollisionSettings::failsafe_interval_s (0: the failsafe every step).
-// --block-jacobi: conjugate gradients preconditioned by block Jacobi instead of "auto" (the
-// lines on this grid).
+// --block-jacobi: conjugate gradients preconditioned by block Jacobi instead of "auto" (block
+// Jacobi and the lines for its slow solves on this grid).
 //
 // Run: build/bench/self_collision_bench [--n 64] [--seconds 1.5] [--repeats 3] [--threads 0]
 //                                       [--inextensible] [--failsafe-interval 0.001] [--block-jacobi]

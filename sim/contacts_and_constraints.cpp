@@ -118,9 +118,8 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
   ImpactZoneCounts counts = m_zones->resolve(x_start, m_inv_mass, x);
   long most = counts.zone_vertices;
   if (m_projector && counts.zone_vertices > 0) {
-    Eigen::VectorXd held = m_inv_mass;
     for (int round = 0; round < kHeldRounds && (round == 0 || counts.collisions > 0); ++round) {
-      for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
+      const Eigen::VectorXd held = zones_held();
       if (!m_held_projector) {
         ProjectionSettings held_settings = m_settings.projection;
         held_settings.stall_fraction = kHeldStallFraction;
@@ -150,6 +149,12 @@ void ContactsAndConstraints::failsafe(const Matrix3X& x_start, Matrix3X& x, Step
   if (!counts.resolved) ++stats.unresolved_impact_steps;
 }
 
+Eigen::VectorXd ContactsAndConstraints::zones_held() const {
+  Eigen::VectorXd held = m_inv_mass;
+  for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
+  return held;
+}
+
 std::vector<std::array<Index, 2>> ContactsAndConstraints::stretched_edges(
     const Eigen::VectorXd& held, const Matrix3X& x) const {
   std::vector<std::array<Index, 2>> stretched;
@@ -169,9 +174,7 @@ std::vector<std::array<Index, 2>> ContactsAndConstraints::stretched_edges(
 ImpactZoneCounts ContactsAndConstraints::absorb_stretched(const Matrix3X& x_start, Matrix3X& x,
                                                           ImpactZoneCounts counts) {
   for (;;) {
-    Eigen::VectorXd held = m_inv_mass;
-    for (const Index v : m_zones->zone_vertices()) held[v] = 0.0;
-    const std::vector<std::array<Index, 2>> stretched = stretched_edges(held, x);
+    const std::vector<std::array<Index, 2>> stretched = stretched_edges(zones_held(), x);
     if (stretched.empty()) return counts;
     const long before = counts.zone_vertices;
     m_zones->absorb(stretched);

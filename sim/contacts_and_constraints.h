@@ -74,6 +74,8 @@ class ContactsAndConstraints {
   bool collide(const Matrix3X& x_start, Matrix3X& x, bool with_friction, StepStatistics& stats);
   // The failsafe after the last correction: rigid impact zones over x_start → x.
   void failsafe(const Matrix3X& x_start, Matrix3X& x, StepStatistics& stats);
+  // The inverse masses with every vertex of the impact zones so far held (0), as the pins are.
+  Eigen::VectorXd zones_held() const;
   // The edges with a free end (held: inverse masses, 0 in a zone or at a pin) beyond fast
   // projection's tolerance at x; none for other projections.
   std::vector<std::array<Index, 2>> stretched_edges(const Eigen::VectorXd& held,

@@ -58,8 +58,9 @@ inline constexpr base::EnumNames<ImplicitSolve, 2> implicit_solve_names{
 // V-cycle on the cloth's warp/weft grid, exact solves along its lines (grid_line_preconditioner.h;
 // either is block Jacobi on a mesh without a grid), block Jacobi, or automatic: the multigrid on
 // grids of at least kMultigridMinVertices vertices, where it was measured to pay
-// (docs/benchmarks.md, "Multigrid for the implicit step"), the lines on smaller grids of an
-// inextensible cloth ("Line solves for the implicit step"), block Jacobi otherwise.
+// (docs/benchmarks.md, "Multigrid for the implicit step"), on smaller grids of an inextensible
+// cloth block Jacobi and the lines for the solves it would make slow ("Line solves for the
+// implicit step", "The lines only for slow solves"), block Jacobi otherwise.
 enum class CgPreconditioner { automatic, multigrid, lines, block_jacobi };
 inline constexpr base::EnumNames<CgPreconditioner, 4> cg_preconditioner_names{
     {{CgPreconditioner::automatic, "auto"},
@@ -109,8 +110,8 @@ inline bool lines_when_slow(const ImplicitSolveSettings& s) {
   return uses_lines(s) && s.preconditioner == CgPreconditioner::automatic;
 }
 
-// The preconditioner conjugate gradients use for these settings, by its scene name ("lines"
-// where "auto" takes them for the slow solves only: "block_jacobi, lines when slow").
+// The preconditioner conjugate gradients use for these settings, as --explain names it: its
+// scene name, or "block_jacobi, lines when slow" where "auto" takes the lines for slow solves.
 inline const char* preconditioner_in_use(const ImplicitSolveSettings& s) {
   if (uses_multigrid(s) && s.grid_nu > 0) return "multigrid";
   if (lines_when_slow(s)) return "block_jacobi, lines when slow";

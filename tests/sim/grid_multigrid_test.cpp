@@ -183,8 +183,8 @@ TEST(GridMultigrid, NoHierarchyForSmallGridsOrFarCouplings) {
 
 // "auto" takes the multigrid from 150 × 150 vertices (where it was measured to pay), the lines
 // below when the cloth's edges are held by a projection (for the solves block Jacobi would
-// make slow), block Jacobi otherwise and on a
-// triangle mesh (no grid); an explicit choice holds at any size.
+// make slow), block Jacobi otherwise and on a triangle mesh (no grid); an explicit choice holds
+// at any size.
 TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   ImplicitSolveSettings s;
   ASSERT_EQ(s.preconditioner, CgPreconditioner::automatic);
